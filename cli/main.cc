@@ -1,0 +1,51 @@
+// `ramap <command> [--option value ...]`: dispatch to a subcommand, report errors uniformly.
+#include <cstring>
+#include <exception>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "commands.h"
+#include "ramap/util/error.h"
+
+namespace {
+
+void PrintUsage(std::ostream& out) {
+  out << "ramap: structure from motion by motion averaging, COLMAP in and out.\n\n"
+         "Usage: ramap <command> [--option value ...]\n"
+         "       ramap <command> -h   (options of one command)\n\nCommands:\n";
+  for (const ramap::cli::Command& command : ramap::cli::AllCommands()) {
+    out << "  " << command.name << std::string(22 - std::min<size_t>(20, command.name.size()), ' ')
+        << command.summary << "\n";
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || !std::strcmp(argv[1], "help") || !std::strcmp(argv[1], "-h") ||
+      !std::strcmp(argv[1], "--help")) {
+    PrintUsage(std::cout);
+    return argc < 2 ? 1 : 0;
+  }
+  const std::string name = argv[1];
+  for (const ramap::cli::Command& command : ramap::cli::AllCommands()) {
+    if (command.name != name) continue;
+    try {
+      // The command sees itself as argv[0].
+      return command.run(argc - 1, argv + 1);
+    } catch (const ramap::InputError& error) {
+      std::cerr << "ramap " << name << ": error: " << error.what() << "\n";
+      return 2;
+    } catch (const CLI::Error& error) {
+      std::cerr << "ramap " << name << ": error: " << error.what() << "\n";
+      return 2;
+    } catch (const std::exception& error) {
+      std::cerr << "ramap " << name << ": internal error: " << error.what() << "\n";
+      return 3;
+    }
+  }
+  std::cerr << "ramap: unknown command '" << name << "'\n\n";
+  PrintUsage(std::cerr);
+  return 1;
+}

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs every build, test and runtime dependency of ramap from Debian 12's packages.
+# Idempotent: packages already present are left alone; safe to run again.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  colmap                      # the reference BA mapper and feature pipeline we compare with
+  libceres-dev                # optional bundle adjustment
+  libeigen3-dev
+  libopencv-dev               # feature extraction / matching for image-list input
+  libsuitesparse-dev          # CHOLMOD for the sparse normal equations
+  libgeographiclib-dev        # WGS84 <-> local frames
+  libopengv-dev               # Kneip's relative-pose solvers
+  libsqlite3-dev sqlite3      # COLMAP databases
+  libgtest-dev libgmock-dev   # tests
+  libcli11-dev                # command-line options
+  nlohmann-json3-dev          # reports and summaries
+  libspectra-dev              # sparse eigenvalues (Fiedler value of the certificate)
+  libexiv2-dev                # EXIF focal length and GPS
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

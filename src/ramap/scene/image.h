@@ -1,0 +1,36 @@
+// An image: its name, camera, pose and 2D observations, as in a COLMAP database / model.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ramap/scene/rigid3.h"
+
+namespace ramap {
+
+// COLMAP 3.8's invalid 3D point id (point3D_t is uint64).
+constexpr uint64_t kInvalidPoint3DId = std::numeric_limits<uint64_t>::max();
+
+struct Point2D {
+  Eigen::Vector2d xy = Eigen::Vector2d::Zero();  // pixels, COLMAP convention (0.5 = pixel centre)
+  uint64_t point3D_id = kInvalidPoint3DId;
+};
+
+struct Image {
+  uint32_t image_id = 0;
+  std::string name;
+  uint32_t camera_id = 0;
+  Rigid3d cam_from_world;
+  // Observations, in the order of the image's keypoints.
+  std::vector<Point2D> points2D;
+  // Priors from the database's prior_q* / prior_t* columns (NULL there -> empty here).
+  std::optional<Eigen::Quaterniond> prior_rotation;
+  std::optional<Eigen::Vector3d> prior_translation;
+};
+
+}  // namespace ramap

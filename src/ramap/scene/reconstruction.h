@@ -1,0 +1,34 @@
+// A sparse model as COLMAP writes it: cameras, registered images and 3D points with tracks.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ramap/scene/camera.h"
+#include "ramap/scene/image.h"
+
+namespace ramap {
+
+struct TrackElement {
+  uint32_t image_id = 0;
+  uint32_t point2D_idx = 0;
+};
+
+struct Point3D {
+  Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
+  Eigen::Matrix<uint8_t, 3, 1> color = Eigen::Matrix<uint8_t, 3, 1>::Zero();
+  double error = -1.0;  // mean reprojection error in pixels; -1 when unknown (COLMAP's default)
+  std::vector<TrackElement> track;
+};
+
+// Only registered images are held in `images`.
+struct Reconstruction {
+  std::map<uint32_t, Camera> cameras;
+  std::map<uint32_t, Image> images;
+  std::map<uint64_t, Point3D> points3D;
+};
+
+}  // namespace ramap

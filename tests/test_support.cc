@@ -3,9 +3,13 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace ramap::test {
 namespace fs = std::filesystem;
@@ -48,6 +52,111 @@ TempDir::TempDir() {
 TempDir::~TempDir() {
   std::error_code ec;
   fs::remove_all(path_, ec);
+}
+
+}  // namespace ramap::test
+
+namespace ramap::test {
+namespace {
+
+std::string CacheRoot() {
+  const fs::path root = fs::path(RAMAP_CLI_PATH).parent_path() / "test-cache";
+  fs::create_directories(root);
+  return root.string();
+}
+
+std::string RunKey(const ColmapRun& run) {
+  std::string key = run.image_dir + "|" + run.camera_model + "|" + run.camera_params + "|" +
+                    std::to_string(run.max_image_size) + "|" +
+                    (run.sequential_matching ? "seq" : "exh");
+  for (const std::string& name : run.image_names) key += "|" + name;
+  return std::to_string(std::hash<std::string>{}(key));
+}
+
+// Holds an exclusive lock on `path` while alive, so parallel ctest processes build a cache once.
+class FileLock {
+ public:
+  explicit FileLock(const std::string& path) : file_(fopen(path.c_str(), "a")) {
+    if (file_) lockf(fileno(file_), F_LOCK, 0);
+  }
+  ~FileLock() {
+    if (file_) {
+      lockf(fileno(file_), F_ULOCK, 0);
+      fclose(file_);
+    }
+  }
+
+ private:
+  FILE* file_;
+};
+
+bool Run(const std::string& command_line, const std::string& log_path) {
+  const CommandResult result = RunCommand(command_line + " > '" + log_path + "' 2>&1");
+  if (result.exit_code != 0) {
+    ADD_FAILURE() << "command failed (" << result.exit_code << "): " << command_line
+                  << "\nlog: " << log_path;
+  }
+  return result.exit_code == 0;
+}
+
+}  // namespace
+
+std::string CachedColmapDatabase(const ColmapRun& run) {
+  const std::string dir = CacheRoot() + "/colmap-" + RunKey(run);
+  const std::string database = dir + "/database.db";
+  FileLock lock(dir + ".lock");
+  if (fs::exists(dir + "/database.done")) return database;
+  fs::remove_all(dir);
+  fs::create_directories(dir + "/images");
+  // A folder of links holds exactly the subset, so COLMAP sees only those images.
+  for (const auto& entry : fs::directory_iterator(run.image_dir)) {
+    const std::string name = entry.path().filename().string();
+    const bool wanted = run.image_names.empty()
+                            ? (entry.path().extension() != ".txt" && entry.is_regular_file())
+                            : std::find(run.image_names.begin(), run.image_names.end(), name) !=
+                                  run.image_names.end();
+    if (wanted) fs::create_symlink(fs::absolute(entry.path()), dir + "/images/" + name);
+  }
+  const std::string common = " --database_path '" + database + "'";
+  if (!Run("colmap feature_extractor" + common + " --image_path '" + dir + "/images'" +
+               " --ImageReader.single_camera 1 --ImageReader.camera_model " + run.camera_model +
+               " --ImageReader.camera_params " + run.camera_params +
+               " --SiftExtraction.use_gpu 0 --SiftExtraction.num_threads 2" +
+               " --SiftExtraction.max_image_size " + std::to_string(run.max_image_size),
+           dir + "/extract.log")) {
+    return "";
+  }
+  const std::string matcher = run.sequential_matching ? "sequential_matcher" : "exhaustive_matcher";
+  if (!Run("colmap " + matcher + common + " --SiftMatching.use_gpu 0 --SiftMatching.num_threads 2",
+           dir + "/match.log")) {
+    return "";
+  }
+  std::ofstream(dir + "/database.done") << "ok\n";
+  return database;
+}
+
+std::string CachedColmapModel(const ColmapRun& run) {
+  const std::string database = CachedColmapDatabase(run);
+  if (database.empty()) return "";
+  const std::string dir = fs::path(database).parent_path().string();
+  FileLock lock(dir + ".model.lock");
+  const std::string model = dir + "/sparse/0";
+  if (fs::exists(dir + "/model.done")) return model;
+  fs::remove_all(dir + "/sparse");
+  fs::create_directories(dir + "/sparse");
+  if (!Run("colmap mapper --database_path '" + database + "' --image_path '" + dir + "/images'" +
+               " --output_path '" + dir + "/sparse' --Mapper.num_threads 2" +
+               " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0" +
+               " --Mapper.ba_refine_extra_params 0",
+           dir + "/mapper.log")) {
+    return "";
+  }
+  if (!fs::exists(model + "/images.bin")) {
+    ADD_FAILURE() << "colmap mapper made no model in " << dir << "/sparse";
+    return "";
+  }
+  std::ofstream(dir + "/model.done") << "ok\n";
+  return model;
 }
 
 }  // namespace ramap::test

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -25,6 +26,22 @@ struct CommandResult {
 };
 // Runs a shell command line, capturing its output.
 CommandResult RunCommand(const std::string& command_line);
+
+// COLMAP run on a subset of real images, cached on disk under the build folder (keyed by every
+// argument) so that tests share one extraction and one mapper run. Each call that finds no cached
+// result runs COLMAP on the CPU; tests keep subsets small and max_image_size low.
+struct ColmapRun {
+  std::string image_dir;                 // folder of the images
+  std::vector<std::string> image_names;  // the subset, by file name (empty: every image)
+  std::string camera_model = "PINHOLE";  // one shared camera with known intrinsics
+  std::string camera_params;             // "fx,fy,cx,cy" at FULL resolution (scaled by COLMAP)
+  int max_image_size = 640;
+  bool sequential_matching = false;      // exhaustive by default
+};
+// Path of a database built by colmap feature_extractor + matcher; "" and a gtest failure if COLMAP fails.
+std::string CachedColmapDatabase(const ColmapRun& run);
+// Path of the sparse model folder (sparse/0) of `colmap mapper` on that database, intrinsics fixed.
+std::string CachedColmapModel(const ColmapRun& run);
 
 // A fresh folder under the system's temporary folder, removed with its contents at scope end.
 class TempDir {

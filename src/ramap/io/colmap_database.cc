@@ -144,7 +144,7 @@ void CheckMatchIndices(const FeatureDatabase& database, const char* table, uint3
 class Reader {
  public:
   Reader(const std::string& path, const DatabaseReadOptions& options)
-      : path_(path), options_(options), db_(path, Connection::ReadOnly(), path) {}
+      : path_(path), options_(options), db_(path, Connection::OpenExisting(), path) {}
 
   FeatureDatabase Read() {
     CheckIsSqlite();
@@ -173,6 +173,7 @@ class Reader {
   void CheckIsSqlite() {
     // Opening is lazy: the first read of the header tells whether this is an SQLite file.
     try {
+      db_.SetQueryOnly();
       Statement statement(db_, "SELECT count(*) FROM sqlite_master");
       statement.Step();
     } catch (const InputError& error) {

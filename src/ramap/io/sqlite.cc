@@ -24,7 +24,7 @@ Connection::Connection(const std::string& path, int flags, std::string source)
 
 Connection::~Connection() { sqlite3_close_v2(db_); }
 
-int Connection::ReadOnly() { return SQLITE_OPEN_READONLY; }
+int Connection::OpenExisting() { return SQLITE_OPEN_READWRITE; }
 
 int Connection::Create() { return SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE; }
 

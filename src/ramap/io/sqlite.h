@@ -16,20 +16,25 @@ namespace ramap::sqlite {
 // An open database; closed when destroyed.
 class Connection {
  public:
-  // `flags` are sqlite3_open_v2 flags (SQLITE_OPEN_READONLY, ...); see ReadOnly() / Create().
+  // `flags` are sqlite3_open_v2 flags ; see OpenExisting() / Create().
   Connection(const std::string& path, int flags, std::string source);
   ~Connection();
   Connection(const Connection&) = delete;
   Connection& operator=(const Connection&) = delete;
 
-  // Opens an existing database without writing to it.
-  static int ReadOnly();
+  // Opens an existing database for reading; pair with SetQueryOnly(). Read-write on purpose: a
+  // read-only connection to a WAL-mode database (as COLMAP leaves them) creates -wal and -shm
+  // files beside it that it cannot remove, while a read-write one removes them when it closes. A
+  // file the user cannot write is still opened, read-only.
+  static int OpenExisting();
   // Opens for writing, creating the file when absent.
   static int Create();
 
   sqlite3* get() const { return db_; }
   const std::string& source() const { return source_; }
 
+  // Makes any statement that would change the database fail.
+  void SetQueryOnly() { Execute("PRAGMA query_only = 1"); }
   // Runs one or more statements that return no rows of interest.
   void Execute(const std::string& sql);
   // Throws InputError(source(), what + ": " + SQLite's last message).

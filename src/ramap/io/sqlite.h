@@ -16,7 +16,7 @@ namespace ramap::sqlite {
 // An open database; closed when destroyed.
 class Connection {
  public:
-  // `flags` are sqlite3_open_v2 flags ; see OpenExisting() / Create().
+  // `flags` are sqlite3_open_v2 flags; see OpenExisting() / Create().
   Connection(const std::string& path, int flags, std::string source);
   ~Connection();
   Connection(const Connection&) = delete;

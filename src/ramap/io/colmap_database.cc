@@ -176,9 +176,9 @@ class Reader {
       db_.SetQueryOnly();
       Statement statement(db_, "SELECT count(*) FROM sqlite_master");
       statement.Step();
-    } catch (const InputError& error) {
-      Fail(std::string("not a readable SQLite database (is it a COLMAP database?): ") +
-           error.what());
+    } catch (const InputError&) {
+      Fail("not a readable SQLite database (is it a COLMAP database?): SQLite says '" +
+           db_.LastError() + "'");
     }
   }
 
@@ -214,8 +214,9 @@ class Reader {
     const size_t expected = static_cast<size_t>(*rows) * static_cast<size_t>(*cols) * value_size;
     if (blob.size != expected) {
       Fail(what + ": data blob has " + std::to_string(blob.size) + " bytes, " +
-           std::to_string(*rows) + " x " + std::to_string(*cols) + " values need " +
-           std::to_string(expected) + (blob.size < expected ? " (truncated?)" : ""));
+           std::to_string(*rows) + " x " + std::to_string(*cols) + " values of " +
+           std::to_string(value_size) + " bytes need " + std::to_string(expected) +
+           (blob.size < expected ? " (truncated?)" : ""));
     }
     return blob;
   }

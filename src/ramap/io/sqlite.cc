@@ -37,6 +37,8 @@ void Connection::Execute(const std::string& sql) {
   }
 }
 
+std::string Connection::LastError() const { return sqlite3_errmsg(db_); }
+
 void Connection::Fail(const std::string& what) const {
   throw InputError(source_, what + ": " + sqlite3_errmsg(db_));
 }

@@ -37,6 +37,8 @@ class Connection {
   void SetQueryOnly() { Execute("PRAGMA query_only = 1"); }
   // Runs one or more statements that return no rows of interest.
   void Execute(const std::string& sql);
+  // SQLite's message about the last failure on this connection.
+  std::string LastError() const;
   // Throws InputError(source(), what + ": " + SQLite's last message).
   [[noreturn]] void Fail(const std::string& what) const;
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <string>
@@ -183,7 +184,11 @@ class Reader {
   }
 
   void CheckColumns(const std::string& table, const std::vector<std::string>& columns) {
-    Statement info(db_, "SELECT name FROM pragma_table_info(?)");
+    if (!table_info_) {
+      table_info_ = std::make_unique<Statement>(db_, "SELECT name FROM pragma_table_info(?)");
+    }
+    Statement& info = *table_info_;
+    info.Reset();
     info.BindText(1, table);
     std::set<std::string> present;
     while (info.Step()) present.insert(info.ColumnText(0));
@@ -192,11 +197,12 @@ class Reader {
     }
     for (const std::string& column : columns) {
       if (present.count(column) == 0) {
-        const bool pose_column = table == "two_view_geometries";
+        // COLMAP added the pose columns of two_view_geometries late; other gaps are rarer.
+        const bool two_view_table = table == "two_view_geometries";
         Fail("table '" + table + "': missing column '" + column + "'" +
-             (pose_column ? " (database from a COLMAP older than 3.8? ramap reads COLMAP 3.8 "
-                            "databases)"
-                          : " (not a COLMAP 3.8 database?)"));
+             (two_view_table ? " (database from a COLMAP older than 3.8? ramap reads COLMAP 3.8 "
+                               "databases)"
+                             : " (not a COLMAP 3.8 database?)"));
       }
     }
   }
@@ -443,6 +449,7 @@ class Reader {
   const std::string path_;
   const DatabaseReadOptions options_;
   Connection db_;
+  std::unique_ptr<Statement> table_info_;  // prepared once, for every table
   FeatureDatabase database_;
 };
 

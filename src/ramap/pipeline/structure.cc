@@ -1,0 +1,96 @@
+#include "ramap/pipeline/structure.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace ramap {
+
+void StructureOptions::Check() const {
+  if (!(max_reprojection_error_px > 0))
+    throw std::invalid_argument("max_reprojection_error_px must be > 0");
+  if (!(min_triangulation_angle_deg >= 0)) {
+    throw std::invalid_argument("min_triangulation_angle_deg must be >= 0");
+  }
+}
+
+Reconstruction BuildReconstruction(const FeatureDatabase& database,
+                                   const std::map<uint32_t, Rigid3d>& poses,
+                                   const std::vector<Track>& tracks,
+                                   const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
+                                   const std::map<uint32_t, double>& focal_lengths_px,
+                                   const StructureOptions& options, StructureSummary* summary) {
+  options.Check();
+  Reconstruction reconstruction;
+  for (const auto& [image_id, pose] : poses) {
+    const Image& source = database.images.at(image_id);
+    Image image = source;
+    image.cam_from_world = pose;
+    image.points2D.clear();
+    if (const auto keypoints = database.keypoints.find(image_id);
+        keypoints != database.keypoints.end()) {
+      image.points2D.resize(keypoints->second.size());
+      for (size_t k = 0; k < keypoints->second.size(); ++k)
+        image.points2D[k].xy = keypoints->second.xy(k);
+    }
+    reconstruction.cameras[image.camera_id] = database.cameras.at(image.camera_id);
+    reconstruction.images[image_id] = std::move(image);
+  }
+
+  StructureSummary counts;
+  double sum_error_px = 0.0;
+  uint64_t next_point3D_id = 1;
+  for (const Track& track : tracks) {
+    std::vector<RayObservation> rays;
+    std::vector<const TrackElement*> elements;
+    double focal_sum = 0.0;
+    for (const TrackElement& element : track) {
+      const auto pose = poses.find(element.image_id);
+      const auto image_bearings = bearings.find(element.image_id);
+      if (pose == poses.end() || image_bearings == bearings.end() ||
+          element.point2D_idx >= image_bearings->second.size() ||
+          element.point2D_idx >= reconstruction.images.at(element.image_id).points2D.size()) {
+        continue;
+      }
+      rays.push_back({pose->second, image_bearings->second[element.point2D_idx]});
+      elements.push_back(&element);
+      focal_sum += focal_lengths_px.at(database.images.at(element.image_id).camera_id);
+    }
+    if (rays.size() < 2) continue;
+    ++counts.num_tracks;
+    const double focal_px = focal_sum / rays.size();
+    TriangulationOptions triangulation;
+    triangulation.max_angular_error_rad = options.max_reprojection_error_px / focal_px;
+    triangulation.min_triangulation_angle_deg = options.min_triangulation_angle_deg;
+    const std::optional<TriangulatedPoint> triangulated = TriangulatePoint(rays, triangulation);
+    if (!triangulated) {
+      ++counts.num_rejected_tracks;
+      continue;
+    }
+    const uint64_t point3D_id = next_point3D_id++;
+    Point3D point;
+    point.xyz = triangulated->xyz;
+    double error_sum_px = 0.0;
+    for (const int k : triangulated->inliers) {
+      const TrackElement& element = *elements[k];
+      const Eigen::Vector3d x = rays[k].cam_from_world * point.xyz;
+      const Eigen::Vector3d& f = rays[k].bearing;
+      const double focal = focal_lengths_px.at(database.images.at(element.image_id).camera_id);
+      error_sum_px += f.z() > 0 ? focal * (x.head<2>() / x.z() - f.head<2>() / f.z()).norm()
+                                : focal * std::atan2(x.cross(f).norm(), x.dot(f));
+      point.track.push_back(element);
+      reconstruction.images.at(element.image_id).points2D[element.point2D_idx].point3D_id =
+          point3D_id;
+    }
+    point.error = error_sum_px / point.track.size();
+    sum_error_px += error_sum_px;
+    counts.num_observations += static_cast<int>(point.track.size());
+    reconstruction.points3D[point3D_id] = std::move(point);
+  }
+  counts.num_points = static_cast<int>(reconstruction.points3D.size());
+  counts.mean_reprojection_error_px =
+      counts.num_observations ? sum_error_px / counts.num_observations : 0.0;
+  if (summary != nullptr) *summary = counts;
+  return reconstruction;
+}
+
+}  // namespace ramap

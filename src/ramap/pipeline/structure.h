@@ -1,0 +1,47 @@
+// The structure stage: with every pose fixed, the feature tracks are triangulated and the result is
+// assembled as a COLMAP model (cameras, registered images with their keypoints, 3D points).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "ramap/geometry/triangulation.h"
+#include "ramap/graph/tracks.h"
+#include "ramap/scene/features.h"
+#include "ramap/scene/reconstruction.h"
+
+namespace ramap {
+
+struct StructureOptions {
+  // COLMAP's mapper filters observations above 4 px (Mapper.filter_max_reproj_error).
+  double max_reprojection_error_px = 4.0;
+  // COLMAP's Mapper.filter_min_tri_angle.
+  double min_triangulation_angle_deg = 1.5;
+
+  void Check() const;
+};
+
+struct StructureSummary {
+  int num_tracks = 0;
+  int num_points = 0;
+  int num_observations = 0;
+  int num_rejected_tracks = 0;  // too few agreeing rays, too small an angle, or behind a camera
+  double mean_reprojection_error_px = 0.0;
+};
+
+// A model of the images in `poses` (cam_from_world): their cameras, keypoints as points2D, and one
+// 3D point per track that triangulates. `bearings` holds each image's undistorted unit bearings
+// (indexed like its keypoints) and `focal_lengths_px` each camera's mean focal length, which turns
+// the pixel bound into an angle. Reprojection errors are measured on the normalised plane scaled by
+// the focal length (exact for undistorted pinhole cameras).
+Reconstruction BuildReconstruction(const FeatureDatabase& database,
+                                   const std::map<uint32_t, Rigid3d>& poses,
+                                   const std::vector<Track>& tracks,
+                                   const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
+                                   const std::map<uint32_t, double>& focal_lengths_px,
+                                   const StructureOptions& options = StructureOptions(),
+                                   StructureSummary* summary = nullptr);
+
+}  // namespace ramap

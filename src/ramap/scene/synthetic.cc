@@ -1,0 +1,544 @@
+#include "ramap/scene/synthetic.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <set>
+#include <string>
+#include <utility>
+
+#include "ramap/geometry/camera_projection.h"
+#include "ramap/util/error.h"
+
+namespace ramap {
+namespace {
+
+using Rng = std::mt19937_64;
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+double Uniform(Rng& rng, double lo, double hi) {
+  return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+
+double Gaussian(Rng& rng, double sigma) {
+  if (sigma <= 0.0) return 0.0;
+  return std::normal_distribution<double>(0.0, sigma)(rng);
+}
+
+Eigen::Vector3d GaussianVector(Rng& rng, double sigma) {
+  const double x = Gaussian(rng, sigma);
+  const double y = Gaussian(rng, sigma);
+  const double z = Gaussian(rng, sigma);
+  return Eigen::Vector3d(x, y, z);
+}
+
+Eigen::Vector3d RandomUnitVector(Rng& rng) {
+  Eigen::Vector3d v;
+  do {
+    v = GaussianVector(rng, 1.0);
+  } while (v.norm() < 1e-6);
+  return v.normalized();
+}
+
+Eigen::Quaterniond RandomRotation(Rng& rng) {
+  Eigen::Vector4d q;
+  do {
+    q = Eigen::Vector4d(Gaussian(rng, 1.0), Gaussian(rng, 1.0), Gaussian(rng, 1.0),
+                        Gaussian(rng, 1.0));
+  } while (q.norm() < 1e-6);
+  q.normalize();
+  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+}
+
+// A camera at `center` looking along `forward`, image x to the right and y down, where the world
+// is y-down too (as KITTI's camera frame): forward along +z gives the identity rotation.
+Rigid3d PoseFromCenterAndForward(const Eigen::Vector3d& center, const Eigen::Vector3d& forward) {
+  const Eigen::Vector3d z = forward.normalized();
+  Eigen::Vector3d x = Eigen::Vector3d::UnitY().cross(z);
+  // Looking straight up or down: any right vector will do.
+  if (x.norm() < 1e-6) x = Eigen::Vector3d::UnitZ().cross(z);
+  x.normalize();
+  const Eigen::Vector3d y = z.cross(x);
+  Eigen::Matrix3d world_from_cam;
+  world_from_cam << x, y, z;
+  const Eigen::Quaterniond rotation(world_from_cam.transpose());
+  return Rigid3d(rotation, -(rotation * center));
+}
+
+// Rotates the camera by a small random rotation about its own centre.
+Rigid3d JitterRotation(const Rigid3d& cam_from_world, double sigma_rad, Rng& rng) {
+  const Eigen::Vector3d center = CameraCenter(cam_from_world);
+  const Eigen::Vector3d axis_angle = GaussianVector(rng, sigma_rad);
+  Eigen::Quaterniond jitter = Eigen::Quaterniond::Identity();
+  if (axis_angle.norm() > 0.0) {
+    jitter = Eigen::Quaterniond(Eigen::AngleAxisd(axis_angle.norm(), axis_angle.normalized()));
+  }
+  const Eigen::Quaterniond rotation = (jitter * cam_from_world.rotation).normalized();
+  return Rigid3d(rotation, -(rotation * center));
+}
+
+std::vector<Rigid3d> MakePoses(const SyntheticSceneOptions& options, Rng& rng) {
+  if (options.layout == SyntheticLayout::kSequential && options.path == SyntheticPath::kGiven) {
+    const size_t n = options.num_images == 0 ? options.given_poses.size()
+                                             : static_cast<size_t>(options.num_images);
+    return std::vector<Rigid3d>(options.given_poses.begin(), options.given_poses.begin() + n);
+  }
+  const int n = options.num_images;
+  const double rotation_sigma = options.rotation_jitter_deg * kDegToRad;
+  std::vector<Rigid3d> poses;
+  poses.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    Rigid3d pose;
+    if (options.layout == SyntheticLayout::kUnordered) {
+      // Views from all around but not from straight above or below.
+      Eigen::Vector3d direction;
+      do {
+        direction = RandomUnitVector(rng);
+      } while (std::abs(direction.y()) > 0.8);
+      const Eigen::Vector3d target = GaussianVector(rng, 0.1 * options.object_radius);
+      const Eigen::Vector3d center = options.camera_distance * direction;
+      pose = PoseFromCenterAndForward(center, target - center);
+    } else {
+      const double phi = 2.0 * M_PI * i / n;
+      Eigen::Vector3d center = Eigen::Vector3d::Zero();
+      Eigen::Vector3d forward = Eigen::Vector3d::UnitZ();
+      switch (options.path) {
+        case SyntheticPath::kLine:
+          center = Eigen::Vector3d(0.0, 0.0, i * options.step_length);
+          forward = Eigen::Vector3d::UnitZ();
+          break;
+        case SyntheticPath::kCircle: {
+          // 15 degrees above the object's equator (y is down), one full turn.
+          const double elevation = 15.0 * kDegToRad;
+          const double r = options.camera_distance;
+          center =
+              Eigen::Vector3d(r * std::cos(elevation) * std::sin(phi), -r * std::sin(elevation),
+                              r * std::cos(elevation) * std::cos(phi));
+          forward = -center;
+          break;
+        }
+        case SyntheticPath::kLoop: {
+          // A circle of circumference n * step_length through the origin, heading +z there.
+          const double r = n * options.step_length / (2.0 * M_PI);
+          center = Eigen::Vector3d(r * (1.0 - std::cos(phi)), 0.0, r * std::sin(phi));
+          forward = Eigen::Vector3d(std::sin(phi), 0.0, std::cos(phi));
+          break;
+        }
+        case SyntheticPath::kGiven:
+          break;  // handled above
+      }
+      center += GaussianVector(rng, options.position_jitter);
+      pose = PoseFromCenterAndForward(center, forward);
+    }
+    poses.push_back(JitterRotation(pose, rotation_sigma, rng));
+  }
+  return poses;
+}
+
+// Whether points lie on an object at the origin (seen from outside) rather than along a path.
+bool UsesObjectPoints(const SyntheticSceneOptions& options) {
+  return options.layout == SyntheticLayout::kUnordered || options.path == SyntheticPath::kCircle;
+}
+
+std::vector<Eigen::Vector3d> MakePoints(const SyntheticSceneOptions& options,
+                                        const std::vector<Rigid3d>& poses, Rng& rng) {
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(options.num_points);
+  const Camera& camera = options.camera;
+  for (int j = 0; j < options.num_points; ++j) {
+    if (UsesObjectPoints(options)) {
+      // A shell of thickness 0.2 r: a rough object surface.
+      const double r = options.object_radius * Uniform(rng, 0.8, 1.0);
+      points.push_back(r * RandomUnitVector(rng));
+      continue;
+    }
+    // In the view of a random frame, so that every part of any path has structure in front of it.
+    const size_t frame = std::uniform_int_distribution<size_t>(0, poses.size() - 1)(rng);
+    const double x = Uniform(rng, 0.0, static_cast<double>(camera.width));
+    const double y = Uniform(rng, 0.0, static_cast<double>(camera.height));
+    const double distance = Uniform(rng, options.min_depth, options.max_depth);
+    Eigen::Vector3d bearing = PixelToBearing(camera, Eigen::Vector2d(x, y));
+    if (!bearing.allFinite()) bearing = Eigen::Vector3d::UnitZ();
+    points.push_back(poses[frame].Inverse() * (distance * bearing));
+  }
+  return points;
+}
+
+// Inside [0, width) x [0, height), also once rounded to the float32 a keypoint is stored as.
+bool InsideImage(const Camera& camera, const Eigen::Vector2d& xy) {
+  return xy.allFinite() && xy.x() >= 0.0 && xy.y() >= 0.0 &&
+         static_cast<float>(xy.x()) < static_cast<float>(camera.width) &&
+         static_cast<float>(xy.y()) < static_cast<float>(camera.height);
+}
+
+// An observation of point `point_idx` as keypoint `point2D_idx` of its image.
+struct Observation {
+  uint32_t point_idx = 0;
+  uint32_t point2D_idx = 0;
+};
+
+// True matches of two images: their observations of the same points (both lists are sorted by
+// point index, so a merge finds them).
+std::vector<FeatureMatch> SharedObservations(const std::vector<Observation>& a,
+                                             const std::vector<Observation>& b) {
+  std::vector<FeatureMatch> matches;
+  size_t i = 0;
+  size_t k = 0;
+  while (i < a.size() && k < b.size()) {
+    if (a[i].point_idx < b[k].point_idx) {
+      ++i;
+    } else if (b[k].point_idx < a[i].point_idx) {
+      ++k;
+    } else {
+      matches.push_back({a[i].point2D_idx, b[k].point2D_idx});
+      ++i;
+      ++k;
+    }
+  }
+  return matches;
+}
+
+Eigen::Matrix3d CrossMatrix(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
+}
+
+// Pinhole part of the calibration (distortion ignored), for F = K^-T E K^-1.
+Eigen::Matrix3d CalibrationMatrix(const Camera& camera) {
+  const double f = MeanFocalLength(camera);
+  const std::vector<double>& p = camera.params;
+  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
+  if (p.size() == 3 || camera.model == CameraModel::kSimpleRadial ||
+      camera.model == CameraModel::kRadial || camera.model == CameraModel::kSimpleRadialFisheye ||
+      camera.model == CameraModel::kRadialFisheye) {
+    K(0, 0) = K(1, 1) = f;
+    K(0, 2) = p[1];
+    K(1, 2) = p[2];
+  } else {
+    K(0, 0) = p[0];
+    K(1, 1) = p[1];
+    K(0, 2) = p[2];
+    K(1, 2) = p[3];
+  }
+  return K;
+}
+
+// Geometry of a pair from its relative pose, translation scaled to unit length as a two-view
+// estimate can only give it.
+TwoViewGeometry MakeGeometry(uint32_t image_id1, uint32_t image_id2, const Rigid3d& cam2_from_cam1,
+                             const Eigen::Matrix3d& K) {
+  TwoViewGeometry geometry;
+  geometry.image_id1 = image_id1;
+  geometry.image_id2 = image_id2;
+  geometry.cam2_from_cam1 = cam2_from_cam1;
+  const Eigen::Matrix3d R = cam2_from_cam1.rotation.toRotationMatrix();
+  const Eigen::Matrix3d K_inv = K.inverse();
+  const double baseline = cam2_from_cam1.translation.norm();
+  if (baseline > 0.0) {
+    geometry.config = TwoViewConfig::kCalibrated;
+    geometry.cam2_from_cam1.translation /= baseline;
+    geometry.E = CrossMatrix(geometry.cam2_from_cam1.translation) * R;
+    geometry.F = K_inv.transpose() * geometry.E * K_inv;
+  } else {
+    // No baseline (a vehicle standing still): only a rotation, which COLMAP calls panoramic.
+    geometry.config = TwoViewConfig::kPanoramic;
+    geometry.H = K * R * K_inv;
+  }
+  return geometry;
+}
+
+std::string FrameName(size_t index) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "frame_%06zu.png", index + 1);
+  return name;
+}
+
+void CheckPositive(double value, const char* option) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw InputError(std::string("Synthetic.") + option,
+                     "must be a positive number, got " + std::to_string(value));
+  }
+}
+
+void CheckNonNegative(double value, const char* option) {
+  if (!(value >= 0.0) || !std::isfinite(value)) {
+    throw InputError(std::string("Synthetic.") + option,
+                     "must be zero or positive, got " + std::to_string(value));
+  }
+}
+
+}  // namespace
+
+Camera SyntheticSceneOptions::DefaultCamera() {
+  Camera camera;
+  camera.camera_id = 1;
+  camera.model = CameraModel::kPinhole;
+  camera.width = 640;
+  camera.height = 480;
+  camera.params = {500.0, 500.0, 320.0, 240.0};
+  return camera;
+}
+
+void SyntheticSceneOptions::Check() const {
+  if (layout == SyntheticLayout::kSequential && path == SyntheticPath::kGiven) {
+    if (given_poses.size() < 2) {
+      throw InputError("Synthetic.trajectory",
+                       "needs at least 2 given poses, got " + std::to_string(given_poses.size()));
+    }
+    if (num_images < 0 || static_cast<size_t>(num_images) > given_poses.size() || num_images == 1) {
+      throw InputError("Synthetic.num_images", "must be 0 (all) or between 2 and the " +
+                                                   std::to_string(given_poses.size()) +
+                                                   " given poses, got " +
+                                                   std::to_string(num_images));
+    }
+    for (const Rigid3d& pose : given_poses) {
+      if (!pose.rotation.coeffs().allFinite() || !pose.translation.allFinite() ||
+          std::abs(pose.rotation.norm() - 1.0) > 1e-6) {
+        throw InputError("Synthetic.trajectory", "a given pose is not a finite rigid transform");
+      }
+    }
+  } else if (num_images < 2) {
+    throw InputError("Synthetic.num_images",
+                     "must be at least 2, got " + std::to_string(num_images));
+  }
+  CheckCameraParams(camera, "Synthetic.camera");
+  if (camera.width == 0 || camera.height == 0) {
+    throw InputError("Synthetic.camera", "image width and height must be positive");
+  }
+  if (num_points < 1) {
+    throw InputError("Synthetic.num_points",
+                     "must be at least 1, got " + std::to_string(num_points));
+  }
+  CheckPositive(min_depth, "min_depth");
+  CheckPositive(max_depth, "max_depth");
+  if (max_depth <= min_depth) {
+    throw InputError("Synthetic.max_depth", "must exceed Synthetic.min_depth");
+  }
+  CheckPositive(step_length, "step_length");
+  CheckNonNegative(rotation_jitter_deg, "rotation_jitter_deg");
+  CheckNonNegative(position_jitter, "position_jitter");
+  CheckPositive(object_radius, "object_radius");
+  if (!(camera_distance > object_radius) || !std::isfinite(camera_distance)) {
+    throw InputError("Synthetic.camera_distance", "must exceed Synthetic.object_radius");
+  }
+  CheckNonNegative(pixel_noise_sigma, "pixel_noise");
+  if (!(outlier_ratio >= 0.0 && outlier_ratio <= 0.9)) {
+    throw InputError("Synthetic.outlier_ratio",
+                     "must be in [0, 0.9], got " + std::to_string(outlier_ratio));
+  }
+  if (num_outlier_pairs < 0) {
+    throw InputError("Synthetic.num_outlier_pairs", "must be zero or positive");
+  }
+  if (num_outlier_pair_matches < 1) {
+    throw InputError("Synthetic.num_outlier_pair_matches", "must be at least 1");
+  }
+  if (overlap < 1) {
+    throw InputError("Synthetic.overlap", "must be at least 1, got " + std::to_string(overlap));
+  }
+  CheckNonNegative(loop_max_distance, "loop_max_distance");
+  CheckNonNegative(loop_max_angle_deg, "loop_max_angle_deg");
+  if (min_shared_points < 1) {
+    throw InputError("Synthetic.min_shared_points", "must be at least 1");
+  }
+  if (min_num_inliers < 0) {
+    throw InputError("Synthetic.min_num_inliers", "must be zero or positive");
+  }
+}
+
+SyntheticScene BuildSyntheticScene(const SyntheticSceneOptions& options) {
+  options.Check();
+  Rng rng(options.seed);
+  const Camera& camera = options.camera;
+  const uint32_t camera_id = 1;
+
+  const std::vector<Rigid3d> poses = MakePoses(options, rng);
+  const std::vector<Eigen::Vector3d> points = MakePoints(options, poses, rng);
+  const size_t num_images = poses.size();
+  std::vector<Eigen::Vector3d> centers(num_images);
+  for (size_t i = 0; i < num_images; ++i) centers[i] = CameraCenter(poses[i]);
+
+  // Observations: in front of the camera (not closer than half the minimum depth, which no
+  // real camera could focus on), facing the camera on an object, and inside the image after
+  // noise.
+  std::vector<std::vector<Point2D>> points2D(num_images);
+  std::vector<std::vector<Observation>> observations(num_images);
+  std::vector<std::vector<TrackElement>> tracks(points.size());
+  std::vector<double> noise_sum(points.size(), 0.0);
+  const bool object_points = UsesObjectPoints(options);
+  for (size_t j = 0; j < points.size(); ++j) {
+    for (size_t i = 0; i < num_images; ++i) {
+      if (object_points && points[j].dot(centers[i] - points[j]) <= 0.0) continue;
+      const Eigen::Vector3d in_camera = poses[i] * points[j];
+      if (in_camera.norm() < 0.5 * options.min_depth) continue;
+      const Eigen::Vector2d projection = ProjectToPixel(camera, in_camera);
+      if (!InsideImage(camera, projection)) continue;
+      const double dx = Gaussian(rng, options.pixel_noise_sigma);
+      const double dy = Gaussian(rng, options.pixel_noise_sigma);
+      const Eigen::Vector2d observed = projection + Eigen::Vector2d(dx, dy);
+      if (!InsideImage(camera, observed)) continue;
+      const uint32_t point2D_idx = static_cast<uint32_t>(points2D[i].size());
+      Point2D point2D;
+      point2D.xy = observed;
+      points2D[i].push_back(point2D);
+      observations[i].push_back({static_cast<uint32_t>(j), point2D_idx});
+      tracks[j].push_back({static_cast<uint32_t>(i + 1), point2D_idx});
+      noise_sum[j] += std::hypot(dx, dy);
+    }
+  }
+
+  // Pairs to match, as (index1, index2) with index1 < index2.
+  std::set<std::pair<size_t, size_t>> candidates;
+  if (options.layout == SyntheticLayout::kSequential) {
+    for (size_t i = 0; i < num_images; ++i) {
+      for (size_t k = 1; k <= static_cast<size_t>(options.overlap) && i + k < num_images; ++k) {
+        candidates.insert({i, i + k});
+      }
+    }
+    if (options.loop_max_distance > 0.0) {
+      std::vector<double> travelled(num_images, 0.0);
+      for (size_t i = 1; i < num_images; ++i) {
+        travelled[i] = travelled[i - 1] + (centers[i] - centers[i - 1]).norm();
+      }
+      const double cos_max_angle = std::cos(options.loop_max_angle_deg * kDegToRad);
+      for (size_t i = 0; i < num_images; ++i) {
+        const Eigen::Vector3d axis_i = poses[i].rotation.conjugate() * Eigen::Vector3d::UnitZ();
+        for (size_t k = i + options.overlap + 1; k < num_images; ++k) {
+          if ((centers[k] - centers[i]).norm() > options.loop_max_distance) continue;
+          if (travelled[k] - travelled[i] <= 4.0 * options.loop_max_distance) continue;
+          const Eigen::Vector3d axis_k = poses[k].rotation.conjugate() * Eigen::Vector3d::UnitZ();
+          if (axis_i.dot(axis_k) < cos_max_angle) continue;
+          candidates.insert({i, k});
+        }
+      }
+    }
+  } else {
+    for (size_t i = 0; i < num_images; ++i) {
+      for (size_t k = i + 1; k < num_images; ++k) candidates.insert({i, k});
+    }
+  }
+
+  SyntheticScene scene;
+  FeatureDatabase& database = scene.database;
+  const Eigen::Matrix3d K = CalibrationMatrix(camera);
+  Camera stored_camera = camera;
+  stored_camera.camera_id = camera_id;
+  database.cameras[camera_id] = stored_camera;
+
+  // A wrong correspondence joins two keypoints that observe nothing (clutter), one-to-one.
+  auto add_clutter_keypoint = [&](size_t image_index) {
+    Point2D point2D;
+    // A margin keeps the float32 keypoint below the image size.
+    point2D.xy = Eigen::Vector2d(Uniform(rng, 0.0, camera.width - 0.01),
+                                 Uniform(rng, 0.0, camera.height - 0.01));
+    points2D[image_index].push_back(point2D);
+    return static_cast<uint32_t>(points2D[image_index].size() - 1);
+  };
+
+  const size_t min_shared =
+      options.layout == SyntheticLayout::kUnordered ? options.min_shared_points : 1;
+  std::set<std::pair<size_t, size_t>> matched_pairs;
+  for (const auto& [i, k] : candidates) {
+    const std::vector<FeatureMatch> true_matches =
+        SharedObservations(observations[i], observations[k]);
+    if (true_matches.size() < min_shared) continue;
+    matched_pairs.insert({i, k});
+    const uint32_t image_id1 = static_cast<uint32_t>(i + 1);
+    const uint32_t image_id2 = static_cast<uint32_t>(k + 1);
+    const uint64_t pair_id = ImagePairToPairId(image_id1, image_id2);
+    std::vector<FeatureMatch> matches = true_matches;
+    // outliers / (inliers + outliers) = outlier_ratio.
+    const size_t num_outliers = static_cast<size_t>(
+        std::lround(true_matches.size() * options.outlier_ratio / (1.0 - options.outlier_ratio)));
+    for (size_t o = 0; o < num_outliers; ++o) {
+      const uint32_t idx1 = add_clutter_keypoint(i);
+      const uint32_t idx2 = add_clutter_keypoint(k);
+      matches.push_back({idx1, idx2});
+    }
+    std::shuffle(matches.begin(), matches.end(), rng);
+    database.matches[pair_id] = std::move(matches);
+    if (true_matches.size() < static_cast<size_t>(std::max(options.min_num_inliers, 1))) continue;
+    TwoViewGeometry geometry = MakeGeometry(image_id1, image_id2, poses[k] * poses[i].Inverse(), K);
+    geometry.inlier_matches = true_matches;
+    database.two_view_geometries[pair_id] = std::move(geometry);
+  }
+
+  // Whole outlier pairs: random pairs not matched above, with random matches and a random pose.
+  const size_t max_pairs = num_images * (num_images - 1) / 2;
+  const size_t max_attempts = 100 * static_cast<size_t>(options.num_outlier_pairs) + 100;
+  std::uniform_int_distribution<size_t> random_image(0, num_images - 1);
+  for (size_t attempt = 0;
+       attempt < max_attempts &&
+       scene.outlier_pair_ids.size() < static_cast<size_t>(options.num_outlier_pairs) &&
+       matched_pairs.size() < max_pairs;
+       ++attempt) {
+    size_t i = random_image(rng);
+    size_t k = random_image(rng);
+    if (i == k) continue;
+    if (i > k) std::swap(i, k);
+    if (!matched_pairs.insert({i, k}).second) continue;
+    const uint32_t image_id1 = static_cast<uint32_t>(i + 1);
+    const uint32_t image_id2 = static_cast<uint32_t>(k + 1);
+    const uint64_t pair_id = ImagePairToPairId(image_id1, image_id2);
+    std::vector<FeatureMatch> matches;
+    for (int o = 0; o < options.num_outlier_pair_matches; ++o) {
+      const uint32_t idx1 = add_clutter_keypoint(i);
+      const uint32_t idx2 = add_clutter_keypoint(k);
+      matches.push_back({idx1, idx2});
+    }
+    const Eigen::Quaterniond rotation = RandomRotation(rng);
+    const Eigen::Vector3d translation = RandomUnitVector(rng);
+    TwoViewGeometry geometry =
+        MakeGeometry(image_id1, image_id2, Rigid3d(rotation, translation), K);
+    geometry.inlier_matches = matches;
+    database.matches[pair_id] = std::move(matches);
+    database.two_view_geometries[pair_id] = std::move(geometry);
+    scene.outlier_pair_ids.push_back(pair_id);
+  }
+
+  // Points seen twice or more become the ground-truth points3D, numbered from 1 in point order.
+  Reconstruction& truth = scene.ground_truth;
+  truth.cameras[camera_id] = stored_camera;
+  uint64_t next_point3D_id = 1;
+  for (size_t j = 0; j < points.size(); ++j) {
+    if (tracks[j].size() < 2) continue;
+    const uint64_t point3D_id = next_point3D_id++;
+    Point3D point3D;
+    point3D.xyz = points[j];
+    point3D.color = Eigen::Matrix<uint8_t, 3, 1>(160, 160, 160);
+    point3D.error = noise_sum[j] / tracks[j].size();
+    point3D.track = tracks[j];
+    for (const TrackElement& element : tracks[j]) {
+      points2D[element.image_id - 1][element.point2D_idx].point3D_id = point3D_id;
+    }
+    truth.points3D[point3D_id] = std::move(point3D);
+  }
+
+  for (size_t i = 0; i < num_images; ++i) {
+    const uint32_t image_id = static_cast<uint32_t>(i + 1);
+    Image image;
+    image.image_id = image_id;
+    image.name = FrameName(i);
+    image.camera_id = camera_id;
+    database.images[image_id] = image;
+
+    Keypoints keypoints;
+    keypoints.num_cols = 2;
+    keypoints.data.reserve(2 * points2D[i].size());
+    for (const Point2D& point2D : points2D[i]) {
+      keypoints.data.push_back(static_cast<float>(point2D.xy.x()));
+      keypoints.data.push_back(static_cast<float>(point2D.xy.y()));
+    }
+    database.keypoints[image_id] = std::move(keypoints);
+
+    image.cam_from_world = poses[i];
+    image.points2D = std::move(points2D[i]);
+    truth.images[image_id] = std::move(image);
+  }
+  return scene;
+}
+
+}  // namespace ramap

@@ -1,0 +1,25 @@
+// Undistorted unit bearing vectors of every keypoint, computed once per database and shared by the
+// relative-pose, translation, triangulation and refinement stages.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ramap/scene/features.h"
+
+namespace ramap {
+
+struct ImageBearings {
+  // image id -> bearing per keypoint (camera frame, unit).
+  std::map<uint32_t, std::vector<Eigen::Vector3d>> bearings;
+  // camera id -> mean focal length in pixels (turns pixel thresholds into angles).
+  std::map<uint32_t, double> focal_lengths_px;
+};
+
+// Throws InputError (naming `source`) when a camera's parameters are unusable.
+ImageBearings ComputeBearings(const FeatureDatabase& database, const std::string& source);
+
+}  // namespace ramap

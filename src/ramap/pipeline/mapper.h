@@ -1,0 +1,108 @@
+// The mapper: a COLMAP database in, one COLMAP model per connected component out, by motion
+// averaging instead of incremental bundle adjustment. The stages follow DESIGN.md and the method
+// section of "Pushing the Envelope of Rotation Averaging for Visual SLAM" (Li, Yuan, Latecki, Ling):
+//   1. relative rotations of every verified pair (grid-selected six points, Kneip's solvers);
+//   2. pose graph: keyframe windows for sequences, one view graph for collections;
+//   3. robust rotation averaging with pruning and a certificate;
+//   4. pair directions with the averaged rotations, then translation averaging on feature tracks;
+//   5. triangulation with the poses fixed;
+//   6. optionally, bundle adjustment.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "ramap/averaging/pair_directions.h"
+#include "ramap/averaging/rotation_averaging.h"
+#include "ramap/averaging/translation_averaging.h"
+#include "ramap/geometry/relative_pose.h"
+#include "ramap/graph/keyframes.h"
+#include "ramap/pipeline/structure.h"
+#include "ramap/refine/bundle_adjustment.h"
+#include "ramap/scene/features.h"
+#include "ramap/scene/reconstruction.h"
+
+namespace ramap {
+
+enum class InputOrder {
+  kAuto,        // sequential when image names end in increasing frame numbers
+  kSequential,  // frames in name order, keyframe windows
+  kUnordered,   // one global view graph
+};
+
+struct MapperOptions {
+  RelativePoseOptions relative_pose;
+  InputOrder order = InputOrder::kAuto;
+  KeyframeOptions pose_graph;
+  RotationAveragingOptions rotation_averaging;
+  PairDirectionOptions pair_direction;
+  TranslationAveragingOptions translation_averaging;
+  StructureOptions structure;
+  // Final bundle adjustment ("averaging + BA").
+  bool refine = false;
+  BundleAdjustmentOptions bundle_adjustment;
+  // Components with fewer images are not written (COLMAP's Mapper.min_model_size is 10; ramap
+  // writes smaller ones too because small data sets are common among its users).
+  int min_component_size = 3;
+  // Threads for the per-pair relative pose estimation.
+  int num_threads = 2;
+
+  void Check() const;
+};
+
+struct MapperStageTiming {
+  std::string stage;
+  double seconds = 0.0;
+};
+
+// Why an image or an edge is missing from the output.
+struct DroppedItem {
+  std::string what;    // "IMAGE_NAME" or "NAME1 NAME2"
+  std::string reason;
+};
+
+struct MapperComponentSummary {
+  int num_images = 0;
+  int num_points = 0;
+  int num_observations = 0;
+  double mean_reprojection_error_px = 0.0;
+  int num_rotation_edges = 0;
+  int num_pruned_edges = 0;
+  bool rotation_certified = false;
+  double certificate_bound_deg = 0.0;
+  double max_rotation_residual_deg = 0.0;
+  int num_translation_constraints = 0;
+  int num_admm_iterations = 0;
+  BundleAdjustmentSummary bundle_adjustment;  // zeros when not refined
+};
+
+struct MapperSummary {
+  int num_images = 0;
+  int num_verified_pairs = 0;
+  int num_relative_poses = 0;
+  int num_registered_images = 0;
+  bool sequential = false;
+  int num_keyframes = 0;
+  int num_loop_edges = 0;
+  std::vector<MapperComponentSummary> components;
+  std::vector<DroppedItem> dropped_images;
+  std::vector<DroppedItem> dropped_edges;
+  std::vector<MapperStageTiming> timings;
+  double total_seconds = 0.0;
+};
+
+struct MapperResult {
+  // Largest component first.
+  std::vector<Reconstruction> reconstructions;
+  MapperSummary summary;
+};
+
+// Runs every stage on `database`. Throws InputError (naming `source`, e.g. the database path) when
+// nothing can be reconstructed: no verified pairs, no relative pose, no component of
+// min_component_size images. `progress` receives one line per stage.
+MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& options,
+                       const std::string& source, std::ostream* progress = nullptr);
+
+}  // namespace ramap

@@ -1,0 +1,63 @@
+#include "ramap/pipeline/relative_poses.h"
+
+#include <atomic>
+#include <thread>
+
+namespace ramap {
+
+bool IsUsableTwoViewConfig(TwoViewConfig config) {
+  return config == TwoViewConfig::kCalibrated || config == TwoViewConfig::kUncalibrated ||
+         config == TwoViewConfig::kPlanar || config == TwoViewConfig::kPlanarOrPanoramic;
+}
+
+std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database,
+                                                 const ImageBearings& bearings,
+                                                 const RelativePoseOptions& options, int num_threads) {
+  std::vector<ViewGraphEdge> edges;
+  for (const auto& [pair_id, geometry] : database.two_view_geometries) {
+    if (!IsUsableTwoViewConfig(geometry.config)) continue;
+    if (static_cast<int>(geometry.inlier_matches.size()) < options.min_num_inliers) continue;
+    const auto b1 = bearings.bearings.find(geometry.image_id1);
+    const auto b2 = bearings.bearings.find(geometry.image_id2);
+    if (b1 == bearings.bearings.end() || b2 == bearings.bearings.end()) continue;
+    const Camera& camera1 = database.cameras.at(database.images.at(geometry.image_id1).camera_id);
+    const Camera& camera2 = database.cameras.at(database.images.at(geometry.image_id2).camera_id);
+    const Keypoints& keypoints1 = database.keypoints.at(geometry.image_id1);
+    const Keypoints& keypoints2 = database.keypoints.at(geometry.image_id2);
+    ViewGraphEdge edge;
+    edge.image_id1 = geometry.image_id1;
+    edge.image_id2 = geometry.image_id2;
+    edge.num_verified_matches = static_cast<int>(geometry.inlier_matches.size());
+    TwoViewCorrespondences& c = edge.correspondences;
+    c.width1 = static_cast<int>(camera1.width);
+    c.height1 = static_cast<int>(camera1.height);
+    c.width2 = static_cast<int>(camera2.width);
+    c.height2 = static_cast<int>(camera2.height);
+    const Eigen::Matrix3d R = geometry.cam2_from_cam1.rotation.toRotationMatrix();
+    const Eigen::Vector3d t = geometry.cam2_from_cam1.translation;
+    const bool has_pose = geometry.config == TwoViewConfig::kCalibrated && t.norm() > 0;
+    for (const FeatureMatch& match : geometry.inlier_matches) {
+      c.bearings1.push_back(b1->second[match.point2D_idx1]);
+      c.bearings2.push_back(b2->second[match.point2D_idx2]);
+      c.pixels1.push_back(keypoints1.xy(match.point2D_idx1));
+      c.pixels2.push_back(keypoints2.xy(match.point2D_idx2));
+      if (has_pose) c.confidence.push_back(EpipolarError(R, t.normalized(), c.bearings1.back(), c.bearings2.back()));
+    }
+    edges.push_back(std::move(edge));
+  }
+
+  // Pairs are independent: a shared counter hands them out to the threads.
+  std::atomic<size_t> next{0};
+  auto work = [&] {
+    for (size_t k = next++; k < edges.size(); k = next++) {
+      edges[k].estimate = EstimateRelativePose(edges[k].correspondences, options);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int t = 1; t < num_threads; ++t) threads.emplace_back(work);
+  work();
+  for (std::thread& thread : threads) thread.join();
+  return edges;
+}
+
+}  // namespace ramap

@@ -1,0 +1,35 @@
+// Stage 1 of the mapper: the relative pose of every verified image pair, estimated in parallel.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ramap/geometry/correspondence_sampling.h"
+#include "ramap/geometry/relative_pose.h"
+#include "ramap/pipeline/bearings.h"
+#include "ramap/scene/features.h"
+
+namespace ramap {
+
+struct ViewGraphEdge {
+  uint32_t image_id1 = 0;  // image_id1 < image_id2, as in the database
+  uint32_t image_id2 = 0;
+  int num_verified_matches = 0;
+  TwoViewCorrespondences correspondences;  // the verified inlier matches, as bearings and pixels
+  RelativePoseEstimate estimate;           // cam2_from_cam1; estimate.success may be false
+};
+
+// Whether COLMAP's verification left a geometry this stage can use (calibrated or uncalibrated
+// epipolar geometry, or a planar scene; not degenerate, watermark or pure panorama).
+bool IsUsableTwoViewConfig(TwoViewConfig config);
+
+// Every pair of `database.two_view_geometries` with a usable config and at least
+// options.min_num_inliers verified matches, estimated on `num_threads` threads. Pairs that fail
+// stay in the result with estimate.success == false and the reason. The confidence of a match (for
+// the grid selection) is its epipolar error under the geometry COLMAP stored.
+std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database,
+                                                 const ImageBearings& bearings,
+                                                 const RelativePoseOptions& options, int num_threads);
+
+}  // namespace ramap

@@ -505,6 +505,15 @@ TEST(ColmapModelWriter, RejectsBadModelAndWritesNothing) {
                    {"camera 4"});
   EXPECT_EQ(ReadBytes(dir / "out/images.bin"), before);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir / "out"), fs::directory_iterator()), 3);
+
+  // A new nested folder, named with a trailing separator: created, nothing else left beside it.
+  WriteColmapModel(HandBuiltModel(), dir / "nested/model/", ModelFormat::kText);
+  ExpectSameModel(HandBuiltModel(), ReadColmapModel(dir / "nested/model"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir / "nested"), fs::directory_iterator()), 1);
+  // A file where the folder should be.
+  std::ofstream(dir / "file") << "x";
+  ExpectInputError([&] { WriteColmapModel(HandBuiltModel(), dir / "file"); },
+                   {"file", "not a folder"});
 }
 
 // The CLI on a truncated model: non-zero exit, the file and item named, no output folder.

@@ -740,7 +740,9 @@ void WriteColmapModel(const Reconstruction& reconstruction, const std::string& p
   std::unique_ptr<StagedPath> staged_folder;
   std::string folder = path;
   if (!fs::exists(path, ec)) {
-    const fs::path parent = fs::absolute(fs::path(path)).parent_path();
+    fs::path folder_path = fs::absolute(fs::path(path));
+    if (!folder_path.has_filename()) folder_path = folder_path.parent_path();  // "out/"
+    const fs::path parent = folder_path.parent_path();
     fs::create_directories(parent, ec);
     if (ec) throw InputError(path, "cannot create the parent folder: " + ec.message());
     staged_folder = std::make_unique<StagedPath>(path);

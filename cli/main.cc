@@ -1,9 +1,8 @@
 // `ramap <command> [--option value ...]`: dispatch to a subcommand, report errors uniformly.
+#include <CLI/CLI.hpp>
 #include <cstring>
 #include <exception>
 #include <iostream>
-
-#include <CLI/CLI.hpp>
 
 #include "commands.h"
 #include "ramap/util/error.h"

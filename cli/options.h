@@ -2,10 +2,9 @@
 // --database_path and --RelativePose.grid_cols).
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 namespace ramap::cli {
 

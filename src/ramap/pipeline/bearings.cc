@@ -16,7 +16,8 @@ ImageBearings ComputeBearings(const FeatureDatabase& database, const std::string
     const Camera& camera = database.cameras.at(image->second.camera_id);
     std::vector<Eigen::Vector3d>& bearings = result.bearings[image_id];
     bearings.reserve(keypoints.size());
-    for (size_t k = 0; k < keypoints.size(); ++k) bearings.push_back(PixelToBearing(camera, keypoints.xy(k)));
+    for (size_t k = 0; k < keypoints.size(); ++k)
+      bearings.push_back(PixelToBearing(camera, keypoints.xy(k)));
   }
   return result;
 }

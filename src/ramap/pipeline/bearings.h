@@ -2,11 +2,10 @@
 // relative-pose, translation, triangulation and refinement stages.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <map>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "ramap/scene/features.h"
 

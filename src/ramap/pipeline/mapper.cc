@@ -20,7 +20,8 @@ namespace {
 // Accumulates stage times (a stage may run once per component) and prints one line per stage.
 class StageLog {
  public:
-  StageLog(MapperSummary* summary, std::ostream* progress) : summary_(summary), progress_(progress) {}
+  StageLog(MapperSummary* summary, std::ostream* progress)
+      : summary_(summary), progress_(progress) {}
 
   void Record(const std::string& stage, double seconds, const std::string& message) {
     auto it = std::find_if(summary_->timings.begin(), summary_->timings.end(),
@@ -112,7 +113,8 @@ struct MapperContext {
 // Stages 2-6 for one connected component of the view graph. Returns false (with reasons recorded)
 // when the component cannot be reconstructed.
 bool ReconstructComponent(const MapperContext& context, const RotationGraph& graph,
-                          const std::vector<size_t>& graph_to_view_edge, Reconstruction* reconstruction) {
+                          const std::vector<size_t>& graph_to_view_edge,
+                          Reconstruction* reconstruction) {
   const FeatureDatabase& database = context.database;
   const MapperOptions& options = context.options;
   MapperComponentSummary component;
@@ -129,7 +131,8 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
     const Keyframes keyframes = SelectKeyframes(frames, options.pose_graph);
     context.summary.num_keyframes += static_cast<int>(keyframes.keyframe_ids.size());
     const std::vector<EdgeKind> kinds = ClassifyEdges(graph, keyframes);
-    context.summary.num_loop_edges += static_cast<int>(std::count(kinds.begin(), kinds.end(), EdgeKind::kLoop));
+    context.summary.num_loop_edges +=
+        static_cast<int>(std::count(kinds.begin(), kinds.end(), EdgeKind::kLoop));
     rotations = AverageRotationsInWindows(graph, keyframes, options.rotation_averaging);
   } else {
     rotations = AverageRotations(graph, options.rotation_averaging);
@@ -139,7 +142,8 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
     if (rotations.estimated[k]) {
       world_rotations[rotations.node_ids[k]] = rotations.rotations[k];
     } else {
-      context.image_reasons[rotations.node_ids[k]] = "rotation not estimated (cut off by pruned edges)";
+      context.image_reasons[rotations.node_ids[k]] =
+          "rotation not estimated (cut off by pruned edges)";
     }
   }
   for (const PrunedEdge& pruned : rotations.pruned_edges) {
@@ -148,7 +152,8 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
         {PairName(database, edge.i, edge.j),
          pruned.reason == EdgeStatus::kPrunedResidual
              ? "rotation residual " + Degrees(pruned.residual_deg) + " > alpha_max " +
-                   Degrees(pruned.threshold_deg) + " (pruning round " + std::to_string(pruned.round) + ")"
+                   Degrees(pruned.threshold_deg) + " (pruning round " +
+                   std::to_string(pruned.round) + ")"
              : "outside the largest connected component after pruning"});
   }
   component.num_rotation_edges = static_cast<int>(graph.edges.size());
@@ -156,11 +161,11 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
   component.rotation_certified = rotations.certificate.certified;
   component.certificate_bound_deg = rotations.certificate.bound_deg;
   component.max_rotation_residual_deg = rotations.certificate.max_robust_residual_deg;
-  context.log.Record("rotation averaging", timer.ElapsedSeconds(),
-                     std::to_string(world_rotations.size()) + " rotations, " +
-                         std::to_string(rotations.pruned_edges.size()) + " edges pruned, " +
-                         (rotations.certificate.certified ? "certified globally optimal"
-                                                          : "not certified"));
+  context.log.Record(
+      "rotation averaging", timer.ElapsedSeconds(),
+      std::to_string(world_rotations.size()) + " rotations, " +
+          std::to_string(rotations.pruned_edges.size()) + " edges pruned, " +
+          (rotations.certificate.certified ? "certified globally optimal" : "not certified"));
 
   // Translation averaging: pair directions with the averaged rotations, then feature tracks.
   timer.Restart();
@@ -169,7 +174,8 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
   for (size_t e = 0; e < graph.edges.size(); ++e) {
     if (rotations.edge_status[e] != EdgeStatus::kKept) continue;
     const ViewGraphEdge& view_edge = context.view_edges[graph_to_view_edge[e]];
-    if (!world_rotations.count(view_edge.image_id1) || !world_rotations.count(view_edge.image_id2)) continue;
+    if (!world_rotations.count(view_edge.image_id1) || !world_rotations.count(view_edge.image_id2))
+      continue;
     kept_pairs.insert(ImagePairToPairId(view_edge.image_id1, view_edge.image_id2));
     if (view_edge.estimate.flags & kRelativePosePureRotation) continue;
     std::vector<Eigen::Vector3d> f1, f2;
@@ -177,33 +183,37 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
       f1.push_back(view_edge.correspondences.bearings1[k]);
       f2.push_back(view_edge.correspondences.bearings2[k]);
     }
-    const std::optional<Eigen::Vector3d> direction =
-        EstimatePairDirection(world_rotations.at(view_edge.image_id1),
-                              world_rotations.at(view_edge.image_id2), f1, f2, options.pair_direction);
+    const std::optional<Eigen::Vector3d> direction = EstimatePairDirection(
+        world_rotations.at(view_edge.image_id1), world_rotations.at(view_edge.image_id2), f1, f2,
+        options.pair_direction);
     if (direction) directions.push_back({view_edge.image_id1, view_edge.image_id2, *direction});
   }
   TrackBuildSummary track_summary;
-  const std::vector<Track> tracks = BuildTracks(database.two_view_geometries, kept_pairs, {}, &track_summary);
+  const std::vector<Track> tracks =
+      BuildTracks(database.two_view_geometries, kept_pairs, {}, &track_summary);
   std::vector<TranslationTrack> translation_tracks;
   translation_tracks.reserve(tracks.size());
   for (const Track& track : tracks) {
     TranslationTrack observations;
     for (const TrackElement& element : track) {
       if (!world_rotations.count(element.image_id)) continue;
-      observations.push_back({element.image_id, context.bearings.bearings.at(element.image_id)[element.point2D_idx]});
+      observations.push_back(
+          {element.image_id, context.bearings.bearings.at(element.image_id)[element.point2D_idx]});
     }
     if (observations.size() >= 2) translation_tracks.push_back(std::move(observations));
   }
   TranslationAveragingResult positions;
   try {
-    positions = AverageTranslations(world_rotations, directions, translation_tracks, options.translation_averaging);
+    positions = AverageTranslations(world_rotations, directions, translation_tracks,
+                                    options.translation_averaging);
   } catch (const std::runtime_error& error) {
     for (const auto& [id, rotation] : world_rotations) context.image_reasons[id] = error.what();
     context.log.Record("translation averaging", timer.ElapsedSeconds(), error.what());
     return false;
   }
   for (const uint32_t id : positions.unconstrained_images) {
-    context.image_reasons[id] = "no translation constraint links it to the rest (too little parallax?)";
+    context.image_reasons[id] =
+        "no translation constraint links it to the rest (too little parallax?)";
   }
   component.num_translation_constraints = positions.num_constraints;
   component.num_admm_iterations = positions.num_admm_iterations;
@@ -221,25 +231,27 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
     poses[id] = Rigid3d(R, -(R * center));
   }
   StructureSummary structure;
-  *reconstruction = BuildReconstruction(database, poses, tracks, context.bearings.bearings,
-                                        context.bearings.focal_lengths_px, options.structure, &structure);
+  *reconstruction =
+      BuildReconstruction(database, poses, tracks, context.bearings.bearings,
+                          context.bearings.focal_lengths_px, options.structure, &structure);
   component.num_points = structure.num_points;
   component.num_observations = structure.num_observations;
   component.mean_reprojection_error_px = structure.mean_reprojection_error_px;
   context.log.Record("triangulation", timer.ElapsedSeconds(),
-                     std::to_string(structure.num_points) + " points of " + std::to_string(tracks.size()) +
-                         " tracks, mean reprojection error " +
+                     std::to_string(structure.num_points) + " points of " +
+                         std::to_string(tracks.size()) + " tracks, mean reprojection error " +
                          std::to_string(structure.mean_reprojection_error_px) + " px");
 
   if (options.refine) {
-    component.bundle_adjustment = BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px,
-                                               reconstruction, options.bundle_adjustment);
+    component.bundle_adjustment =
+        BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, reconstruction,
+                     options.bundle_adjustment);
     const BundleAdjustmentSummary& ba = component.bundle_adjustment;
     component.num_points = ba.num_points;
     context.log.Record("bundle adjustment", ba.seconds,
                        "RMSE " + std::to_string(ba.initial_rmse_px) + " -> " +
-                           std::to_string(ba.final_rmse_px) + " px, " + std::to_string(ba.num_iterations) +
-                           " iterations");
+                           std::to_string(ba.final_rmse_px) + " px, " +
+                           std::to_string(ba.num_iterations) + " iterations");
   }
   component.num_images = static_cast<int>(reconstruction->images.size());
   context.summary.components.push_back(component);
@@ -251,7 +263,8 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
 void MapperOptions::Check() const {
   relative_pose.Check();
   if (!pose_graph.Check()) throw std::invalid_argument("PoseGraph.keyframe_interval must be >= 1");
-  if (!rotation_averaging.Check()) throw std::invalid_argument("RotationAveraging options out of range");
+  if (!rotation_averaging.Check())
+    throw std::invalid_argument("RotationAveraging options out of range");
   pair_direction.Check();
   translation_averaging.Check();
   structure.Check();
@@ -271,11 +284,13 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
   if (database.images.empty()) throw InputError(source, "the database has no images");
 
   std::map<uint32_t, std::string> image_reasons;
-  for (const auto& [id, image] : database.images) image_reasons[id] = "no verified pair with a usable geometry";
+  for (const auto& [id, image] : database.images)
+    image_reasons[id] = "no verified pair with a usable geometry";
 
   Timer timer;
   const ImageBearings bearings = ComputeBearings(database, source);
-  log.Record("bearings", timer.ElapsedSeconds(), std::to_string(bearings.bearings.size()) + " images");
+  log.Record("bearings", timer.ElapsedSeconds(),
+             std::to_string(bearings.bearings.size()) + " images");
 
   // Stage 1: relative rotations of every verified pair.
   timer.Restart();
@@ -291,7 +306,8 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
       summary.dropped_edges.push_back({PairName(database, edge.image_id1, edge.image_id2),
                                        "relative pose rejected: " + edge.estimate.reason});
       for (const uint32_t id : {edge.image_id1, edge.image_id2}) {
-        if (!nodes.count(id)) image_reasons[id] = "every relative pose rejected (" + edge.estimate.reason + ")";
+        if (!nodes.count(id))
+          image_reasons[id] = "every relative pose rejected (" + edge.estimate.reason + ")";
       }
       continue;
     }
@@ -304,13 +320,15 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
   summary.num_relative_poses = static_cast<int>(graph.edges.size());
   log.Record("relative poses", timer.ElapsedSeconds(),
              std::to_string(graph.edges.size()) + " of " + std::to_string(view_edges.size()) +
-                 " verified pairs (" + CorrespondenceSamplerName(options.relative_pose.sampler) + " sampler)");
+                 " verified pairs (" + CorrespondenceSamplerName(options.relative_pose.sampler) +
+                 " sampler)");
   if (graph.edges.empty()) {
-    throw InputError(source, view_edges.empty()
-                                 ? "no image pair has verified matches (two_view_geometries is empty "
-                                   "or below RelativePose.min_num_inliers); run a COLMAP matcher first"
-                                 : "no image pair gave a relative pose (all " +
-                                       std::to_string(view_edges.size()) + " rejected)");
+    throw InputError(source,
+                     view_edges.empty()
+                         ? "no image pair has verified matches (two_view_geometries is empty "
+                           "or below RelativePose.min_num_inliers); run a COLMAP matcher first"
+                         : "no image pair gave a relative pose (all " +
+                               std::to_string(view_edges.size()) + " rejected)");
   }
 
   // Stage 2: the pose graph, one reconstruction per connected component.
@@ -318,13 +336,16 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
                        (options.order == InputOrder::kAuto && LooksSequential(database));
   const std::vector<uint32_t> order = ImagesInOrder(database);
   const std::vector<int> labels = ConnectedComponents(graph);
-  const int num_components = labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
-  MapperContext context{database, options, bearings, view_edges, order, summary.sequential, log, summary, image_reasons};
+  const int num_components =
+      labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
+  MapperContext context{database,           options, bearings, view_edges,   order,
+                        summary.sequential, log,     summary,  image_reasons};
   for (int label = 0; label < num_components; ++label) {
     std::vector<bool> keep(graph.edges.size());
     const std::unordered_map<uint32_t, int> index = NodeIndex(graph);
     int size = static_cast<int>(std::count(labels.begin(), labels.end(), label));
-    for (size_t e = 0; e < graph.edges.size(); ++e) keep[e] = labels[index.at(graph.edges[e].i)] == label;
+    for (size_t e = 0; e < graph.edges.size(); ++e)
+      keep[e] = labels[index.at(graph.edges[e].i)] == label;
     if (size < options.min_component_size) {
       for (size_t k = 0; k < graph.node_ids.size(); ++k) {
         if (labels[k] == label) {
@@ -345,16 +366,20 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
     }
   }
   std::stable_sort(result.reconstructions.begin(), result.reconstructions.end(),
-                   [](const Reconstruction& a, const Reconstruction& b) { return a.images.size() > b.images.size(); });
+                   [](const Reconstruction& a, const Reconstruction& b) {
+                     return a.images.size() > b.images.size();
+                   });
 
   for (const Reconstruction& reconstruction : result.reconstructions) {
     summary.num_registered_images += static_cast<int>(reconstruction.images.size());
     for (const auto& [id, image] : reconstruction.images) image_reasons.erase(id);
   }
-  for (const auto& [id, reason] : image_reasons) summary.dropped_images.push_back({database.images.at(id).name, reason});
+  for (const auto& [id, reason] : image_reasons)
+    summary.dropped_images.push_back({database.images.at(id).name, reason});
   summary.total_seconds = total.ElapsedSeconds();
   if (result.reconstructions.empty()) {
-    throw InputError(source, "no component of at least " + std::to_string(options.min_component_size) +
+    throw InputError(source, "no component of at least " +
+                                 std::to_string(options.min_component_size) +
                                  " images could be reconstructed");
   }
   return result;

@@ -1,6 +1,7 @@
 // The mapper: a COLMAP database in, one COLMAP model per connected component out, by motion
 // averaging instead of incremental bundle adjustment. The stages follow DESIGN.md and the method
-// section of "Pushing the Envelope of Rotation Averaging for Visual SLAM" (Li, Yuan, Latecki, Ling):
+// section of "Pushing the Envelope of Rotation Averaging for Visual SLAM" (Li, Yuan, Latecki,
+// Ling):
 //   1. relative rotations of every verified pair (grid-selected six points, Kneip's solvers);
 //   2. pose graph: keyframe windows for sequences, one view graph for collections;
 //   3. robust rotation averaging with pruning and a certificate;
@@ -59,7 +60,7 @@ struct MapperStageTiming {
 
 // Why an image or an edge is missing from the output.
 struct DroppedItem {
-  std::string what;    // "IMAGE_NAME" or "NAME1 NAME2"
+  std::string what;  // "IMAGE_NAME" or "NAME1 NAME2"
   std::string reason;
 };
 

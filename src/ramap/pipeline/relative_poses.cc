@@ -12,7 +12,8 @@ bool IsUsableTwoViewConfig(TwoViewConfig config) {
 
 std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database,
                                                  const ImageBearings& bearings,
-                                                 const RelativePoseOptions& options, int num_threads) {
+                                                 const RelativePoseOptions& options,
+                                                 int num_threads) {
   std::vector<ViewGraphEdge> edges;
   for (const auto& [pair_id, geometry] : database.two_view_geometries) {
     if (!IsUsableTwoViewConfig(geometry.config)) continue;
@@ -41,7 +42,9 @@ std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database
       c.bearings2.push_back(b2->second[match.point2D_idx2]);
       c.pixels1.push_back(keypoints1.xy(match.point2D_idx1));
       c.pixels2.push_back(keypoints2.xy(match.point2D_idx2));
-      if (has_pose) c.confidence.push_back(EpipolarError(R, t.normalized(), c.bearings1.back(), c.bearings2.back()));
+      if (has_pose)
+        c.confidence.push_back(
+            EpipolarError(R, t.normalized(), c.bearings1.back(), c.bearings2.back()));
     }
     edges.push_back(std::move(edge));
   }

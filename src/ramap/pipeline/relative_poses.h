@@ -30,6 +30,7 @@ bool IsUsableTwoViewConfig(TwoViewConfig config);
 // the grid selection) is its epipolar error under the geometry COLMAP stored.
 std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database,
                                                  const ImageBearings& bearings,
-                                                 const RelativePoseOptions& options, int num_threads);
+                                                 const RelativePoseOptions& options,
+                                                 int num_threads);
 
 }  // namespace ramap

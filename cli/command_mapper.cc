@@ -1,0 +1,71 @@
+// `ramap mapper`: a COLMAP database in, COLMAP models out, by motion averaging.
+#include <iomanip>
+#include <iostream>
+
+#include "mapper_options.h"
+#include "options.h"
+#include "ramap/io/colmap_database.h"
+#include "ramap/pipeline/mapper.h"
+#include "ramap/pipeline/mapper_output.h"
+#include "ramap/util/error.h"
+
+namespace ramap::cli {
+namespace {
+
+void PrintSummaryTable(const MapperSummary& s, const std::string& output_path, std::ostream& out) {
+  out << "\nramap mapper: " << s.num_registered_images << " of " << s.num_images
+      << " images registered in " << s.components.size() << " model(s), " << std::fixed
+      << std::setprecision(2) << s.total_seconds << " s -> " << output_path << "\n";
+  out << "  model  images  points  reproj(px)  rot.edges  pruned  certified\n";
+  for (size_t k = 0; k < s.components.size(); ++k) {
+    const MapperComponentSummary& c = s.components[k];
+    out << std::setw(7) << k << std::setw(8) << c.num_images << std::setw(8) << c.num_points
+        << std::setw(12) << std::setprecision(3) << c.mean_reprojection_error_px << std::setw(11)
+        << c.num_rotation_edges << std::setw(8) << c.num_pruned_edges << std::setw(11)
+        << (c.rotation_certified ? "yes" : "no") << "\n";
+  }
+  if (!s.dropped_images.empty()) {
+    out << "  not registered (" << s.dropped_images.size() << "):\n";
+    for (size_t k = 0; k < s.dropped_images.size() && k < 10; ++k) {
+      out << "    " << s.dropped_images[k].what << ": " << s.dropped_images[k].reason << "\n";
+    }
+    if (s.dropped_images.size() > 10) out << "    ... (all in summary.json)\n";
+  }
+}
+
+}  // namespace
+
+int RunMapper(int argc, char** argv) {
+  CLI::App app("Camera poses and points from a COLMAP database by motion averaging", "mapper");
+  std::string database_path, output_path, output_type = "BIN";
+  int log_level = 1;
+  app.add_option("--database_path", database_path,
+                 "COLMAP database (features and verified matches)")
+      ->required();
+  app.add_option("--output_path", output_path, "folder for the models 0, 1, ... and summary.json")
+      ->required();
+  app.add_option("--output_type", output_type, "BIN or TXT")->capture_default_str();
+  app.add_option("--log_level", log_level, "0: summary only, 1: one line per stage")
+      ->capture_default_str();
+  MapperOptions options;
+  MapperOptionText text;
+  AddMapperOptions(app, &options, &text);
+  if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
+  FinishMapperOptions(text, &options);
+  if (output_type != "BIN" && output_type != "TXT") {
+    throw InputError("--output_type", "'" + output_type + "' is not BIN or TXT");
+  }
+
+  const FeatureDatabase database = ReadColmapDatabase(database_path);
+  const MapperResult result =
+      ramap::RunMapper(database, options, database_path, log_level > 0 ? &std::cout : nullptr);
+  const nlohmann::json run = {{"command", "mapper"},
+                              {"database_path", database_path},
+                              {"options", MapperOptionsToJson(options)}};
+  WriteMapperOutput(result, output_path,
+                    output_type == "BIN" ? ModelFormat::kBinary : ModelFormat::kText, run);
+  PrintSummaryTable(result.summary, output_path, std::cout);
+  return 0;
+}
+
+}  // namespace ramap::cli

@@ -1,0 +1,147 @@
+#include "mapper_options.h"
+
+#include "ramap/util/error.h"
+
+namespace ramap::cli {
+
+void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
+  // Relative poses (stage 1).
+  app.add_option("--RelativePose.min_num_inliers", o->relative_pose.min_num_inliers,
+                 "pairs with fewer verified matches are not used")
+      ->capture_default_str();
+  app.add_option("--RelativePose.grid_cols", o->relative_pose.grid_cols)->capture_default_str();
+  app.add_option("--RelativePose.grid_rows", o->relative_pose.grid_rows)->capture_default_str();
+  app.add_option("--RelativePose.sampler", text->sampler, "grid|random|roi|ransac5")
+      ->capture_default_str();
+  app.add_option("--RelativePose.max_epipolar_error", o->relative_pose.max_epipolar_error,
+                 "radians")
+      ->capture_default_str();
+  app.add_option("--RelativePose.pure_rotation_parallax_deg",
+                 o->relative_pose.pure_rotation_parallax_deg)
+      ->capture_default_str();
+  // Pose graph (stage 2).
+  app.add_option("--PoseGraph.sequential", text->sequential,
+                 "auto|1|0: keyframe windows for sequences, one view graph for collections")
+      ->capture_default_str();
+  app.add_option("--PoseGraph.keyframe_interval", o->pose_graph.keyframe_interval)
+      ->capture_default_str();
+  // Rotation averaging (stage 3).
+  RotationAveragingOptions& ra = o->rotation_averaging;
+  app.add_option("--RotationAveraging.max_l1_iterations", ra.max_l1_iterations)
+      ->capture_default_str();
+  app.add_option("--RotationAveraging.max_irls_iterations", ra.max_irls_iterations)
+      ->capture_default_str();
+  app.add_option("--RotationAveraging.loss", text->loss, "geman_mcclure|l1_half")
+      ->capture_default_str();
+  app.add_option("--RotationAveraging.sigma_deg", ra.sigma_deg)->capture_default_str();
+  app.add_option("--RotationAveraging.pruning", text->pruning,
+                 "fixed|duality: alpha_max as a fixed angle "
+                 "or the strong-duality bound")
+      ->capture_default_str();
+  app.add_option("--RotationAveraging.alpha_max_deg", ra.alpha_max_deg)->capture_default_str();
+  app.add_option("--RotationAveraging.max_pruning_rounds", ra.max_pruning_rounds)
+      ->capture_default_str();
+  app.add_option("--RotationAveraging.certificate", ra.compute_certificate)->capture_default_str();
+  // Translation averaging (stage 4).
+  TranslationAveragingOptions& ta = o->translation_averaging;
+  app.add_option("--TranslationAveraging.min_triangulation_angle_deg",
+                 ta.min_triangulation_angle_deg)
+      ->capture_default_str();
+  app.add_option("--TranslationAveraging.max_num_tracks", ta.max_num_tracks)->capture_default_str();
+  app.add_option("--TranslationAveraging.max_admm_iterations", ta.max_admm_iterations)
+      ->capture_default_str();
+  app.add_option("--TranslationAveraging.admm_rho", ta.admm_rho)->capture_default_str();
+  // Structure (stage 5) and refinement (stage 6).
+  app.add_option("--Triangulation.max_reprojection_error_px",
+                 o->structure.max_reprojection_error_px)
+      ->capture_default_str();
+  app.add_option("--Triangulation.min_triangulation_angle_deg",
+                 o->structure.min_triangulation_angle_deg)
+      ->capture_default_str();
+  app.add_option("--Mapper.refine", o->refine, "1: bundle adjustment after averaging")
+      ->capture_default_str();
+  app.add_option("--BundleAdjustment.max_num_iterations", o->bundle_adjustment.max_num_iterations)
+      ->capture_default_str();
+  app.add_option("--BundleAdjustment.loss_scale_px", o->bundle_adjustment.loss_scale_px)
+      ->capture_default_str();
+  app.add_option("--Mapper.min_component_size", o->min_component_size)->capture_default_str();
+  app.add_option("--Mapper.num_threads", o->num_threads)->capture_default_str();
+}
+
+void FinishMapperOptions(const MapperOptionText& text, MapperOptions* options) {
+  if (text.sequential == "auto") {
+    options->order = InputOrder::kAuto;
+  } else if (text.sequential == "1") {
+    options->order = InputOrder::kSequential;
+  } else if (text.sequential == "0") {
+    options->order = InputOrder::kUnordered;
+  } else {
+    throw InputError("--PoseGraph.sequential", "'" + text.sequential + "' is not auto, 1 or 0");
+  }
+  options->relative_pose.sampler = CorrespondenceSamplerFromName(text.sampler);
+  if (text.loss == "geman_mcclure") {
+    options->rotation_averaging.loss = RobustLoss::kGemanMcClure;
+  } else if (text.loss == "l1_half") {
+    options->rotation_averaging.loss = RobustLoss::kL1Half;
+  } else {
+    throw InputError("--RotationAveraging.loss",
+                     "'" + text.loss + "' is not geman_mcclure or l1_half");
+  }
+  if (text.pruning == "fixed") {
+    options->rotation_averaging.pruning_mode = PruningThresholdMode::kFixedAngle;
+  } else if (text.pruning == "duality") {
+    options->rotation_averaging.pruning_mode = PruningThresholdMode::kStrongDualityBound;
+  } else {
+    throw InputError("--RotationAveraging.pruning",
+                     "'" + text.pruning + "' is not fixed or duality");
+  }
+  options->bundle_adjustment.num_threads = options->num_threads;
+  try {
+    options->Check();
+  } catch (const std::invalid_argument& error) {
+    throw InputError("mapper options", error.what());
+  }
+}
+
+nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
+  const RotationAveragingOptions& ra = o.rotation_averaging;
+  const TranslationAveragingOptions& ta = o.translation_averaging;
+  return {
+      {"RelativePose",
+       {{"min_num_inliers", o.relative_pose.min_num_inliers},
+        {"grid_cols", o.relative_pose.grid_cols},
+        {"grid_rows", o.relative_pose.grid_rows},
+        {"sampler", CorrespondenceSamplerName(o.relative_pose.sampler)},
+        {"max_epipolar_error", o.relative_pose.max_epipolar_error}}},
+      {"PoseGraph",
+       {{"sequential", o.order == InputOrder::kAuto         ? "auto"
+                       : o.order == InputOrder::kSequential ? "1"
+                                                            : "0"},
+        {"keyframe_interval", o.pose_graph.keyframe_interval}}},
+      {"RotationAveraging",
+       {{"max_l1_iterations", ra.max_l1_iterations},
+        {"max_irls_iterations", ra.max_irls_iterations},
+        {"loss", ra.loss == RobustLoss::kGemanMcClure ? "geman_mcclure" : "l1_half"},
+        {"sigma_deg", ra.sigma_deg},
+        {"pruning", ra.pruning_mode == PruningThresholdMode::kFixedAngle ? "fixed" : "duality"},
+        {"alpha_max_deg", ra.alpha_max_deg},
+        {"max_pruning_rounds", ra.max_pruning_rounds}}},
+      {"TranslationAveraging",
+       {{"min_triangulation_angle_deg", ta.min_triangulation_angle_deg},
+        {"max_num_tracks", ta.max_num_tracks},
+        {"max_admm_iterations", ta.max_admm_iterations},
+        {"admm_rho", ta.admm_rho}}},
+      {"Triangulation",
+       {{"max_reprojection_error_px", o.structure.max_reprojection_error_px},
+        {"min_triangulation_angle_deg", o.structure.min_triangulation_angle_deg}}},
+      {"Mapper",
+       {{"refine", o.refine},
+        {"min_component_size", o.min_component_size},
+        {"num_threads", o.num_threads}}},
+      {"BundleAdjustment",
+       {{"max_num_iterations", o.bundle_adjustment.max_num_iterations},
+        {"loss_scale_px", o.bundle_adjustment.loss_scale_px}}},
+  };
+}
+
+}  // namespace ramap::cli

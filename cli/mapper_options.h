@@ -1,0 +1,32 @@
+// The mapper's options on the command line, COLMAP-style (--Section.option), shared by every
+// command that runs the mapper (mapper, compare, reconstruct).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "ramap/pipeline/mapper.h"
+
+namespace ramap::cli {
+
+// Option strings that need converting after parsing (enums).
+struct MapperOptionText {
+  std::string sequential = "auto";
+  std::string sampler = "grid";
+  std::string loss = "geman_mcclure";
+  std::string pruning = "fixed";
+};
+
+// Adds --RelativePose.*, --PoseGraph.*, --RotationAveraging.*, --TranslationAveraging.*,
+// --Triangulation.*, --BundleAdjustment.* and --Mapper.* options bound to `options` (defaults shown
+// from the structs).
+void AddMapperOptions(CLI::App& app, MapperOptions* options, MapperOptionText* text);
+
+// Converts the enum options; throws InputError naming the option on a bad value.
+void FinishMapperOptions(const MapperOptionText& text, MapperOptions* options);
+
+// The options as JSON, for summary.json and reports.
+nlohmann::json MapperOptionsToJson(const MapperOptions& options);
+
+}  // namespace ramap::cli

@@ -1,0 +1,115 @@
+#include "ramap/pipeline/mapper_output.h"
+
+#include <filesystem>
+#include <system_error>
+
+#include "ramap/io/trajectory.h"
+#include "ramap/util/error.h"
+#include "ramap/util/staged_output.h"
+
+namespace ramap {
+namespace fs = std::filesystem;
+
+nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
+  nlohmann::json json;
+  json["num_images"] = summary.num_images;
+  json["num_registered_images"] = summary.num_registered_images;
+  json["num_verified_pairs"] = summary.num_verified_pairs;
+  json["num_relative_poses"] = summary.num_relative_poses;
+  json["sequential"] = summary.sequential;
+  json["num_keyframes"] = summary.num_keyframes;
+  json["num_loop_edges"] = summary.num_loop_edges;
+  json["total_seconds"] = summary.total_seconds;
+  json["gauge"] =
+      "translation averaging: the first registered image of each component at the origin, mean "
+      "projected pair baseline 1; bundle adjustment (when run) holds the first image fixed";
+  for (const MapperStageTiming& timing : summary.timings)
+    json["stage_seconds"][timing.stage] = timing.seconds;
+  for (size_t k = 0; k < summary.components.size(); ++k) {
+    const MapperComponentSummary& c = summary.components[k];
+    nlohmann::json component = {
+        {"num_images", c.num_images},
+        {"num_points", c.num_points},
+        {"num_observations", c.num_observations},
+        {"mean_reprojection_error_px", c.mean_reprojection_error_px},
+        {"rotation_averaging",
+         {{"num_edges", c.num_rotation_edges},
+          {"num_pruned_edges", c.num_pruned_edges},
+          {"certified_globally_optimal", c.rotation_certified},
+          {"certificate_bound_deg", c.certificate_bound_deg},
+          {"max_residual_deg", c.max_rotation_residual_deg}}},
+        {"translation_averaging",
+         {{"num_constraints", c.num_translation_constraints},
+          {"num_admm_iterations", c.num_admm_iterations}}},
+    };
+    if (c.bundle_adjustment.num_observations > 0) {
+      const BundleAdjustmentSummary& ba = c.bundle_adjustment;
+      component["bundle_adjustment"] = {{"initial_rmse_px", ba.initial_rmse_px},
+                                        {"final_rmse_px", ba.final_rmse_px},
+                                        {"num_iterations", ba.num_iterations},
+                                        {"num_filtered_observations", ba.num_filtered_observations},
+                                        {"converged", ba.converged},
+                                        {"seconds", ba.seconds}};
+    }
+    json["components"].push_back(component);
+  }
+  json["dropped_images"] = nlohmann::json::array();
+  for (const DroppedItem& item : summary.dropped_images) {
+    json["dropped_images"].push_back({{"image", item.what}, {"reason", item.reason}});
+  }
+  json["dropped_edges"] = nlohmann::json::array();
+  for (const DroppedItem& item : summary.dropped_edges) {
+    json["dropped_edges"].push_back({{"pair", item.what}, {"reason", item.reason}});
+  }
+  return json;
+}
+
+namespace {
+
+void WriteContents(const MapperResult& result, const std::string& folder, ModelFormat format,
+                   const nlohmann::json& run_info) {
+  fs::create_directories(folder);
+  for (size_t k = 0; k < result.reconstructions.size(); ++k) {
+    const std::string model_path = folder + "/" + std::to_string(k);
+    WriteColmapModel(result.reconstructions[k], model_path, format);
+    WriteTumTrajectory(result.reconstructions[k], model_path + "/trajectory_tum.txt");
+  }
+  nlohmann::json summary = MapperSummaryToJson(result.summary);
+  summary["run"] = run_info;
+  WriteFileAtomically(folder + "/summary.json",
+                      [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
+}
+
+}  // namespace
+
+void WriteMapperOutput(const MapperResult& result, const std::string& output_path,
+                       ModelFormat format, const nlohmann::json& run_info) {
+  if (!fs::exists(output_path)) {
+    // A new folder appears whole, by one rename.
+    StagedPath staged(output_path);
+    WriteContents(result, staged.path(), format, run_info);
+    staged.Commit();
+    return;
+  }
+  if (!fs::is_directory(output_path)) throw InputError(output_path, "exists and is not a folder");
+  // An existing folder (perhaps holding the user's other files) gets each entry moved in once
+  // everything has been written beside it.
+  StagedPath staged(output_path + "/.ramap-output");
+  WriteContents(result, staged.path(), format, run_info);
+  std::error_code ec;
+  for (size_t k = result.reconstructions.size();; ++k) {
+    const fs::path stale = fs::path(output_path) / std::to_string(k);
+    if (!fs::exists(stale / "cameras.bin") && !fs::exists(stale / "cameras.txt")) break;
+    fs::remove_all(stale, ec);
+  }
+  for (const auto& entry : fs::directory_iterator(staged.path())) {
+    const fs::path target = fs::path(output_path) / entry.path().filename();
+    fs::remove_all(target, ec);
+    fs::rename(entry.path(), target, ec);
+    if (ec)
+      throw InputError(output_path,
+                       "cannot move " + target.string() + " into place: " + ec.message());
+  }
+}
+
+}  // namespace ramap

@@ -1,0 +1,24 @@
+// Writing what the mapper produced: one COLMAP model per component (DIR/0, DIR/1, ...; largest
+// first, as COLMAP numbers them), each with its TUM trajectory, and DIR/summary.json.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "ramap/io/colmap_model.h"
+#include "ramap/pipeline/mapper.h"
+
+namespace ramap {
+
+// The summary as JSON: counts, per-stage seconds, per-component certificates, dropped images and
+// edges with their reasons.
+nlohmann::json MapperSummaryToJson(const MapperSummary& summary);
+
+// Writes everything into `output_path` (created when missing). Everything is written under a
+// temporary folder first and moved into place only when complete, so a failure leaves no partial
+// model; model folders of an earlier run numbered beyond this run's components are removed.
+// `run_info` (options, input path, version) is stored in summary.json under "run".
+void WriteMapperOutput(const MapperResult& result, const std::string& output_path,
+                       ModelFormat format, const nlohmann::json& run_info);
+
+}  // namespace ramap

@@ -97,6 +97,47 @@ TEST(EvalEvaluateCommand, MatchesInProcessEvaluation) {
   EXPECT_NE(bad.output.find("nonsense"), std::string::npos) << bad.output;
 }
 
+// Ground truth without image names (TUM here) is matched by timestamp or index, so the input
+// images must be known: from the model only when it registered every image.
+TEST(EvalEvaluateCommand, IndexMatchedGroundTruthNeedsTheInputImages) {
+  std::mt19937_64 rng(31);
+  std::map<std::string, Rigid3d> gt;
+  for (const auto& [name, pose] : RandomCameras(8, rng)) {
+    gt["00000" + name.substr(name.size() - 1) + ".png"] = pose;
+  }
+  auto est = Transformed(gt, RandomSim3(rng));
+  TempDir dir;
+  WriteTumTrajectory(ModelOf(gt), dir / "gt.txt");
+  WriteColmapModel(ModelOf(est), dir / "all");
+  est.erase("000004.png");
+  WriteColmapModel(ModelOf(est), dir / "partial");
+  const std::string common = RamapBinary() + " evaluate --ground_truth " + (dir / "gt.txt") +
+                             " --ground_truth_format tum --output_path " + (dir / "r.json") +
+                             " --model_path ";
+
+  CommandResult run = RunCommand(common + (dir / "all"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  nlohmann::json j = ReadJson(dir / "r.json");
+  EXPECT_EQ(j["num_evaluated"], 8);
+  EXPECT_LT(j["ate"]["rmse"].get<double>(), 1e-9);
+
+  run = RunCommand(common + (dir / "partial"));
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.output.find("--image_list"), std::string::npos) << run.output;
+
+  {
+    std::ofstream list(dir / "list.txt");
+    for (const auto& [name, pose] : gt) list << name << "\n";
+  }
+  run = RunCommand(common + (dir / "partial") + " --image_list " + (dir / "list.txt"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  j = ReadJson(dir / "r.json");
+  EXPECT_EQ(j["num_images"], 8);
+  EXPECT_EQ(j["num_registered"], 7);
+  EXPECT_EQ(j["relative"]["num_failed_pairs"], 7);
+  EXPECT_LT(j["ate"]["rmse"].get<double>(), 1e-9);  // the 7 are matched to their own poses
+}
+
 // `colmap model_aligner --robust_alignment 0` aligns a model to reference centres with Umeyama's
 // similarity (COLMAP 3.8 Reconstruction::Align). Its aligned centres, read back from the model it
 // writes, must sit at the distances from the ground truth that `ramap evaluate` reports.

@@ -305,6 +305,8 @@ TEST(EvalPoseMetrics, JsonAndTable) {
   EXPECT_EQ(j["num_registered"], 5);
   EXPECT_DOUBLE_EQ(j["ate"]["rmse"].get<double>(), e.ate_rmse);
   EXPECT_DOUBLE_EQ(j["relative"]["auc_by_threshold_deg"]["5"].get<double>(), e.auc[2]);
+  EXPECT_EQ(j["relative"]["auc_thresholds_deg"], nlohmann::json({1.0, 3.0, 5.0, 10.0}));
+  EXPECT_DOUBLE_EQ(j["relative"]["auc"][2].get<double>(), e.auc[2]);
   EXPECT_EQ(j["images"].size(), 6u);
   EXPECT_TRUE(j["images"][1]["position_error"].is_null());
   const std::string table = FormatPoseEvaluation(e);

@@ -278,6 +278,11 @@ nlohmann::json PoseEvaluationToJson(const PoseEvaluation& e, bool with_images) {
       {"auc_definition", AucDefinitionName(e.auc_definition)},
       {"auc_by_threshold_deg", auc},
   };
+  // The same AUCs as parallel arrays, in threshold order (JSON objects do not keep order).
+  nlohmann::json auc_values = nlohmann::json::array();
+  for (double value : e.auc) auc_values.push_back(Number(value));
+  j["relative"]["auc_thresholds_deg"] = e.auc_thresholds_deg;
+  j["relative"]["auc"] = auc_values;
   if (with_images) {
     nlohmann::json images = nlohmann::json::array();
     for (const ImageEvaluation& image : e.images) {

@@ -4,10 +4,12 @@ namespace ramap::cli {
 
 // One function per subcommand, each in its own command_<name>.cc.
 int RunDatabaseInfo(int argc, char** argv);
+int RunModelConverter(int argc, char** argv);
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {
       {"database_info", "counts and checks what a COLMAP database holds", RunDatabaseInfo},
+      {"model_converter", "convert a COLMAP sparse model between BIN and TXT", RunModelConverter},
   };
   return commands;
 }

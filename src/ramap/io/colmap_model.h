@@ -10,15 +10,24 @@ namespace ramap {
 enum class ModelFormat { kBinary, kText };
 
 // Reads the model in folder `path`: binary when cameras.bin exists, else text. Throws InputError
-// naming the file and the item on any defect (truncated file, unknown camera, NaN pose, a track
-// that names a missing image or point2D).
+// naming the file and the item on any defect: missing or truncated file ("images.bin: truncated
+// while reading image 3 (of 12)"), trailing bytes, unknown camera model, wrong parameter count,
+// NaN/inf in a pose, intrinsics, keypoint or 3D point, a quaternion far from unit norm (> 1e-2),
+// an image whose camera is missing, a track element naming a missing image or an out-of-range
+// point2D, an image point naming a missing 3D point (or one whose track does not list it back),
+// duplicate ids, and text lines that do not parse (with the line number).
+// Values are kept exactly as stored (COLMAP renormalises quaternions on reading; we do not, so
+// that read -> write is bit-identical).
 Reconstruction ReadColmapModel(const std::string& path);
 Reconstruction ReadColmapModelBinary(const std::string& path);
 Reconstruction ReadColmapModelText(const std::string& path);
 
 // Writes the model into folder `path` (created; its three files are replaced), staging each file
 // and renaming it into place when complete. Ids are written in increasing order, so writing what
-// was read gives identical binary files.
+// was read gives identical binary files; text uses COLMAP 3.8's layout and header comments, with
+// 17 significant digits (lossless). The model is checked as by the readers before anything is
+// created: a bad model throws InputError and leaves nothing behind. Text cannot hold image names
+// with white space (InputError).
 void WriteColmapModel(const Reconstruction& reconstruction, const std::string& path,
                       ModelFormat format = ModelFormat::kBinary);
 

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Builds one COLMAP database per benchmark data set (CPU SIFT + matching, known intrinsics shared by
+# all images), cached: a data set whose database is complete is not touched again.
+#
+#   scripts/prepare_datasets.sh [NAME ...]      (default: every data set present)
+#
+# Settings: RAMAP_DATA_DIR (default ../shared/data), RAMAP_BENCH_DIR (default build/bench),
+# RAMAP_MAX_IMAGE_SIZE (default 1600, as in ../shared/data/README.md's COLMAP timings).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+data_dir=${RAMAP_DATA_DIR:-$root/../shared/data}
+bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench}
+max_image_size=${RAMAP_MAX_IMAGE_SIZE:-1600}
+source "$root/scripts/datasets/list.sh"
+
+if [[ ! -d $data_dir ]]; then
+  echo "prepare_datasets: no shared data at $data_dir (set RAMAP_DATA_DIR); nothing to do" >&2
+  exit 0
+fi
+
+for entry in "${RAMAP_DATASETS[@]}"; do
+  IFS='|' read -r name images model params matcher gt gt_format <<<"$entry"
+  if (($# > 0)) && [[ " $* " != *" $name "* ]]; then continue; fi
+  if [[ ! -d $data_dir/$images ]]; then
+    echo "prepare_datasets: $name: $data_dir/$images missing, skipped" >&2
+    continue
+  fi
+  out=$bench_dir/$name
+  if [[ -f $out/database.done ]]; then
+    echo "prepare_datasets: $name: cached in $out"
+    continue
+  fi
+  rm -rf "$out" && mkdir -p "$out/images"
+  # Links to the image files only (templeRing's folder also holds text files).
+  find "$data_dir/$images" -maxdepth 1 -type f \( -iname '*.png' -o -iname '*.jpg' -o -iname '*.jpeg' \) \
+    -exec ln -s {} "$out/images/" \;
+  start=$(date +%s%N)
+  colmap feature_extractor --database_path "$out/database.db" --image_path "$out/images" \
+    --ImageReader.single_camera 1 --ImageReader.camera_model "$model" --ImageReader.camera_params "$params" \
+    --SiftExtraction.use_gpu 0 --SiftExtraction.max_image_size "$max_image_size" > "$out/extract.log" 2>&1
+  colmap "${matcher}_matcher" --database_path "$out/database.db" --SiftMatching.use_gpu 0 > "$out/match.log" 2>&1
+  end=$(date +%s%N)
+  seconds=$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.1f", (b - a) / 1e9 }')
+  cat > "$out/dataset.env" <<ENV
+name=$name
+images=$out/images
+camera_model=$model
+camera_params=$params
+matcher=$matcher
+ground_truth=${gt:+$data_dir/$gt}
+ground_truth_format=$gt_format
+features_and_matching_seconds=$seconds
+ENV
+  touch "$out/database.done"
+  echo "prepare_datasets: $name: database built in $seconds s"
+done

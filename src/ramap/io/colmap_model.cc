@@ -1,0 +1,785 @@
+#include "ramap/io/colmap_model.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "ramap/util/error.h"
+#include "ramap/util/staged_output.h"
+
+namespace ramap {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Where each of the three files of a model is (or will be): used in every error message.
+struct ModelFiles {
+  std::string cameras;
+  std::string images;
+  std::string points3D;
+};
+
+ModelFiles FilesIn(const std::string& folder, const std::string& extension) {
+  const fs::path dir(folder);
+  return {(dir / ("cameras" + extension)).string(), (dir / ("images" + extension)).string(),
+          (dir / ("points3D" + extension)).string()};
+}
+
+std::string Ordinal(uint64_t index, uint64_t count) {
+  return std::to_string(index + 1) + " (of " + std::to_string(count) + ")";
+}
+
+std::string ImageLabel(const Image& image) {
+  return "image " + std::to_string(image.image_id) + " ('" + image.name + "')";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Checks shared by readers (after parsing) and the writer (before writing anything).
+
+void CheckCamera(const Camera& camera, const std::string& source, const std::string& label) {
+  const int expected = NumCameraParams(camera.model);
+  if (static_cast<int>(camera.params.size()) != expected) {
+    throw InputError(source, label + ": model " + CameraModelName(camera.model) + " takes " +
+                                 std::to_string(expected) + " parameters, found " +
+                                 std::to_string(camera.params.size()));
+  }
+  for (size_t i = 0; i < camera.params.size(); ++i) {
+    if (!std::isfinite(camera.params[i])) {
+      throw InputError(source,
+                       label + ": parameter " + std::to_string(i + 1) + " is not a finite number");
+    }
+  }
+  if (camera.width == 0 || camera.height == 0) {
+    throw InputError(source, label + ": image size " + std::to_string(camera.width) + "x" +
+                                 std::to_string(camera.height) + " is empty");
+  }
+}
+
+void CheckPose(const Rigid3d& pose, const std::string& source, const std::string& label) {
+  const Eigen::Vector4d q = pose.rotation.coeffs();
+  if (!q.allFinite() || !pose.translation.allFinite()) {
+    throw InputError(source, label + ": pose has a NaN or infinite value");
+  }
+  // COLMAP writes unit quaternions; anything far from unit length is a corrupt value, not
+  // rounding. The stored value is kept as is so that files pass through bit-identically.
+  if (std::abs(q.norm() - 1.0) > 1e-2) {
+    throw InputError(
+        source, label + ": rotation quaternion has norm " + std::to_string(q.norm()) + ", not 1");
+  }
+}
+
+void CheckPoint(const Point3D& point, const std::string& source, const std::string& label) {
+  if (!point.xyz.allFinite()) {
+    throw InputError(source, label + ": position has a NaN or infinite value");
+  }
+  if (std::isnan(point.error)) throw InputError(source, label + ": error is NaN");
+}
+
+// Every cross reference of the model: cameras of images, 3D points of image points, images and
+// point2D indices of tracks, and that both sides agree.
+void CheckModel(const Reconstruction& model, const ModelFiles& files) {
+  for (const auto& [camera_id, camera] : model.cameras) {
+    const std::string label = "camera " + std::to_string(camera_id);
+    if (camera.camera_id != camera_id) {
+      throw InputError(files.cameras,
+                       label + " holds the mismatching id " + std::to_string(camera.camera_id));
+    }
+    CheckCamera(camera, files.cameras, label);
+  }
+  for (const auto& [image_id, image] : model.images) {
+    const std::string label = ImageLabel(image);
+    if (image.image_id != image_id) {
+      throw InputError(files.images,
+                       label + " is held under the mismatching id " + std::to_string(image_id));
+    }
+    CheckPose(image.cam_from_world, files.images, label);
+    if (model.cameras.count(image.camera_id) == 0) {
+      throw InputError(files.images, label + " uses camera " + std::to_string(image.camera_id) +
+                                         ", which " + fs::path(files.cameras).filename().string() +
+                                         " does not have");
+    }
+    for (size_t idx = 0; idx < image.points2D.size(); ++idx) {
+      const Point2D& point2D = image.points2D[idx];
+      if (!point2D.xy.allFinite()) {
+        throw InputError(files.images, label + " point2D " + std::to_string(idx) +
+                                           " has a NaN or infinite coordinate");
+      }
+    }
+  }
+  for (const auto& [point3D_id, point] : model.points3D) {
+    const std::string label = "3D point " + std::to_string(point3D_id);
+    CheckPoint(point, files.points3D, label);
+    for (size_t k = 0; k < point.track.size(); ++k) {
+      const TrackElement& element = point.track[k];
+      const std::string where = label + " track element " + std::to_string(k + 1) + " (image " +
+                                std::to_string(element.image_id) + ", point2D " +
+                                std::to_string(element.point2D_idx) + ")";
+      const auto it = model.images.find(element.image_id);
+      if (it == model.images.end()) {
+        throw InputError(files.points3D, where + " names an image that " +
+                                             fs::path(files.images).filename().string() +
+                                             " does not have");
+      }
+      if (element.point2D_idx >= it->second.points2D.size()) {
+        throw InputError(files.points3D, where + ": point2D index out of range, the image has " +
+                                             std::to_string(it->second.points2D.size()) +
+                                             " points");
+      }
+      if (it->second.points2D[element.point2D_idx].point3D_id != point3D_id) {
+        throw InputError(files.points3D,
+                         where + ": that image point does not name this 3D point back");
+      }
+    }
+  }
+  // Image points last, so that a broken track is reported as such rather than as its echo.
+  for (const auto& [image_id, image] : model.images) {
+    const std::string label = ImageLabel(image);
+    for (size_t idx = 0; idx < image.points2D.size(); ++idx) {
+      const Point2D& point2D = image.points2D[idx];
+      if (point2D.point3D_id == kInvalidPoint3DId) continue;
+      const auto it = model.points3D.find(point2D.point3D_id);
+      const std::string where = label + " point2D " + std::to_string(idx) + " names 3D point " +
+                                std::to_string(point2D.point3D_id);
+      if (it == model.points3D.end()) {
+        throw InputError(
+            files.images,
+            where + ", which " + fs::path(files.points3D).filename().string() + " does not have");
+      }
+      bool listed = false;
+      for (const TrackElement& element : it->second.track) {
+        listed |= element.image_id == image_id && element.point2D_idx == idx;
+      }
+      if (!listed) {
+        throw InputError(files.images, where + ", whose track does not list this observation");
+      }
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Binary format: little-endian, fields as in COLMAP 3.8 (src/base/reconstruction.cc).
+
+std::string ReadWholeFile(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw InputError(path, "file not found");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path, "cannot open for reading");
+  std::string data((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  if (file.bad()) throw InputError(path, "read failed");
+  return data;
+}
+
+class BinaryReader {
+ public:
+  explicit BinaryReader(std::string path) : path_(std::move(path)), data_(ReadWholeFile(path_)) {}
+
+  // What is being read, for the truncation message ("image 3 (of 12)").
+  void SetItem(std::string item) { item_ = std::move(item); }
+  const std::string& path() const { return path_; }
+  size_t remaining() const { return data_.size() - pos_; }
+
+  uint64_t ReadUnsigned(int num_bytes) {
+    Need(num_bytes);
+    uint64_t value = 0;
+    for (int i = 0; i < num_bytes; ++i) {
+      value |= static_cast<uint64_t>(static_cast<uint8_t>(data_[pos_ + i])) << (8 * i);
+    }
+    pos_ += num_bytes;
+    return value;
+  }
+  uint8_t ReadUint8() { return static_cast<uint8_t>(ReadUnsigned(1)); }
+  uint32_t ReadUint32() { return static_cast<uint32_t>(ReadUnsigned(4)); }
+  int32_t ReadInt32() {
+    const uint32_t bits = ReadUint32();
+    int32_t value;
+    std::memcpy(&value, &bits, sizeof(value));
+    return value;
+  }
+  uint64_t ReadUint64() { return ReadUnsigned(8); }
+  double ReadDouble() {
+    const uint64_t bits = ReadUint64();
+    double value;
+    std::memcpy(&value, &bits, sizeof(value));
+    return value;
+  }
+  std::string ReadString() {
+    const size_t end = data_.find('\0', pos_);
+    if (end == std::string::npos) Truncated();
+    std::string value = data_.substr(pos_, end - pos_);
+    pos_ = end + 1;
+    return value;
+  }
+  // A count of `count` records of at least `min_bytes` each must fit in what is left; checked
+  // before allocating so that a corrupt count fails cleanly.
+  void ExpectRecords(uint64_t count, uint64_t min_bytes) {
+    if (min_bytes > 0 && count > remaining() / min_bytes) Truncated();
+  }
+  void ExpectEnd() {
+    if (remaining() != 0) {
+      throw InputError(path_, std::to_string(remaining()) +
+                                  " unexpected bytes after the last record (not a COLMAP 3.8 "
+                                  "model, or a corrupt count)");
+    }
+  }
+
+ private:
+  void Need(size_t num_bytes) {
+    if (remaining() < num_bytes) Truncated();
+  }
+  [[noreturn]] void Truncated() const {
+    throw InputError(path_, "truncated while reading " + item_);
+  }
+
+  std::string path_;
+  std::string data_;
+  size_t pos_ = 0;
+  std::string item_ = "the header";
+};
+
+class BinaryWriter {
+ public:
+  explicit BinaryWriter(std::ostream& out) : out_(out) {}
+  void WriteUnsigned(uint64_t value, int num_bytes) {
+    char bytes[8];
+    for (int i = 0; i < num_bytes; ++i) bytes[i] = static_cast<char>((value >> (8 * i)) & 0xff);
+    out_.write(bytes, num_bytes);
+  }
+  void WriteUint8(uint8_t value) { WriteUnsigned(value, 1); }
+  void WriteUint32(uint32_t value) { WriteUnsigned(value, 4); }
+  void WriteInt32(int32_t value) {
+    uint32_t bits;
+    std::memcpy(&bits, &value, sizeof(bits));
+    WriteUnsigned(bits, 4);
+  }
+  void WriteUint64(uint64_t value) { WriteUnsigned(value, 8); }
+  void WriteDouble(double value) {
+    uint64_t bits;
+    std::memcpy(&bits, &value, sizeof(bits));
+    WriteUnsigned(bits, 8);
+  }
+  void WriteString(const std::string& value) { out_.write(value.c_str(), value.size() + 1); }
+
+ private:
+  std::ostream& out_;
+};
+
+void ReadCamerasBinary(const std::string& path, Reconstruction* model) {
+  BinaryReader in(path);
+  in.SetItem("the number of cameras");
+  const uint64_t count = in.ReadUint64();
+  for (uint64_t i = 0; i < count; ++i) {
+    const std::string item = "camera " + Ordinal(i, count);
+    in.SetItem(item);
+    Camera camera;
+    camera.camera_id = in.ReadUint32();
+    const int32_t model_id = in.ReadInt32();
+    const std::optional<CameraModel> camera_model = CameraModelFromId(model_id);
+    if (!camera_model) {
+      throw InputError(path, item + " (id " + std::to_string(camera.camera_id) +
+                                 "): unknown camera model id " + std::to_string(model_id));
+    }
+    camera.model = *camera_model;
+    camera.width = in.ReadUint64();
+    camera.height = in.ReadUint64();
+    camera.params.resize(NumCameraParams(camera.model));
+    for (double& param : camera.params) param = in.ReadDouble();
+    if (!model->cameras.emplace(camera.camera_id, camera).second) {
+      throw InputError(path, item + ": duplicate camera id " + std::to_string(camera.camera_id));
+    }
+  }
+  in.ExpectEnd();
+}
+
+void ReadImagesBinary(const std::string& path, Reconstruction* model) {
+  BinaryReader in(path);
+  in.SetItem("the number of images");
+  const uint64_t count = in.ReadUint64();
+  for (uint64_t i = 0; i < count; ++i) {
+    const std::string item = "image " + Ordinal(i, count);
+    in.SetItem(item);
+    Image image;
+    image.image_id = in.ReadUint32();
+    const double qw = in.ReadDouble();
+    const double qx = in.ReadDouble();
+    const double qy = in.ReadDouble();
+    const double qz = in.ReadDouble();
+    image.cam_from_world.rotation = Eigen::Quaterniond(qw, qx, qy, qz);
+    for (int k = 0; k < 3; ++k) image.cam_from_world.translation[k] = in.ReadDouble();
+    image.camera_id = in.ReadUint32();
+    image.name = in.ReadString();
+    const uint64_t num_points2D = in.ReadUint64();
+    in.ExpectRecords(num_points2D, 3 * 8);
+    image.points2D.resize(num_points2D);
+    for (Point2D& point2D : image.points2D) {
+      point2D.xy.x() = in.ReadDouble();
+      point2D.xy.y() = in.ReadDouble();
+      point2D.point3D_id = in.ReadUint64();
+    }
+    if (model->images.count(image.image_id) != 0) {
+      throw InputError(path, item + ": duplicate image id " + std::to_string(image.image_id));
+    }
+    model->images.emplace(image.image_id, std::move(image));
+  }
+  in.ExpectEnd();
+}
+
+void ReadPoints3DBinary(const std::string& path, Reconstruction* model) {
+  BinaryReader in(path);
+  in.SetItem("the number of 3D points");
+  const uint64_t count = in.ReadUint64();
+  for (uint64_t i = 0; i < count; ++i) {
+    const std::string item = "3D point " + Ordinal(i, count);
+    in.SetItem(item);
+    const uint64_t point3D_id = in.ReadUint64();
+    Point3D point;
+    for (int k = 0; k < 3; ++k) point.xyz[k] = in.ReadDouble();
+    for (int k = 0; k < 3; ++k) point.color[k] = in.ReadUint8();
+    point.error = in.ReadDouble();
+    const uint64_t track_length = in.ReadUint64();
+    in.ExpectRecords(track_length, 8);
+    point.track.resize(track_length);
+    for (TrackElement& element : point.track) {
+      element.image_id = in.ReadUint32();
+      element.point2D_idx = in.ReadUint32();
+    }
+    if (model->points3D.count(point3D_id) != 0) {
+      throw InputError(path, item + ": duplicate 3D point id " + std::to_string(point3D_id));
+    }
+    model->points3D.emplace(point3D_id, std::move(point));
+  }
+  in.ExpectEnd();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Text format, as COLMAP 3.8 writes it: '#' comment header, space-separated fields, images on two
+// lines (the second one, the observations, may be empty).
+
+class TextLines {
+ public:
+  explicit TextLines(const std::string& path) : path_(path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) throw InputError(path, "file not found");
+    file_.open(path);
+    if (!file_) throw InputError(path, "cannot open for reading");
+  }
+
+  // The next line that is neither blank nor a comment; false at the end of the file.
+  bool NextDataLine(std::vector<std::string>* tokens) {
+    std::string line;
+    while (NextLine(&line)) {
+      Split(line, tokens);
+      if (!tokens->empty() && (*tokens)[0][0] != '#') return true;
+    }
+    return false;
+  }
+  // The very next line, whatever it holds (the observations line of an image).
+  bool NextRawLine(std::vector<std::string>* tokens) {
+    std::string line;
+    if (!NextLine(&line)) return false;
+    Split(line, tokens);
+    return true;
+  }
+
+  int line_number() const { return line_number_; }
+  const std::string& path() const { return path_; }
+
+  [[noreturn]] void Fail(const std::string& problem) const {
+    throw InputError(path_, "line " + std::to_string(line_number_) + ": " + problem);
+  }
+
+  double Double(const std::string& token, const std::string& what) const {
+    char* end = nullptr;
+    errno = 0;
+    const double value = std::strtod(token.c_str(), &end);
+    if (token.empty() || *end != '\0') Fail("cannot read " + what + " from '" + token + "'");
+    return value;
+  }
+  double FiniteDouble(const std::string& token, const std::string& what) const {
+    const double value = Double(token, what);
+    if (!std::isfinite(value)) Fail(what + " is not a finite number ('" + token + "')");
+    return value;
+  }
+  uint64_t Unsigned(const std::string& token, const std::string& what, uint64_t max) const {
+    char* end = nullptr;
+    errno = 0;
+    const unsigned long long value = std::strtoull(token.c_str(), &end, 10);
+    if (token.empty() || token[0] == '-' || token[0] == '+' || *end != '\0' || errno == ERANGE ||
+        value > max) {
+      Fail("cannot read " + what + " from '" + token + "'");
+    }
+    return value;
+  }
+
+ private:
+  bool NextLine(std::string* line) {
+    if (!std::getline(file_, *line)) return false;
+    ++line_number_;
+    if (!line->empty() && line->back() == '\r') line->pop_back();
+    return true;
+  }
+  static void Split(const std::string& line, std::vector<std::string>* tokens) {
+    tokens->clear();
+    std::istringstream stream(line);
+    std::string token;
+    while (stream >> token) tokens->push_back(token);
+  }
+
+  std::string path_;
+  std::ifstream file_;
+  int line_number_ = 0;
+};
+
+constexpr uint64_t kMaxUint32 = 0xffffffffull;
+constexpr uint64_t kMaxUint64 = ~0ull;
+
+void ReadCamerasText(const std::string& path, Reconstruction* model) {
+  TextLines in(path);
+  std::vector<std::string> t;
+  while (in.NextDataLine(&t)) {
+    if (t.size() < 4) in.Fail("expected CAMERA_ID MODEL WIDTH HEIGHT PARAMS[]");
+    Camera camera;
+    camera.camera_id = static_cast<uint32_t>(in.Unsigned(t[0], "the camera id", kMaxUint32));
+    const std::string label = "camera " + t[0];
+    const std::optional<CameraModel> camera_model = CameraModelFromName(t[1]);
+    if (!camera_model) in.Fail(label + ": unknown camera model '" + t[1] + "'");
+    camera.model = *camera_model;
+    camera.width = in.Unsigned(t[2], "the width of " + label, kMaxUint64);
+    camera.height = in.Unsigned(t[3], "the height of " + label, kMaxUint64);
+    const size_t expected = NumCameraParams(camera.model);
+    if (t.size() - 4 != expected) {
+      in.Fail(label + ": model " + t[1] + " takes " + std::to_string(expected) +
+              " parameters, found " + std::to_string(t.size() - 4));
+    }
+    for (size_t k = 0; k < expected; ++k) {
+      camera.params.push_back(
+          in.FiniteDouble(t[4 + k], "parameter " + std::to_string(k + 1) + " of " + label));
+    }
+    if (!model->cameras.emplace(camera.camera_id, camera).second) {
+      in.Fail("duplicate camera id " + t[0]);
+    }
+  }
+}
+
+void ReadImagesText(const std::string& path, Reconstruction* model) {
+  TextLines in(path);
+  std::vector<std::string> t;
+  while (in.NextDataLine(&t)) {
+    if (t.size() != 10) {
+      in.Fail("expected IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME (10 fields), found " +
+              std::to_string(t.size()) + " fields");
+    }
+    Image image;
+    image.image_id = static_cast<uint32_t>(in.Unsigned(t[0], "the image id", kMaxUint32));
+    const std::string label = "image " + t[0];
+    double q[4];
+    for (int k = 0; k < 4; ++k) q[k] = in.FiniteDouble(t[1 + k], "the rotation of " + label);
+    image.cam_from_world.rotation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+    for (int k = 0; k < 3; ++k) {
+      image.cam_from_world.translation[k] =
+          in.FiniteDouble(t[5 + k], "the translation of " + label);
+    }
+    image.camera_id =
+        static_cast<uint32_t>(in.Unsigned(t[8], "the camera id of " + label, kMaxUint32));
+    image.name = t[9];
+    const int image_line = in.line_number();
+    if (!in.NextRawLine(&t)) {
+      in.Fail(label + " (line " + std::to_string(image_line) +
+              ") has no line of observations after it");
+    }
+    if (t.size() % 3 != 0) {
+      in.Fail("observations of " + label + " are not triples X Y POINT3D_ID (" +
+              std::to_string(t.size()) + " fields)");
+    }
+    image.points2D.resize(t.size() / 3);
+    for (size_t idx = 0; idx < image.points2D.size(); ++idx) {
+      Point2D& point2D = image.points2D[idx];
+      const std::string what = "point2D " + std::to_string(idx) + " of " + label;
+      point2D.xy.x() = in.FiniteDouble(t[3 * idx], "x of " + what);
+      point2D.xy.y() = in.FiniteDouble(t[3 * idx + 1], "y of " + what);
+      const std::string& id = t[3 * idx + 2];
+      point2D.point3D_id = id == "-1" ? kInvalidPoint3DId
+                                      : in.Unsigned(id, "the 3D point id of " + what, kMaxUint64);
+    }
+    if (model->images.count(image.image_id) != 0) {
+      in.Fail("duplicate image id " + std::to_string(image.image_id));
+    }
+    model->images.emplace(image.image_id, std::move(image));
+  }
+}
+
+void ReadPoints3DText(const std::string& path, Reconstruction* model) {
+  TextLines in(path);
+  std::vector<std::string> t;
+  while (in.NextDataLine(&t)) {
+    if (t.size() < 8 || (t.size() - 8) % 2 != 0) {
+      in.Fail("expected POINT3D_ID X Y Z R G B ERROR then (IMAGE_ID POINT2D_IDX) pairs, found " +
+              std::to_string(t.size()) + " fields");
+    }
+    const uint64_t point3D_id = in.Unsigned(t[0], "the 3D point id", kMaxUint64);
+    const std::string label = "3D point " + t[0];
+    Point3D point;
+    for (int k = 0; k < 3; ++k)
+      point.xyz[k] = in.FiniteDouble(t[1 + k], "the position of " + label);
+    for (int k = 0; k < 3; ++k) {
+      point.color[k] = static_cast<uint8_t>(in.Unsigned(t[4 + k], "the colour of " + label, 255));
+    }
+    point.error = in.Double(t[7], "the error of " + label);
+    if (std::isnan(point.error)) in.Fail("the error of " + label + " is NaN");
+    point.track.resize((t.size() - 8) / 2);
+    for (size_t k = 0; k < point.track.size(); ++k) {
+      const std::string what = "track element " + std::to_string(k + 1) + " of " + label;
+      point.track[k].image_id =
+          static_cast<uint32_t>(in.Unsigned(t[8 + 2 * k], "the image id of " + what, kMaxUint32));
+      point.track[k].point2D_idx = static_cast<uint32_t>(
+          in.Unsigned(t[9 + 2 * k], "the point2D index of " + what, kMaxUint32));
+    }
+    if (model->points3D.count(point3D_id) != 0) in.Fail("duplicate 3D point id " + t[0]);
+    model->points3D.emplace(point3D_id, std::move(point));
+  }
+}
+
+// %.17g: what COLMAP 3.8 writes (ostream precision 17), and enough to read back the same double.
+std::string FormatDouble(double value) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
+  return buffer;
+}
+
+size_t NumObservations(const Reconstruction& model) {
+  size_t count = 0;
+  for (const auto& [image_id, image] : model.images) {
+    for (const Point2D& point2D : image.points2D) count += point2D.point3D_id != kInvalidPoint3DId;
+  }
+  return count;
+}
+
+void WriteCamerasText(const Reconstruction& model, std::ostream& out) {
+  out << "# Camera list with one line of data per camera:\n"
+         "#   CAMERA_ID, MODEL, WIDTH, HEIGHT, PARAMS[]\n"
+         "# Number of cameras: "
+      << model.cameras.size() << "\n";
+  for (const auto& [camera_id, camera] : model.cameras) {
+    out << camera_id << " " << CameraModelName(camera.model) << " " << camera.width << " "
+        << camera.height;
+    for (const double param : camera.params) out << " " << FormatDouble(param);
+    out << "\n";
+  }
+}
+
+void WriteImagesText(const Reconstruction& model, std::ostream& out) {
+  const double mean_observations =
+      model.images.empty() ? 0.0
+                           : static_cast<double>(NumObservations(model)) / model.images.size();
+  out << "# Image list with two lines of data per image:\n"
+         "#   IMAGE_ID, QW, QX, QY, QZ, TX, TY, TZ, CAMERA_ID, NAME\n"
+         "#   POINTS2D[] as (X, Y, POINT3D_ID)\n"
+         "# Number of images: "
+      << model.images.size() << ", mean observations per image: " << FormatDouble(mean_observations)
+      << "\n";
+  for (const auto& [image_id, image] : model.images) {
+    const Eigen::Quaterniond& q = image.cam_from_world.rotation;
+    const Eigen::Vector3d& t = image.cam_from_world.translation;
+    out << image_id << " " << FormatDouble(q.w()) << " " << FormatDouble(q.x()) << " "
+        << FormatDouble(q.y()) << " " << FormatDouble(q.z()) << " " << FormatDouble(t.x()) << " "
+        << FormatDouble(t.y()) << " " << FormatDouble(t.z()) << " " << image.camera_id << " "
+        << image.name << "\n";
+    std::string line;
+    for (const Point2D& point2D : image.points2D) {
+      line += FormatDouble(point2D.xy.x()) + " " + FormatDouble(point2D.xy.y()) + " " +
+              (point2D.point3D_id == kInvalidPoint3DId ? std::string("-1")
+                                                       : std::to_string(point2D.point3D_id)) +
+              " ";
+    }
+    if (!line.empty()) line.pop_back();
+    out << line << "\n";
+  }
+}
+
+void WritePoints3DText(const Reconstruction& model, std::ostream& out) {
+  const double mean_track_length =
+      model.points3D.empty() ? 0.0
+                             : static_cast<double>(NumObservations(model)) / model.points3D.size();
+  out << "# 3D point list with one line of data per point:\n"
+         "#   POINT3D_ID, X, Y, Z, R, G, B, ERROR, TRACK[] as (IMAGE_ID, POINT2D_IDX)\n"
+         "# Number of points: "
+      << model.points3D.size() << ", mean track length: " << FormatDouble(mean_track_length)
+      << "\n";
+  for (const auto& [point3D_id, point] : model.points3D) {
+    out << point3D_id << " " << FormatDouble(point.xyz.x()) << " " << FormatDouble(point.xyz.y())
+        << " " << FormatDouble(point.xyz.z()) << " " << static_cast<int>(point.color[0]) << " "
+        << static_cast<int>(point.color[1]) << " " << static_cast<int>(point.color[2]) << " "
+        << FormatDouble(point.error);
+    for (const TrackElement& element : point.track) {
+      out << " " << element.image_id << " " << element.point2D_idx;
+    }
+    out << "\n";
+  }
+}
+
+void WriteCamerasBinary(const Reconstruction& model, std::ostream& stream) {
+  BinaryWriter out(stream);
+  out.WriteUint64(model.cameras.size());
+  for (const auto& [camera_id, camera] : model.cameras) {
+    out.WriteUint32(camera_id);
+    out.WriteInt32(static_cast<int32_t>(camera.model));
+    out.WriteUint64(camera.width);
+    out.WriteUint64(camera.height);
+    for (const double param : camera.params) out.WriteDouble(param);
+  }
+}
+
+void WriteImagesBinary(const Reconstruction& model, std::ostream& stream) {
+  BinaryWriter out(stream);
+  out.WriteUint64(model.images.size());
+  for (const auto& [image_id, image] : model.images) {
+    const Eigen::Quaterniond& q = image.cam_from_world.rotation;
+    out.WriteUint32(image_id);
+    out.WriteDouble(q.w());
+    out.WriteDouble(q.x());
+    out.WriteDouble(q.y());
+    out.WriteDouble(q.z());
+    for (int k = 0; k < 3; ++k) out.WriteDouble(image.cam_from_world.translation[k]);
+    out.WriteUint32(image.camera_id);
+    out.WriteString(image.name);
+    out.WriteUint64(image.points2D.size());
+    for (const Point2D& point2D : image.points2D) {
+      out.WriteDouble(point2D.xy.x());
+      out.WriteDouble(point2D.xy.y());
+      out.WriteUint64(point2D.point3D_id);
+    }
+  }
+}
+
+void WritePoints3DBinary(const Reconstruction& model, std::ostream& stream) {
+  BinaryWriter out(stream);
+  out.WriteUint64(model.points3D.size());
+  for (const auto& [point3D_id, point] : model.points3D) {
+    out.WriteUint64(point3D_id);
+    for (int k = 0; k < 3; ++k) out.WriteDouble(point.xyz[k]);
+    for (int k = 0; k < 3; ++k) out.WriteUint8(point.color[k]);
+    out.WriteDouble(point.error);
+    out.WriteUint64(point.track.size());
+    for (const TrackElement& element : point.track) {
+      out.WriteUint32(element.image_id);
+      out.WriteUint32(element.point2D_idx);
+    }
+  }
+}
+
+// Image names that the chosen format cannot carry back unchanged.
+void CheckNamesWritable(const Reconstruction& model, const ModelFiles& files, ModelFormat format) {
+  for (const auto& [image_id, image] : model.images) {
+    if (image.name.empty()) throw InputError(files.images, ImageLabel(image) + " has no name");
+    if (image.name.find('\0') != std::string::npos) {
+      throw InputError(files.images, "the name of image " + std::to_string(image_id) +
+                                         " contains a NUL character");
+    }
+    if (format == ModelFormat::kText &&
+        image.name.find_first_of(" \t\r\n\v\f") != std::string::npos) {
+      throw InputError(files.images, ImageLabel(image) +
+                                         ": COLMAP's text format cannot hold a name with "
+                                         "white space; write the binary format");
+    }
+  }
+}
+
+}  // namespace
+
+Reconstruction ReadColmapModel(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_directory(path, ec)) throw InputError(path, "model folder not found");
+  if (fs::exists(fs::path(path) / "cameras.bin", ec)) return ReadColmapModelBinary(path);
+  if (fs::exists(fs::path(path) / "cameras.txt", ec)) return ReadColmapModelText(path);
+  throw InputError(path, "no COLMAP model here (neither cameras.bin nor cameras.txt)");
+}
+
+Reconstruction ReadColmapModelBinary(const std::string& path) {
+  const ModelFiles files = FilesIn(path, ".bin");
+  Reconstruction model;
+  ReadCamerasBinary(files.cameras, &model);
+  ReadImagesBinary(files.images, &model);
+  ReadPoints3DBinary(files.points3D, &model);
+  CheckModel(model, files);
+  return model;
+}
+
+Reconstruction ReadColmapModelText(const std::string& path) {
+  const ModelFiles files = FilesIn(path, ".txt");
+  Reconstruction model;
+  ReadCamerasText(files.cameras, &model);
+  ReadImagesText(files.images, &model);
+  ReadPoints3DText(files.points3D, &model);
+  CheckModel(model, files);
+  return model;
+}
+
+void WriteColmapModel(const Reconstruction& reconstruction, const std::string& path,
+                      ModelFormat format) {
+  const bool binary = format == ModelFormat::kBinary;
+  const ModelFiles final_files = FilesIn(path, binary ? ".bin" : ".txt");
+  // Everything is checked before anything is created, so a bad model leaves no trace.
+  CheckModel(reconstruction, final_files);
+  CheckNamesWritable(reconstruction, final_files, format);
+
+  std::error_code ec;
+  if (fs::exists(path, ec) && !fs::is_directory(path, ec)) {
+    throw InputError(path, "exists and is not a folder");
+  }
+  // A new folder is staged whole; into an existing one, the three files are staged side by side
+  // and renamed only once all three are complete.
+  std::unique_ptr<StagedPath> staged_folder;
+  std::string folder = path;
+  if (!fs::exists(path, ec)) {
+    fs::path folder_path = fs::absolute(fs::path(path));
+    if (!folder_path.has_filename()) folder_path = folder_path.parent_path();  // "out/"
+    const fs::path parent = folder_path.parent_path();
+    fs::create_directories(parent, ec);
+    if (ec) throw InputError(path, "cannot create the parent folder: " + ec.message());
+    staged_folder = std::make_unique<StagedPath>(path);
+    fs::create_directory(staged_folder->path(), ec);
+    if (ec) throw InputError(path, "cannot create the folder: " + ec.message());
+    folder = staged_folder->path();
+  }
+  const ModelFiles files = FilesIn(folder, binary ? ".bin" : ".txt");
+
+  struct Part {
+    std::string final_path;
+    std::string path;
+    void (*write)(const Reconstruction&, std::ostream&);
+  };
+  const std::vector<Part> parts = {
+      {final_files.cameras, files.cameras, binary ? &WriteCamerasBinary : &WriteCamerasText},
+      {final_files.images, files.images, binary ? &WriteImagesBinary : &WriteImagesText},
+      {final_files.points3D, files.points3D, binary ? &WritePoints3DBinary : &WritePoints3DText},
+  };
+  std::vector<std::unique_ptr<StagedPath>> staged_files;
+  for (const Part& part : parts) {
+    std::string target = part.path;
+    if (!staged_folder) {
+      staged_files.push_back(std::make_unique<StagedPath>(part.path));
+      target = staged_files.back()->path();
+    }
+    std::ofstream file(target, binary ? std::ios::binary | std::ios::out : std::ios::out);
+    if (!file) throw InputError(part.final_path, "cannot open for writing");
+    part.write(reconstruction, file);
+    file.flush();
+    if (!file) throw InputError(part.final_path, "write failed (disk full?)");
+  }
+  if (staged_folder) {
+    staged_folder->Commit();
+  } else {
+    for (const auto& staged : staged_files) staged->Commit();
+  }
+}
+
+}  // namespace ramap

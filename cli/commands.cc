@@ -4,16 +4,18 @@ namespace ramap::cli {
 
 // One function per subcommand, each in its own command_<name>.cc.
 int RunDatabaseInfo(int argc, char** argv);
+int RunEvaluate(int argc, char** argv);
 int RunMapper(int argc, char** argv);
 int RunModelConverter(int argc, char** argv);
-int RunEvaluate(int argc, char** argv);
+int RunSynthesize(int argc, char** argv);
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {
-      {"database_info", "counts and checks what a COLMAP database holds", RunDatabaseInfo},
       {"mapper", "camera poses and points from a COLMAP database by motion averaging", RunMapper},
-      {"model_converter", "convert a COLMAP sparse model between BIN and TXT", RunModelConverter},
       {"evaluate", "score a model's camera poses against ground truth (ATE, AUC)", RunEvaluate},
+      {"database_info", "counts and checks what a COLMAP database holds", RunDatabaseInfo},
+      {"model_converter", "convert a COLMAP sparse model between BIN and TXT", RunModelConverter},
+      {"synthesize", "a synthetic scene with exact ground truth (database, model, TUM)", RunSynthesize},
   };
   return commands;
 }

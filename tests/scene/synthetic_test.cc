@@ -378,5 +378,31 @@ TEST(Synthetic, KittiTrajectoryAsGivenPoses) {
             << " verified pairs\n";
 }
 
+// KITTI 07 ends where it began: the whole trajectory must get loop pairs joining its end to its
+// start, and no others (the rest of the route is never driven twice).
+TEST(Synthetic, KittiLoopClosureBecomesLoopPairs) {
+  RAMAP_REQUIRE_SHARED_DATA(path, "gt_trajectories/kitti_odometry_poses/07.txt");
+  SyntheticSceneOptions options;
+  options.path = SyntheticPath::kGiven;
+  options.given_poses = ReadKittiPoses(path, 100000);
+  ASSERT_EQ(options.given_poses.size(), 1101u);
+  options.num_images = 0;
+  options.num_points = 6000;
+  options.camera.width = 1241;
+  options.camera.height = 376;
+  options.camera.params = {718.9, 718.9, 607.2, 185.2};
+  const SyntheticScene scene = BuildSyntheticScene(options);
+  size_t num_loop_pairs = 0;
+  for (const auto& [pair_id, geometry] : scene.database.two_view_geometries) {
+    if (geometry.image_id2 - geometry.image_id1 <= static_cast<uint32_t>(options.overlap)) continue;
+    ++num_loop_pairs;
+    EXPECT_LE(geometry.image_id1, 50u);
+    EXPECT_GE(geometry.image_id2, 1000u);
+  }
+  // Measured: 387 pairs between frames 1-27 and 1053-1080.
+  EXPECT_GT(num_loop_pairs, 50u);
+  std::cout << "KITTI 07: " << num_loop_pairs << " loop pairs\n";
+}
+
 }  // namespace
 }  // namespace ramap

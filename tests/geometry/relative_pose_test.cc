@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <random>
 #include <set>
@@ -362,6 +366,62 @@ TEST(RelativePoseSamplingTest, RandomAndRoi) {
   }
   EXPECT_LE(max_col - min_col, 1);
   EXPECT_LE(max_row - min_row, 1);
+}
+
+}  // namespace
+}  // namespace ramap
+
+namespace ramap {
+namespace {
+
+// The paper's ablation on synthetic pairs (not run by default: it prints a table; run with
+// --gtest_also_run_disabled_tests --gtest_filter='*RelativePoseAblation*').
+TEST(RelativePoseTest, DISABLED_RelativePoseAblation) {
+  const std::vector<CorrespondenceSampler> samplers = {
+      CorrespondenceSampler::kGrid, CorrespondenceSampler::kRandom, CorrespondenceSampler::kRoi,
+      CorrespondenceSampler::kRansac5};
+  for (const Motion& motion : Motions()) {
+    for (CorrespondenceSampler sampler : samplers) {
+      std::vector<double> rotation_errors, translation_errors;
+      int failures = 0;
+      const auto start = std::chrono::steady_clock::now();
+      constexpr int kTrials = 50;
+      for (int trial = 0; trial < kTrials; ++trial) {
+        SyntheticPair pair = MakePair(motion.R, motion.center2, 300, 1.0, 100 + trial);
+        // 10% wrong partners, rated like the rest (confidence uninformative).
+        for (size_t k = 0; k < pair.matches.size(); k += 10) {
+          const size_t other = (k * 7 + 13) % pair.matches.size();
+          pair.matches.bearings2[k] = pair.matches.bearings2[other];
+          pair.matches.pixels2[k] = pair.matches.pixels2[other];
+        }
+        RelativePoseOptions options;
+        options.sampler = sampler;
+        options.seed = trial;
+        const RelativePoseEstimate estimate = EstimateRelativePose(pair.matches, options);
+        if (!estimate.success) {
+          if (std::getenv("RAMAP_ABLATION_VERBOSE")) std::printf("  %s\n", estimate.reason.c_str());
+          ++failures;
+          continue;
+        }
+        rotation_errors.push_back(RotationErrorDeg(estimate, pair.R));
+        translation_errors.push_back(TranslationErrorDeg(estimate, pair.t));
+      }
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count() /
+          kTrials;
+      std::sort(rotation_errors.begin(), rotation_errors.end());
+      std::sort(translation_errors.begin(), translation_errors.end());
+      auto median = [](const std::vector<double>& v) { return v.empty() ? -1 : v[v.size() / 2]; };
+      auto worst = [](const std::vector<double>& v) { return v.empty() ? -1 : v.back(); };
+      std::printf(
+          "%-9s %-8s rejected %2d/%d  rot median %.4f max %.4f deg  t median %.3f max %.3f deg  "
+          "%.2f ms\n",
+          motion.name, CorrespondenceSamplerName(sampler).c_str(), failures, kTrials,
+          median(rotation_errors), worst(rotation_errors), median(translation_errors),
+          worst(translation_errors), ms);
+    }
+  }
 }
 
 }  // namespace

@@ -169,6 +169,24 @@ Scored ScoreHypothesis(const std::vector<Eigen::Vector3d>& f1,
   return scored;
 }
 
+// Scores R with t from its minimal support, then once more with t re-fitted on the inliers that
+// found (a local-optimisation step as in LO-RANSAC: t from five or six noisy matches is poor).
+Scored ScoreRotation(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen::Vector3d>& f2,
+                     const Eigen::Matrix3d& R, const Eigen::Vector3d& t_initial, double threshold,
+                     Eigen::Vector3d* t) {
+  Scored scored = ScoreHypothesis(f1, f2, R, t_initial, threshold);
+  *t = t_initial;
+  if (scored.inliers.size() >= 3) {
+    const Eigen::Vector3d t_refit = TranslationFromRotation(f1, f2, scored.inliers, R);
+    Scored rescored = ScoreHypothesis(f1, f2, R, t_refit, threshold);
+    if (rescored.cost < scored.cost) {
+      scored = std::move(rescored);
+      *t = t_refit;
+    }
+  }
+  return scored;
+}
+
 opengv::bearingVectors_t ToOpenGv(const std::vector<Eigen::Vector3d>& f) {
   return opengv::bearingVectors_t(f.begin(), f.end());
 }
@@ -217,7 +235,7 @@ std::vector<RotationCandidate> RotationCandidatesFromSix(const std::vector<Eigen
 
 // The RANSAC baseline: OpenGV's central relative pose problem with Nister's five-point solver.
 bool RansacFivePoint(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen::Vector3d>& f2,
-                     const RelativePoseOptions& options, Eigen::Matrix3d* R) {
+                     const RelativePoseOptions& options, Eigen::Matrix3d* R, Eigen::Vector3d* t) {
   using Problem = opengv::sac_problems::relative_pose::CentralRelativePoseSacProblem;
   const opengv::bearingVectors_t b1 = ToOpenGv(f1), b2 = ToOpenGv(f2);
   try {
@@ -230,9 +248,12 @@ bool RansacFivePoint(const std::vector<Eigen::Vector3d>& f1, const std::vector<E
     ransac.max_iterations_ = options.ransac_max_iterations;
     ransac.probability_ = options.ransac_probability;
     if (!ransac.computeModel()) return false;
+    // OpenGV's model: x1 = R_2to1 x2 + t_2in1, so cam2_from_cam1 = (R_2to1^T, -R_2to1^T t_2in1).
     const Eigen::Matrix3d R_2to1 = ransac.model_coefficients_.leftCols<3>();
-    if (!R_2to1.allFinite()) return false;
+    const Eigen::Vector3d t_2in1 = ransac.model_coefficients_.col(3);
+    if (!R_2to1.allFinite() || !t_2in1.allFinite() || t_2in1.norm() < 1e-12) return false;
     *R = Orthonormalize(R_2to1.transpose());
+    *t = -(R_2to1.transpose() * t_2in1).normalized();
     return IsRotation(*R);
   } catch (const std::exception&) {
     return false;
@@ -398,13 +419,11 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
   Eigen::Vector3d t;
   Scored best;
   if (options.sampler == CorrespondenceSampler::kRansac5) {
-    if (!RansacFivePoint(f1, f2, options, &R)) {
+    Eigen::Vector3d t_ransac;
+    if (!RansacFivePoint(f1, f2, options, &R, &t_ransac)) {
       return Reject("RANSAC five-point found no essential matrix");
     }
-    const Scored first = ScoreHypothesis(f1, f2, R, TranslationFromRotation(f1, f2, all, R),
-                                         options.max_epipolar_error);
-    t = TranslationFromRotation(f1, f2, first.inliers.empty() ? all : first.inliers, R);
-    best = ScoreHypothesis(f1, f2, R, t, options.max_epipolar_error);
+    best = ScoreRotation(f1, f2, R, t_ransac, options.max_epipolar_error, &t);
   } else {
     std::vector<int> six;
     switch (options.sampler) {
@@ -425,9 +444,10 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
       return Reject("could not select six correspondences");
     }
     for (const RotationCandidate& candidate : RotationCandidatesFromSix(f1, f2, six)) {
-      const Eigen::Vector3d candidate_t =
-          TranslationFromRotation(f1, f2, candidate.support, candidate.R);
-      Scored scored = ScoreHypothesis(f1, f2, candidate.R, candidate_t, options.max_epipolar_error);
+      Eigen::Vector3d candidate_t;
+      Scored scored = ScoreRotation(f1, f2, candidate.R,
+                                    TranslationFromRotation(f1, f2, candidate.support, candidate.R),
+                                    options.max_epipolar_error, &candidate_t);
       if (scored.cost < best.cost) {
         best = std::move(scored);
         R = candidate.R;
@@ -438,11 +458,9 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
       return Reject("the six-point solvers returned no rotation");
     }
   }
-  const double ratio = static_cast<double>(best.inliers.size()) / static_cast<double>(n);
-  if (ratio < options.min_inlier_ratio ||
-      static_cast<int>(best.inliers.size()) < options.min_num_inliers) {
-    return Reject("rotation inconsistent with the epipolar constraint: only " + Percent(ratio) +
-                  " of the matches are inliers");
+  if (static_cast<int>(best.inliers.size()) < kNumSamples) {
+    return Reject("rotation inconsistent with the epipolar constraint: only " +
+                  std::to_string(best.inliers.size()) + " inliers");
   }
 
   // Refine on all inliers, drop the matches the refined model does not explain and refit, until
@@ -461,6 +479,13 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
     }
     if (rescored == inliers) break;
     inliers = std::move(rescored);
+  }
+
+  // The paper's consistency check: the rotation must explain most of the verified matches.
+  const double ratio = static_cast<double>(inliers.size()) / static_cast<double>(n);
+  if (ratio < options.min_inlier_ratio) {
+    return Reject("rotation inconsistent with the epipolar constraint: only " + Percent(ratio) +
+                  " of the matches are inliers");
   }
 
   // Translation direction from the rotation, then the four-fold (R, +-t, twisted R) ambiguity of

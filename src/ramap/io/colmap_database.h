@@ -4,7 +4,12 @@
 // The reader checks the schema with PRAGMA table_info before reading, so a database of another
 // layout gets a message naming the missing table or column instead of a crash. Every defect
 // (truncated blob, keypoint index out of range, unknown camera model, NaN intrinsics, ...) throws
-// InputError naming the database file and the item.
+// InputError naming the database file and the item. The reader never writes to the file.
+//
+// Layout, as COLMAP 3.8 stores it: camera params float64; keypoints float32 rows x {2, 4, 6};
+// descriptors uint8 rows x cols; matches uint32 rows x 2 with pair_id = i * 2147483647 + j, i < j,
+// and the first column indexing image i; two-view F, E, H float64 3x3 ROW-major; qvec (w, x, y, z)
+// and tvec float64, the pose cam2_from_cam1 of the pair (camera 2 being image j).
 #pragma once
 
 #include <string>
@@ -20,12 +25,21 @@ struct DatabaseReadOptions {
   bool read_matches = true;
 };
 
+// Reads everything `options` asks for. Values the database leaves empty read as: NULL or NaN
+// image priors -> empty optionals; NULL or empty F/E/H -> zero matrices (old databases); NULL,
+// empty or zero qvec -> identity rotation; NULL or empty tvec -> zero translation.
 FeatureDatabase ReadColmapDatabase(const std::string& path,
                                    const DatabaseReadOptions& options = DatabaseReadOptions());
 
-// Writes a new database with COLMAP 3.8's schema at `path` (replacing any file there), staged
-// under a temporary name and renamed when complete. Geometries are held with image_id1 <
-// image_id2 in `database`; the writer checks that.
+// Writes a new database with COLMAP 3.8's exact schema at `path` (replacing any file there),
+// staged under a temporary name and renamed when complete, in one transaction.
+//
+// Geometries are stored with image_id1 < image_id2. A geometry given the other way round (its
+// image_id1 > image_id2, under the key of its pair) is inverted with InvertTwoViewGeometry before
+// storing, as COLMAP's own writer does. Raw matches are taken as already in database order.
+// The contents are checked first (ids consistent, parameter counts, finite intrinsics, keypoint
+// indices in range) so that everything written reads back; a defect throws InputError naming
+// `path` and the item, and nothing is written.
 void WriteColmapDatabase(const FeatureDatabase& database, const std::string& path);
 
 }  // namespace ramap

@@ -1,0 +1,76 @@
+#include "ramap/averaging/pair_directions.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <stdexcept>
+
+namespace ramap {
+
+void PairDirectionOptions::Check() const {
+  if (!(min_ray_angle_deg >= 0)) throw std::invalid_argument("min_ray_angle_deg must be >= 0");
+  if (num_reweighting_rounds < 0)
+    throw std::invalid_argument("num_reweighting_rounds must be >= 0");
+  if (!(residual_scale_deg > 0)) throw std::invalid_argument("residual_scale_deg must be > 0");
+  if (min_num_matches < 2) throw std::invalid_argument("min_num_matches must be >= 2");
+  if (!(min_cheirality_ratio > 0.5 && min_cheirality_ratio <= 1.0)) {
+    throw std::invalid_argument("min_cheirality_ratio must be in (0.5, 1]");
+  }
+}
+
+std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& rotation1,
+                                                     const Eigen::Quaterniond& rotation2,
+                                                     const std::vector<Eigen::Vector3d>& bearings1,
+                                                     const std::vector<Eigen::Vector3d>& bearings2,
+                                                     const PairDirectionOptions& options) {
+  const double min_sin = std::sin(options.min_ray_angle_deg * M_PI / 180.0);
+  const Eigen::Quaterniond world_from_cam1 = rotation1.conjugate();
+  const Eigen::Quaterniond world_from_cam2 = rotation2.conjugate();
+  std::vector<Eigen::Vector3d> normals, rays1, rays2;
+  for (size_t k = 0; k < bearings1.size() && k < bearings2.size(); ++k) {
+    const Eigen::Vector3d d1 = (world_from_cam1 * bearings1[k]).normalized();
+    const Eigen::Vector3d d2 = (world_from_cam2 * bearings2[k]).normalized();
+    const Eigen::Vector3d n = d1.cross(d2);
+    if (!n.allFinite() || n.norm() < min_sin) continue;
+    normals.push_back(n.normalized());
+    rays1.push_back(d1);
+    rays2.push_back(d2);
+  }
+  if (static_cast<int>(normals.size()) < options.min_num_matches) return std::nullopt;
+
+  // The direction minimises sum w (n . t)^2: the eigenvector of the smallest eigenvalue.
+  const double scale = std::sin(options.residual_scale_deg * M_PI / 180.0);
+  std::vector<double> weights(normals.size(), 1.0);
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+  for (int round = 0; round <= options.num_reweighting_rounds; ++round) {
+    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+    for (size_t k = 0; k < normals.size(); ++k)
+      scatter += weights[k] * normals[k] * normals[k].transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+    direction = solver.eigenvectors().col(0);
+    for (size_t k = 0; k < normals.size(); ++k) {
+      const double r = normals[k].dot(direction) / scale;
+      weights[k] = 1.0 / (1.0 + r * r);
+    }
+  }
+  if (!direction.allFinite()) return std::nullopt;
+
+  // Sign by cheirality: with c2 - c1 = t, a match triangulates at c1 + l1 d1 = c2 + l2 d2, and both
+  // depths must be positive for the right sign.
+  int votes_for = 0, votes_against = 0;
+  for (size_t k = 0; k < rays1.size(); ++k) {
+    if (weights[k] < 0.5) continue;  // a wrong match does not vote
+    Eigen::Matrix<double, 3, 2> design;
+    design.col(0) = rays1[k];
+    design.col(1) = -rays2[k];
+    const Eigen::Vector2d depths = design.colPivHouseholderQr().solve(direction);
+    if (depths(0) > 0 && depths(1) > 0) ++votes_for;
+    if (depths(0) < 0 && depths(1) < 0) ++votes_against;
+  }
+  const int votes = votes_for + votes_against;
+  if (votes < options.min_num_matches / 2) return std::nullopt;
+  if (votes_for >= options.min_cheirality_ratio * votes) return direction.normalized();
+  if (votes_against >= options.min_cheirality_ratio * votes) return -direction.normalized();
+  return std::nullopt;
+}
+
+}  // namespace ramap

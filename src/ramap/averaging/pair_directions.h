@@ -1,0 +1,42 @@
+// Translation directions of image pairs re-estimated with the averaged (global) rotations fixed.
+//
+// With both rotations known, the baseline c2 - c1 of a pair is coplanar with every pair of matched
+// world rays (d1, d2), so it is the null vector of the stacked normals d1 x d2; this is the
+// rotation-known form of the epipolar constraint (cf. Kneip & Lynen 2013, who use the same
+// eigenvalue structure). Re-estimating with global rotations removes the error that the pair's own
+// rotation estimate left in its translation.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <optional>
+#include <vector>
+
+namespace ramap {
+
+struct PairDirectionOptions {
+  // Rays of a match closer than this carry no direction information (far points); paper-free
+  // default.
+  double min_ray_angle_deg = 0.5;
+  // Reweighting rounds (Cauchy on the coplanarity residual) to resist wrong matches.
+  int num_reweighting_rounds = 5;
+  // Cauchy scale of the coplanarity residual, in degrees.
+  double residual_scale_deg = 0.5;
+  // Fewer usable matches than this: no direction (COLMAP's min_num_inliers is 15).
+  int min_num_matches = 15;
+  // Fraction of matches whose triangulated point must lie in front of both cameras to accept the
+  // sign.
+  double min_cheirality_ratio = 0.7;
+
+  void Check() const;
+};
+
+// World-frame unit direction of c2 - c1 from the pair's matched bearings (camera frames) and the
+// cam_from_world rotations; empty when the pair has too few informative matches or an ambiguous
+// sign (pure rotation, all points at infinity).
+std::optional<Eigen::Vector3d> EstimatePairDirection(
+    const Eigen::Quaterniond& rotation1, const Eigen::Quaterniond& rotation2,
+    const std::vector<Eigen::Vector3d>& bearings1, const std::vector<Eigen::Vector3d>& bearings2,
+    const PairDirectionOptions& options = PairDirectionOptions());
+
+}  // namespace ramap

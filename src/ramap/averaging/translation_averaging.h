@@ -1,0 +1,86 @@
+// Camera positions from fixed rotations, pair directions and feature tracks.
+//
+// Method: Cui, Jiang, Tan, "Linear Global Translation Estimation with Feature Tracks" (BMVC 2015).
+// For a track point X seen from cameras a and b, the triangle (c_a, c_b, X) is known up to scale
+// once rotations and the pair direction are known, so X = c_a + M_ab (c_b - c_a) with M_ab a
+// known scaled rotation (law of sines). Every other camera k of the track predicts the same X
+// from its own pair, which gives linear equations in the camera centres only. Unlike pairwise
+// direction constraints, these fix the relative baseline lengths along the track, so collinear and
+// forward motion is not degenerate.
+//
+// The system A c = 0 is solved in the L1 sense, min ||A c||_1, with the gauge fixed (one camera at
+// the origin, and the mean projected baseline of the pairs equal to one) by ADMM (Boyd et al.,
+// "Distributed Optimization and Statistical Learning via ADMM", 2011, least absolute deviations).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace ramap {
+
+struct TrackObservation {
+  uint32_t image_id = 0;
+  Eigen::Vector3d bearing = Eigen::Vector3d::UnitZ();  // unit, camera frame
+};
+
+using TranslationTrack = std::vector<TrackObservation>;
+
+// World-frame unit direction of c2 - c1 for an image pair.
+struct PairDirection {
+  uint32_t image_id1 = 0;
+  uint32_t image_id2 = 0;
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+};
+
+struct TranslationAveragingOptions {
+  // Rays meeting at less than this give ill-conditioned depth ratios (Cui et al. use
+  // well-conditioned pairs only); 3 degrees keeps the law-of-sines factor below ~20.
+  double min_triangulation_angle_deg = 3.0;
+  // Observations used per track (the best-conditioned ones); bounds the cost of long tracks.
+  int max_observations_per_track = 8;
+  // Tracks used at most (the longest first); constraints grow linearly with it.
+  int max_num_tracks = 50000;
+  // ADMM penalty parameter; residuals are in units of the mean baseline, so O(1) is natural.
+  double admm_rho = 1.0;
+  // Over-relaxation factor (Boyd et al. recommend 1.5 - 1.8).
+  double admm_relaxation = 1.6;
+  int max_admm_iterations = 2000;
+  // Stop when primal and dual residual norms fall below admm_tolerance * sqrt(size) plus
+  // admm_relative_tolerance times the size of the iterates (Boyd et al. 2011, sec. 3.3.1).
+  double admm_tolerance = 1e-7;
+  double admm_relative_tolerance = 1e-4;
+  // Also stop when the L1 cost changes by less than this fraction over 50 iterations. Measured on
+  // a noisy synthetic ring (30 cameras, 0.1 deg noise): 350 iterations instead of 2000, centres
+  // within 7e-5 of the scene size of the 2000-iteration result.
+  double admm_cost_tolerance = 1e-5;
+
+  void Check() const;
+};
+
+struct TranslationAveragingResult {
+  // Camera centres in world coordinates (the gauge: `gauge_image_id` at the origin, mean projected
+  // pair baseline = 1).
+  std::map<uint32_t, Eigen::Vector3d> centers;
+  uint32_t gauge_image_id = 0;
+  // Images with rotations but no usable constraint, not positioned.
+  std::vector<uint32_t> unconstrained_images;
+  int num_tracks_used = 0;
+  int num_constraints = 0;  // 3-row blocks
+  int num_admm_iterations = 0;
+  double l1_cost = 0.0;
+  double seconds = 0.0;
+};
+
+// Positions for the cameras of `rotations` (cam_from_world). Cameras linked by no constraint are
+// listed in `unconstrained_images`. Throws std::runtime_error when fewer than two cameras can be
+// positioned.
+TranslationAveragingResult AverageTranslations(
+    const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+    const std::vector<PairDirection>& pair_directions, const std::vector<TranslationTrack>& tracks,
+    const TranslationAveragingOptions& options = TranslationAveragingOptions());
+
+}  // namespace ramap

@@ -1,0 +1,203 @@
+#include "ramap/refine/bundle_adjustment.h"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "ramap/util/timer.h"
+
+namespace ramap {
+namespace {
+
+// Pixel-scaled error on the normalised plane; parameters: quaternion (x, y, z, w as Eigen stores
+// it), translation, point.
+struct NormalizedPlaneError {
+  NormalizedPlaneError(const Eigen::Vector3d& bearing, double focal_px)
+      : observed(bearing.head<2>() / bearing.z()), focal(focal_px) {}
+
+  template <typename T>
+  bool operator()(const T* const rotation, const T* const translation, const T* const point,
+                  T* residual) const {
+    const Eigen::Map<const Eigen::Quaternion<T>> q(rotation);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t(translation);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> X(point);
+    const Eigen::Matrix<T, 3, 1> x = q * X + t;
+    residual[0] = T(focal) * (x[0] / x[2] - T(observed.x()));
+    residual[1] = T(focal) * (x[1] / x[2] - T(observed.y()));
+    return true;
+  }
+
+  Eigen::Vector2d observed;
+  double focal;
+};
+
+struct Observation {
+  uint32_t image_id;
+  uint32_t point2D_idx;
+  uint64_t point3D_id;
+  const Eigen::Vector3d* bearing;
+  double focal_px;
+};
+
+// Every track element with a usable bearing (in front of the camera, not grazing).
+std::vector<Observation> UsableObservations(
+    const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
+    const std::map<uint32_t, double>& focal_lengths_px, const Reconstruction& reconstruction,
+    double min_bearing_z) {
+  std::vector<Observation> observations;
+  for (const auto& [point3D_id, point] : reconstruction.points3D) {
+    for (const TrackElement& element : point.track) {
+      const auto image = reconstruction.images.find(element.image_id);
+      const auto image_bearings = bearings.find(element.image_id);
+      if (image == reconstruction.images.end() || image_bearings == bearings.end() ||
+          element.point2D_idx >= image_bearings->second.size()) {
+        continue;
+      }
+      const Eigen::Vector3d& bearing = image_bearings->second[element.point2D_idx];
+      if (!(bearing.z() >= min_bearing_z)) continue;
+      observations.push_back({element.image_id, element.point2D_idx, point3D_id, &bearing,
+                              focal_lengths_px.at(image->second.camera_id)});
+    }
+  }
+  return observations;
+}
+
+double SquaredErrorPx(const Observation& o, const Reconstruction& reconstruction) {
+  const Eigen::Vector3d x = reconstruction.images.at(o.image_id).cam_from_world *
+                            reconstruction.points3D.at(o.point3D_id).xyz;
+  if (x.z() <= 0) return std::numeric_limits<double>::infinity();
+  return (o.focal_px * (x.head<2>() / x.z() - o.bearing->head<2>() / o.bearing->z())).squaredNorm();
+}
+
+double RmsePx(const std::vector<Observation>& observations, const Reconstruction& reconstruction) {
+  if (observations.empty()) return 0.0;
+  double sum = 0.0;
+  for (const Observation& o : observations) sum += SquaredErrorPx(o, reconstruction);
+  return std::sqrt(sum / observations.size());
+}
+
+// One Ceres solve over `observations`; the first image observed is held fixed (gauge).
+ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
+                             const BundleAdjustmentOptions& options,
+                             Reconstruction* reconstruction) {
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  ceres::CauchyLoss loss(options.loss_scale_px);
+  ceres::EigenQuaternionManifold quaternion_manifold;
+  for (const Observation& o : observations) {
+    Rigid3d& pose = reconstruction->images.at(o.image_id).cam_from_world;
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NormalizedPlaneError, 2, 4, 3, 3>(
+                                 new NormalizedPlaneError(*o.bearing, o.focal_px)),
+                             &loss, pose.rotation.coeffs().data(), pose.translation.data(),
+                             reconstruction->points3D.at(o.point3D_id).xyz.data());
+  }
+  bool gauge_fixed = false;
+  for (auto& [image_id, image] : reconstruction->images) {
+    double* rotation = image.cam_from_world.rotation.coeffs().data();
+    if (!problem.HasParameterBlock(rotation)) continue;
+    problem.SetManifold(rotation, &quaternion_manifold);
+    if (!gauge_fixed) {
+      problem.SetParameterBlockConstant(rotation);
+      problem.SetParameterBlockConstant(image.cam_from_world.translation.data());
+      gauge_fixed = true;
+    }
+  }
+  ceres::Solver::Options solver_options;
+  solver_options.max_num_iterations = options.max_num_iterations;
+  solver_options.num_threads = options.num_threads;
+  // Dense Schur is fastest while the reduced camera system is small.
+  solver_options.linear_solver_type =
+      reconstruction->images.size() <= 50 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
+  solver_options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options, &problem, &summary);
+  for (auto& [image_id, image] : reconstruction->images) image.cam_from_world.rotation.normalize();
+  return summary;
+}
+
+// Detaches observations whose error exceeds the bound, removes points left with fewer than two
+// observations, and returns the number of observations detached.
+int FilterObservations(const std::vector<Observation>& observations, double max_error_px,
+                       Reconstruction* reconstruction) {
+  std::map<uint64_t, std::vector<TrackElement>> kept;
+  int num_filtered = 0;
+  for (const Observation& o : observations) {
+    if (SquaredErrorPx(o, *reconstruction) <= max_error_px * max_error_px) {
+      kept[o.point3D_id].push_back({o.image_id, o.point2D_idx});
+    } else {
+      ++num_filtered;
+    }
+  }
+  for (auto it = reconstruction->points3D.begin(); it != reconstruction->points3D.end();) {
+    const auto track = kept.find(it->first);
+    const bool survives = track != kept.end() && track->second.size() >= 2;
+    for (const TrackElement& element : it->second.track) {
+      const bool still_observed =
+          survives &&
+          std::any_of(track->second.begin(), track->second.end(), [&](const TrackElement& e) {
+            return e.image_id == element.image_id && e.point2D_idx == element.point2D_idx;
+          });
+      auto image = reconstruction->images.find(element.image_id);
+      if (!still_observed && image != reconstruction->images.end() &&
+          element.point2D_idx < image->second.points2D.size()) {
+        image->second.points2D[element.point2D_idx].point3D_id = kInvalidPoint3DId;
+      }
+    }
+    if (survives) {
+      it->second.track = track->second;
+      ++it;
+    } else {
+      it = reconstruction->points3D.erase(it);
+    }
+  }
+  return num_filtered;
+}
+
+}  // namespace
+
+void BundleAdjustmentOptions::Check() const {
+  if (max_num_iterations < 0) throw std::invalid_argument("max_num_iterations must be >= 0");
+  if (!(loss_scale_px > 0)) throw std::invalid_argument("loss_scale_px must be > 0");
+  if (!(min_bearing_z > 0 && min_bearing_z < 1))
+    throw std::invalid_argument("min_bearing_z in (0,1)");
+  if (num_threads < 1) throw std::invalid_argument("num_threads must be >= 1");
+  if (!(max_reprojection_error_px > 0))
+    throw std::invalid_argument("max_reprojection_error_px > 0");
+}
+
+BundleAdjustmentSummary BundleAdjust(
+    const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
+    const std::map<uint32_t, double>& focal_lengths_px, Reconstruction* reconstruction,
+    const BundleAdjustmentOptions& options) {
+  options.Check();
+  Timer timer;
+  BundleAdjustmentSummary summary;
+  summary.num_images = static_cast<int>(reconstruction->images.size());
+  std::vector<Observation> observations =
+      UsableObservations(bearings, focal_lengths_px, *reconstruction, options.min_bearing_z);
+  summary.num_observations = static_cast<int>(observations.size());
+  summary.initial_rmse_px = RmsePx(observations, *reconstruction);
+  // Solve, detach what still disagrees, and solve once more without it (as COLMAP's global BA).
+  for (int round = 0; round < 2 && !observations.empty(); ++round) {
+    const ceres::Solver::Summary solve = Solve(observations, options, reconstruction);
+    summary.num_iterations += static_cast<int>(solve.iterations.size());
+    summary.converged = solve.termination_type == ceres::CONVERGENCE;
+    const int filtered =
+        FilterObservations(observations, options.max_reprojection_error_px, reconstruction);
+    summary.num_filtered_observations += filtered;
+    observations =
+        UsableObservations(bearings, focal_lengths_px, *reconstruction, options.min_bearing_z);
+    if (filtered == 0) break;
+  }
+  summary.final_rmse_px = RmsePx(observations, *reconstruction);
+  summary.num_points = static_cast<int>(reconstruction->points3D.size());
+  summary.seconds = timer.ElapsedSeconds();
+  return summary;
+}
+
+}  // namespace ramap

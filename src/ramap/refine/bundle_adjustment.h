@@ -1,0 +1,55 @@
+// Optional final bundle adjustment (Ceres): camera poses and 3D points refined together, the
+// intrinsics fixed. This turns "motion averaging" into "motion averaging + BA", the variant that
+// ramap compares with COLMAP's incremental mapper.
+//
+// Residuals are taken on the normalised image plane of each observation's undistorted bearing and
+// multiplied by the camera's focal length, so they are in pixels (exactly for pinhole cameras, to
+// first order for distorted ones) while the camera model stays out of the cost function.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "ramap/scene/reconstruction.h"
+
+namespace ramap {
+
+struct BundleAdjustmentOptions {
+  // Ceres iterations (COLMAP's global BA uses at most 50).
+  int max_num_iterations = 50;
+  // Robust loss scale in pixels (Cauchy); COLMAP's default loss is a plain squared error, a soft
+  // robust loss protects against the wrong matches that averaging lets through.
+  double loss_scale_px = 2.0;
+  // Observations whose bearing is within this angle of the image plane are skipped (fisheye edges).
+  double min_bearing_z = 0.1;
+  int num_threads = 2;
+  // Observations with a larger reprojection error after BA are detached from their points, and
+  // points left with fewer than two observations removed (COLMAP filters at 4 px).
+  double max_reprojection_error_px = 4.0;
+
+  void Check() const;
+};
+
+struct BundleAdjustmentSummary {
+  int num_images = 0;
+  int num_points = 0;
+  int num_observations = 0;
+  double initial_rmse_px = 0.0;
+  double final_rmse_px = 0.0;  // over the observations kept after filtering
+  int num_iterations = 0;
+  int num_filtered_observations = 0;
+  bool converged = false;
+  double seconds = 0.0;
+};
+
+// Refines `reconstruction` in place. `bearings` holds, per image id, the undistorted unit bearing
+// of each of its points2D (same order). `focal_lengths_px` holds each camera's mean focal length.
+// The first registered image's pose is held fixed (gauge).
+BundleAdjustmentSummary BundleAdjust(
+    const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
+    const std::map<uint32_t, double>& focal_lengths_px, Reconstruction* reconstruction,
+    const BundleAdjustmentOptions& options = BundleAdjustmentOptions());
+
+}  // namespace ramap

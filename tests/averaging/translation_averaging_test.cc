@@ -1,0 +1,198 @@
+#include "ramap/averaging/translation_averaging.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <random>
+
+#include "ramap/averaging/pair_directions.h"
+
+namespace ramap {
+namespace {
+
+struct Scene {
+  std::map<uint32_t, Eigen::Quaterniond> rotations;  // cam_from_world
+  std::map<uint32_t, Eigen::Vector3d> centers;
+  std::vector<Eigen::Vector3d> points;
+};
+
+// Cameras along a straight line looking forward (+z): the degenerate case for pairwise directions.
+Scene ForwardLine(int num_cameras, int num_points, std::mt19937& rng) {
+  Scene scene;
+  std::uniform_real_distribution<double> lateral(-8, 8), depth(0, 40);
+  for (int i = 0; i < num_cameras; ++i) {
+    scene.rotations[i + 1] = Eigen::Quaterniond::Identity();
+    scene.centers[i + 1] = Eigen::Vector3d(0, 0, 1.0 * i);
+  }
+  for (int p = 0; p < num_points; ++p) {
+    scene.points.emplace_back(lateral(rng), lateral(rng) * 0.4, 5 + depth(rng));
+  }
+  return scene;
+}
+
+// Cameras on a circle looking at its centre (an unordered-collection-like ring).
+Scene Ring(int num_cameras, int num_points, std::mt19937& rng) {
+  Scene scene;
+  std::normal_distribution<double> cloud(0, 1.0);
+  for (int i = 0; i < num_cameras; ++i) {
+    const double a = 2 * M_PI * i / num_cameras;
+    const Eigen::Vector3d c(6 * std::cos(a), 0.5 * std::sin(3 * a), 6 * std::sin(a));
+    const Eigen::Vector3d forward = (-c).normalized();
+    const Eigen::Vector3d right = Eigen::Vector3d::UnitY().cross(forward).normalized();
+    Eigen::Matrix3d world_from_cam;
+    world_from_cam << right, forward.cross(right), forward;
+    scene.rotations[i + 1] = Eigen::Quaterniond(world_from_cam.transpose());
+    scene.centers[i + 1] = c;
+  }
+  for (int p = 0; p < num_points; ++p)
+    scene.points.emplace_back(cloud(rng), cloud(rng), cloud(rng));
+  return scene;
+}
+
+bool Sees(const Scene& scene, uint32_t id, const Eigen::Vector3d& X) {
+  const Eigen::Vector3d x = scene.rotations.at(id) * (X - scene.centers.at(id));
+  return x.z() > 0.5 && std::abs(x.x() / x.z()) < 0.8 && std::abs(x.y() / x.z()) < 0.6;
+}
+
+// Tracks of every point in every camera that sees it, bearings rotated by `noise_rad`; pairs of
+// cameras sharing >= 15 points get an exact direction.
+void Observe(const Scene& scene, double noise_rad, std::mt19937& rng,
+             std::vector<TranslationTrack>* tracks, std::vector<PairDirection>* directions) {
+  std::normal_distribution<double> noise(0, noise_rad);
+  std::map<std::pair<uint32_t, uint32_t>, int> shared;
+  for (const Eigen::Vector3d& X : scene.points) {
+    TranslationTrack track;
+    for (const auto& [id, rotation] : scene.rotations) {
+      if (!Sees(scene, id, X)) continue;
+      Eigen::Vector3d f = (rotation * (X - scene.centers.at(id))).normalized();
+      f = Eigen::AngleAxisd(noise(rng), f.unitOrthogonal()) * f;
+      track.push_back({id, f});
+    }
+    for (size_t a = 0; a < track.size(); ++a) {
+      for (size_t b = a + 1; b < track.size(); ++b)
+        ++shared[{track[a].image_id, track[b].image_id}];
+    }
+    if (track.size() >= 2) tracks->push_back(track);
+  }
+  for (const auto& [pair, count] : shared) {
+    if (count < 15) continue;
+    directions->push_back(
+        {pair.first, pair.second,
+         (scene.centers.at(pair.second) - scene.centers.at(pair.first)).normalized()});
+  }
+}
+
+// Largest camera-centre error after the best similarity alignment, relative to the scene's extent.
+double RelativeCenterError(const Scene& scene, const TranslationAveragingResult& result) {
+  Eigen::Matrix3Xd estimated(3, result.centers.size()), truth(3, result.centers.size());
+  int k = 0;
+  for (const auto& [id, c] : result.centers) {
+    estimated.col(k) = c;
+    truth.col(k++) = scene.centers.at(id);
+  }
+  const Eigen::Matrix4d sim = Eigen::umeyama(estimated, truth, true);
+  const Eigen::Matrix3Xd aligned =
+      (sim.topLeftCorner<3, 3>() * estimated).colwise() + sim.topRightCorner<3, 1>();
+  const double extent = (truth.colwise() - truth.rowwise().mean()).colwise().norm().maxCoeff();
+  return (aligned - truth).colwise().norm().maxCoeff() / extent;
+}
+
+TEST(TranslationAveraging, ExactOnForwardMotionAlongALine) {
+  std::mt19937 rng(1);
+  const Scene scene = ForwardLine(20, 400, rng);
+  std::vector<TranslationTrack> tracks;
+  std::vector<PairDirection> directions;
+  Observe(scene, 0.0, rng, &tracks, &directions);
+  const TranslationAveragingResult result =
+      AverageTranslations(scene.rotations, directions, tracks);
+  ASSERT_EQ(result.centers.size(), 20u);
+  EXPECT_TRUE(result.unconstrained_images.empty());
+  EXPECT_LT(RelativeCenterError(scene, result), 1e-6);
+  // The gauge is as documented: first camera at the origin.
+  EXPECT_LT(result.centers.at(result.gauge_image_id).norm(), 1e-12);
+}
+
+TEST(TranslationAveraging, ExactOnARing) {
+  std::mt19937 rng(2);
+  const Scene scene = Ring(24, 500, rng);
+  std::vector<TranslationTrack> tracks;
+  std::vector<PairDirection> directions;
+  Observe(scene, 0.0, rng, &tracks, &directions);
+  const TranslationAveragingResult result =
+      AverageTranslations(scene.rotations, directions, tracks);
+  ASSERT_EQ(result.centers.size(), 24u);
+  EXPECT_LT(RelativeCenterError(scene, result), 1e-6);
+}
+
+TEST(TranslationAveraging, AccurateWithNoiseAndRobustToWrongDirections) {
+  std::mt19937 rng(3);
+  const Scene scene = Ring(30, 600, rng);
+  std::vector<TranslationTrack> tracks;
+  std::vector<PairDirection> directions;
+  Observe(scene, 0.1 * M_PI / 180, rng, &tracks, &directions);
+  // Every 10th pair direction is replaced by a random one.
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  for (size_t k = 0; k < directions.size(); k += 10) {
+    directions[k].direction =
+        Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng)).normalized();
+  }
+  const TranslationAveragingResult result =
+      AverageTranslations(scene.rotations, directions, tracks);
+  ASSERT_EQ(result.centers.size(), 30u);
+  EXPECT_LT(RelativeCenterError(scene, result), 0.02);
+}
+
+TEST(TranslationAveraging, UnconnectedCameraIsReportedNotPositioned) {
+  std::mt19937 rng(4);
+  Scene scene = ForwardLine(10, 300, rng);
+  scene.rotations[99] = Eigen::Quaterniond::Identity();
+  scene.centers[99] = Eigen::Vector3d(500, 500, 500);  // sees nothing
+  std::vector<TranslationTrack> tracks;
+  std::vector<PairDirection> directions;
+  Observe(scene, 0.0, rng, &tracks, &directions);
+  const TranslationAveragingResult result =
+      AverageTranslations(scene.rotations, directions, tracks);
+  EXPECT_EQ(result.centers.count(99), 0u);
+  ASSERT_EQ(result.unconstrained_images.size(), 1u);
+  EXPECT_EQ(result.unconstrained_images[0], 99u);
+}
+
+TEST(TranslationAveraging, NoConstraintsIsAnError) {
+  std::map<uint32_t, Eigen::Quaterniond> rotations = {{1, Eigen::Quaterniond::Identity()},
+                                                      {2, Eigen::Quaterniond::Identity()}};
+  EXPECT_THROW(AverageTranslations(rotations, {}, {}), std::runtime_error);
+}
+
+TEST(PairDirections, RecoversBaselineWithRotationsKnown) {
+  std::mt19937 rng(5);
+  const Scene scene = Ring(12, 400, rng);
+  for (const auto& [i, j] : std::vector<std::pair<uint32_t, uint32_t>>{{1, 2}, {3, 5}, {7, 8}}) {
+    std::vector<Eigen::Vector3d> f1, f2;
+    for (const Eigen::Vector3d& X : scene.points) {
+      if (!Sees(scene, i, X) || !Sees(scene, j, X)) continue;
+      f1.push_back((scene.rotations.at(i) * (X - scene.centers.at(i))).normalized());
+      f2.push_back((scene.rotations.at(j) * (X - scene.centers.at(j))).normalized());
+    }
+    const auto direction =
+        EstimatePairDirection(scene.rotations.at(i), scene.rotations.at(j), f1, f2);
+    ASSERT_TRUE(direction.has_value());
+    const Eigen::Vector3d truth = (scene.centers.at(j) - scene.centers.at(i)).normalized();
+    EXPECT_LT(std::acos(std::min(1.0, direction->dot(truth))), 1e-7);
+  }
+}
+
+TEST(PairDirections, PureRotationHasNoDirection) {
+  std::mt19937 rng(6);
+  std::normal_distribution<double> n(0, 1);
+  std::vector<Eigen::Vector3d> f1, f2;
+  const Eigen::Quaterniond r2(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()));
+  for (int k = 0; k < 100; ++k) {
+    const Eigen::Vector3d X = Eigen::Vector3d(n(rng), n(rng), 5 + n(rng));
+    f1.push_back(X.normalized());
+    f2.push_back((r2 * X).normalized());
+  }
+  EXPECT_FALSE(EstimatePairDirection(Eigen::Quaterniond::Identity(), r2, f1, f2).has_value());
+}
+
+}  // namespace
+}  // namespace ramap

@@ -1,0 +1,534 @@
+#include "ramap/geometry/relative_pose.h"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <memory>
+#include <opengv/relative_pose/CentralRelativeAdapter.hpp>
+#include <opengv/relative_pose/methods.hpp>
+#include <opengv/sac/Ransac.hpp>
+#include <opengv/sac_problems/relative_pose/CentralRelativePoseSacProblem.hpp>
+#include <sstream>
+
+#include "ramap/util/error.h"
+
+namespace ramap {
+namespace {
+
+constexpr int kNumSamples = 6;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDegToRad = kPi / 180.0;
+
+RelativePoseEstimate Reject(const std::string& reason) {
+  RelativePoseEstimate estimate;
+  estimate.success = false;
+  estimate.reason = reason;
+  return estimate;
+}
+
+double AngleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  // atan2 form: accurate for tiny angles, unlike acos of the dot product.
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  const size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + mid, values.end());
+  return values[mid];
+}
+
+bool IsRotation(const Eigen::Matrix3d& R) {
+  return R.allFinite() && (R * R.transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-6 &&
+         R.determinant() > 0;
+}
+
+Eigen::Matrix3d Orthonormalize(const Eigen::Matrix3d& R) {
+  return Eigen::Quaterniond(R).normalized().toRotationMatrix();
+}
+
+// Rotation R minimising sum |R f1 - f2|^2 (Kabsch / Arun): exact under pure rotation.
+Eigen::Matrix3d FitPureRotation(const std::vector<Eigen::Vector3d>& f1,
+                                const std::vector<Eigen::Vector3d>& f2,
+                                const std::vector<int>& indices) {
+  Eigen::Matrix3d cross_cov = Eigen::Matrix3d::Zero();
+  for (int k : indices) cross_cov += f2[k] * f1[k].transpose();
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(cross_cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d S = Eigen::Matrix3d::Identity();
+  if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0) S(2, 2) = -1;
+  return svd.matrixU() * S * svd.matrixV().transpose();
+}
+
+// RMS angular distance (radians) of unit vectors to their best-fitting great circle.
+double GreatCircleSpread(const std::vector<Eigen::Vector3d>& f) {
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const auto& v : f) scatter += v * v.transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter / static_cast<double>(f.size()));
+  return std::sqrt(std::max(0.0, eig.eigenvalues()(0)));
+}
+
+// Kneip & Lynen's objective as a least-squares problem: for unit t, sum_k (t . (R f1 x f2))^2;
+// minimising over t gives the smallest eigenvalue of M(R), so the joint minimum over (R, t) is
+// the eigenvalue objective's minimum.
+struct EpipolarAlgebraicCost {
+  EpipolarAlgebraicCost(const Eigen::Vector3d& f1, const Eigen::Vector3d& f2) : f1(f1), f2(f2) {}
+  template <typename T>
+  bool operator()(const T* q, const T* t, T* residual) const {
+    const Eigen::Quaternion<T> rotation(q[3], q[0], q[1], q[2]);
+    const Eigen::Matrix<T, 3, 1> rf1 = rotation.toRotationMatrix() * f1.cast<T>();
+    const Eigen::Matrix<T, 3, 1> n = rf1.cross(f2.cast<T>());
+    residual[0] = n(0) * t[0] + n(1) * t[1] + n(2) * t[2];
+    return true;
+  }
+  Eigen::Vector3d f1, f2;
+};
+
+// Refines (R, t) on `indices`; returns false when the solver produced nothing usable.
+bool RefineOnInliers(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen::Vector3d>& f2,
+                     const std::vector<int>& indices, Eigen::Matrix3d* R, Eigen::Vector3d* t) {
+  Eigen::Quaterniond q(*R);
+  q.normalize();
+  double q_data[4] = {q.x(), q.y(), q.z(), q.w()};
+  double t_data[3] = {(*t)(0), (*t)(1), (*t)(2)};
+  ceres::Problem problem;
+  for (int k : indices) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<EpipolarAlgebraicCost, 1, 4, 3>(
+                                 new EpipolarAlgebraicCost(f1[k], f2[k])),
+                             nullptr, q_data, t_data);
+  }
+  problem.SetManifold(q_data, new ceres::EigenQuaternionManifold);
+  problem.SetManifold(t_data, new ceres::SphereManifold<3>);
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::DENSE_QR;
+  solver_options.max_num_iterations = 100;
+  // Noise-free pairs have a zero-residual minimum; tight tolerances let Gauss-Newton reach it.
+  solver_options.function_tolerance = 1e-16;
+  solver_options.gradient_tolerance = 1e-20;
+  solver_options.parameter_tolerance = 1e-16;
+  solver_options.num_threads = 1;
+  solver_options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options, &problem, &summary);
+  const Eigen::Quaterniond refined(q_data[3], q_data[0], q_data[1], q_data[2]);
+  const Eigen::Vector3d refined_t(t_data[0], t_data[1], t_data[2]);
+  if (!refined.coeffs().allFinite() || !refined_t.allFinite() || refined_t.norm() < 0.5) {
+    return false;
+  }
+  *R = refined.normalized().toRotationMatrix();
+  *t = refined_t.normalized();
+  return true;
+}
+
+// Number of `indices` triangulating in front of both cameras under x2 = R x1 + t.
+int CountInFront(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen::Vector3d>& f2,
+                 const std::vector<int>& indices, const Eigen::Matrix3d& R,
+                 const Eigen::Vector3d& t) {
+  int count = 0;
+  for (int k : indices) {
+    // d1 R f1 + t = d2 f2 in least squares.
+    Eigen::Matrix<double, 3, 2> A;
+    A.col(0) = R * f1[k];
+    A.col(1) = -f2[k];
+    const Eigen::Matrix2d AtA = A.transpose() * A;
+    if (std::abs(AtA.determinant()) < 1e-14) continue;  // ray parallel to the baseline
+    const Eigen::Vector2d d = AtA.ldlt().solve(-A.transpose() * t);
+    if (d(0) > 0 && d(1) > 0) ++count;
+  }
+  return count;
+}
+
+struct Scored {
+  double cost = std::numeric_limits<double>::infinity();
+  std::vector<int> inliers;
+  std::vector<double> residuals;
+};
+
+// MSAC score of (R, t) over all matches.
+Scored ScoreHypothesis(const std::vector<Eigen::Vector3d>& f1,
+                       const std::vector<Eigen::Vector3d>& f2, const Eigen::Matrix3d& R,
+                       const Eigen::Vector3d& t, double threshold) {
+  Scored scored;
+  scored.cost = 0;
+  scored.residuals.resize(f1.size());
+  const double threshold_sq = threshold * threshold;
+  for (size_t k = 0; k < f1.size(); ++k) {
+    const double r = EpipolarError(R, t, f1[k], f2[k]);
+    scored.residuals[k] = r;
+    if (!(r < threshold)) {
+      scored.cost += threshold_sq;
+    } else {
+      scored.cost += r * r;
+      scored.inliers.push_back(static_cast<int>(k));
+    }
+  }
+  return scored;
+}
+
+// Scores R with t from its minimal support, then once more with t re-fitted on the inliers that
+// found (a local-optimisation step as in LO-RANSAC: t from five or six noisy matches is poor).
+Scored ScoreRotation(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen::Vector3d>& f2,
+                     const Eigen::Matrix3d& R, const Eigen::Vector3d& t_initial, double threshold,
+                     Eigen::Vector3d* t) {
+  Scored scored = ScoreHypothesis(f1, f2, R, t_initial, threshold);
+  *t = t_initial;
+  if (scored.inliers.size() >= 3) {
+    const Eigen::Vector3d t_refit = TranslationFromRotation(f1, f2, scored.inliers, R);
+    Scored rescored = ScoreHypothesis(f1, f2, R, t_refit, threshold);
+    if (rescored.cost < scored.cost) {
+      scored = std::move(rescored);
+      *t = t_refit;
+    }
+  }
+  return scored;
+}
+
+opengv::bearingVectors_t ToOpenGv(const std::vector<Eigen::Vector3d>& f) {
+  return opengv::bearingVectors_t(f.begin(), f.end());
+}
+
+// A candidate rotation (cam2_from_cam1) and the matches it was solved from.
+struct RotationCandidate {
+  Eigen::Matrix3d R;
+  std::vector<int> support;
+};
+
+// Candidate rotations from the six selected matches: Kneip's five-point rotation-only solver on
+// each five of the six (so that one bad match among the six still leaves a clean subset; the
+// other inliers disambiguate), plus the eigensolver on all six started from the identity and from
+// the six's pure-rotation fit.
+std::vector<RotationCandidate> RotationCandidatesFromSix(const std::vector<Eigen::Vector3d>& f1,
+                                                         const std::vector<Eigen::Vector3d>& f2,
+                                                         const std::vector<int>& six) {
+  const opengv::bearingVectors_t b1 = ToOpenGv(f1), b2 = ToOpenGv(f2);
+  std::vector<RotationCandidate> candidates;
+  auto add = [&](const opengv::rotation_t& R_2to1, const std::vector<int>& support) {
+    if (!R_2to1.allFinite()) return;
+    const Eigen::Matrix3d R = Orthonormalize(R_2to1.transpose());
+    if (IsRotation(R)) candidates.push_back({R, support});
+  };
+  try {
+    opengv::relative_pose::CentralRelativeAdapter adapter(b1, b2);
+    for (size_t leave_out = 0; leave_out < six.size(); ++leave_out) {
+      std::vector<int> five;
+      for (size_t i = 0; i < six.size(); ++i) {
+        if (i != leave_out) five.push_back(six[i]);
+      }
+      for (const auto& R : opengv::relative_pose::fivept_kneip(adapter, five)) add(R, five);
+    }
+    // The eigensolver starts from the adapter's rotation (identity here).
+    add(opengv::relative_pose::eigensolver(adapter, six), six);
+    // Pure-rotation fit of the six, a good start under small baselines.
+    const Eigen::Matrix3d R_rot = FitPureRotation(f1, f2, six);
+    candidates.push_back({R_rot, six});
+    opengv::relative_pose::CentralRelativeAdapter started(b1, b2, R_rot.transpose());
+    add(opengv::relative_pose::eigensolver(started, six), six);
+  } catch (const std::exception&) {
+    // A solver failing on a degenerate sample leaves the candidates found so far.
+  }
+  return candidates;
+}
+
+// The RANSAC baseline: OpenGV's central relative pose problem with Nister's five-point solver.
+bool RansacFivePoint(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen::Vector3d>& f2,
+                     const RelativePoseOptions& options, Eigen::Matrix3d* R, Eigen::Vector3d* t) {
+  using Problem = opengv::sac_problems::relative_pose::CentralRelativePoseSacProblem;
+  const opengv::bearingVectors_t b1 = ToOpenGv(f1), b2 = ToOpenGv(f2);
+  try {
+    opengv::relative_pose::CentralRelativeAdapter adapter(b1, b2);
+    opengv::sac::Ransac<Problem> ransac;
+    // OpenGV seeds its own generator (fixed when randomSeed is false); options.seed is unused.
+    ransac.sac_model_ = std::make_shared<Problem>(adapter, Problem::NISTER, false);
+    // OpenGV's score is the sum over both views of 1 - cos(reprojection angle).
+    ransac.threshold_ = 2.0 * (1.0 - std::cos(options.max_epipolar_error));
+    ransac.max_iterations_ = options.ransac_max_iterations;
+    ransac.probability_ = options.ransac_probability;
+    if (!ransac.computeModel()) return false;
+    // OpenGV's model: x1 = R_2to1 x2 + t_2in1, so cam2_from_cam1 = (R_2to1^T, -R_2to1^T t_2in1).
+    const Eigen::Matrix3d R_2to1 = ransac.model_coefficients_.leftCols<3>();
+    const Eigen::Vector3d t_2in1 = ransac.model_coefficients_.col(3);
+    if (!R_2to1.allFinite() || !t_2in1.allFinite() || t_2in1.norm() < 1e-12) return false;
+    *R = Orthonormalize(R_2to1.transpose());
+    *t = -(R_2to1.transpose() * t_2in1).normalized();
+    return IsRotation(*R);
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+std::string Percent(double ratio) {
+  std::ostringstream out;
+  out.precision(3);
+  out << 100.0 * ratio << "%";
+  return out.str();
+}
+
+}  // namespace
+
+void RelativePoseOptions::Check() const {
+  const std::string source = "RelativePose options";
+  if (min_num_inliers < kNumSamples) {
+    throw InputError(source, "min_num_inliers must be at least 6");
+  }
+  if (grid_cols < 1 || grid_rows < 1) throw InputError(source, "grid_cols/grid_rows must be >= 1");
+  if (min_cell_distance < 1) throw InputError(source, "min_cell_distance must be >= 1");
+  if (!(max_epipolar_error > 0 && max_epipolar_error < kPi / 2)) {
+    throw InputError(source, "max_epipolar_error must be in (0, pi/2) radians");
+  }
+  if (!(min_inlier_ratio >= 0 && min_inlier_ratio <= 1)) {
+    throw InputError(source, "min_inlier_ratio must be in [0, 1]");
+  }
+  if (!(pure_rotation_parallax_deg >= 0)) {
+    throw InputError(source, "pure_rotation_parallax_deg must be >= 0");
+  }
+  if (!(min_motion_deg >= 0)) throw InputError(source, "min_motion_deg must be >= 0");
+  if (!(min_bearing_spread >= 0)) throw InputError(source, "min_bearing_spread must be >= 0");
+  if (ransac_max_iterations < 1) throw InputError(source, "ransac_max_iterations must be >= 1");
+  if (!(ransac_probability > 0 && ransac_probability < 1)) {
+    throw InputError(source, "ransac_probability must be in (0, 1)");
+  }
+}
+
+double EpipolarError(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const Eigen::Vector3d& f1,
+                     const Eigen::Vector3d& f2) {
+  const Eigen::Vector3d rf1 = R * f1;
+  const double algebraic = std::abs(t.dot(rf1.cross(f2)));
+  // The plane through the baseline and R f1 has normal t x R f1; its sine distance to f2 is the
+  // algebraic error over |t x R f1| (and symmetrically for f1 with |t x f2|).
+  const double d1 = std::max(t.cross(rf1).norm(), 1e-12);
+  const double d2 = std::max(t.cross(f2).norm(), 1e-12);
+  const double s2 = std::min(1.0, algebraic / d1), s1 = std::min(1.0, algebraic / d2);
+  return 0.5 * (std::asin(s1) + std::asin(s2));
+}
+
+Eigen::Vector3d TranslationFromRotation(const std::vector<Eigen::Vector3d>& bearings1,
+                                        const std::vector<Eigen::Vector3d>& bearings2,
+                                        const std::vector<int>& indices, const Eigen::Matrix3d& R,
+                                        double* min_eigenvalue) {
+  Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+  for (int k : indices) {
+    const Eigen::Vector3d n = (R * bearings1[k]).cross(bearings2[k]);
+    M += n * n.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(M);
+  if (min_eigenvalue != nullptr) *min_eigenvalue = eig.eigenvalues()(0);
+  return eig.eigenvectors().col(0).normalized();
+}
+
+RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
+                                          const RelativePoseOptions& options) {
+  const size_t n = matches.size();
+  if (matches.bearings2.size() != n || matches.pixels1.size() != n || matches.pixels2.size() != n ||
+      (!matches.confidence.empty() && matches.confidence.size() != n)) {
+    return Reject("inconsistent input: bearings, pixels and confidences differ in length");
+  }
+  if (static_cast<int>(n) < std::max(kNumSamples, options.min_num_inliers)) {
+    return Reject("only " + std::to_string(n) + " matches, need at least " +
+                  std::to_string(std::max(kNumSamples, options.min_num_inliers)));
+  }
+  if (matches.width1 <= 0 || matches.height1 <= 0 || matches.width2 <= 0 || matches.height2 <= 0) {
+    return Reject("image sizes must be positive");
+  }
+  std::vector<Eigen::Vector3d> f1(n), f2(n);
+  for (size_t k = 0; k < n; ++k) {
+    const bool finite = matches.bearings1[k].allFinite() && matches.bearings2[k].allFinite() &&
+                        matches.pixels1[k].allFinite() && matches.pixels2[k].allFinite() &&
+                        (matches.confidence.empty() || std::isfinite(matches.confidence[k]));
+    if (!finite) return Reject("non-finite value in match " + std::to_string(k));
+    if (matches.bearings1[k].norm() < 1e-12 || matches.bearings2[k].norm() < 1e-12) {
+      return Reject("zero bearing vector in match " + std::to_string(k));
+    }
+    f1[k] = matches.bearings1[k].normalized();
+    f2[k] = matches.bearings2[k].normalized();
+  }
+
+  // Spread: one grid cell, or bearings on one great circle (keypoints on one image line), leave
+  // the rotation undetermined.
+  {
+    const ImageGrid grid1{options.grid_cols, options.grid_rows, matches.width1, matches.height1};
+    const ImageGrid grid2{options.grid_cols, options.grid_rows, matches.width2, matches.height2};
+    std::vector<bool> occupied1(options.grid_cols * options.grid_rows, false);
+    std::vector<bool> occupied2(occupied1.size(), false);
+    for (size_t k = 0; k < n; ++k) {
+      occupied1[grid1.CellIndex(matches.pixels1[k])] = true;
+      occupied2[grid2.CellIndex(matches.pixels2[k])] = true;
+    }
+    if (std::count(occupied1.begin(), occupied1.end(), true) < 2 ||
+        std::count(occupied2.begin(), occupied2.end(), true) < 2) {
+      return Reject("all matches fall into one grid cell: too little spread");
+    }
+    if (GreatCircleSpread(f1) < options.min_bearing_spread ||
+        GreatCircleSpread(f2) < options.min_bearing_spread) {
+      return Reject("matches are collinear in an image: rotation undetermined");
+    }
+  }
+
+  std::vector<int> all(n);
+  for (size_t k = 0; k < n; ++k) all[k] = static_cast<int>(k);
+
+  {
+    std::vector<double> raw_angles(n);
+    for (size_t k = 0; k < n; ++k) raw_angles[k] = AngleBetween(f1[k], f2[k]);
+    if (Median(raw_angles) < options.min_motion_deg * kDegToRad) {
+      return Reject("no motion between the images (identical or duplicate views)");
+    }
+  }
+
+  const double parallax_threshold = options.pure_rotation_parallax_deg * kDegToRad;
+
+  // Pure rotation / low parallax: the epipolar constraint is then satisfied by any translation and
+  // the solvers are ill-posed, so test for it first with a pure-rotation fit, refit once on the
+  // matches it explains.
+  {
+    Eigen::Matrix3d R = FitPureRotation(f1, f2, all);
+    std::vector<double> parallax(n);
+    for (size_t k = 0; k < n; ++k) parallax[k] = AngleBetween(R * f1[k], f2[k]);
+    if (Median(parallax) < parallax_threshold) {
+      std::vector<int> inliers;
+      const double inlier_threshold =
+          std::max(2.0 * parallax_threshold, options.max_epipolar_error);
+      for (size_t k = 0; k < n; ++k) {
+        if (parallax[k] < inlier_threshold) inliers.push_back(static_cast<int>(k));
+      }
+      if (static_cast<int>(inliers.size()) < options.min_num_inliers) {
+        return Reject("pure rotation with only " + std::to_string(inliers.size()) + " inliers");
+      }
+      R = FitPureRotation(f1, f2, inliers);
+      RelativePoseEstimate estimate;
+      estimate.success = true;
+      estimate.rotation = Eigen::Quaterniond(R).normalized();
+      estimate.translation.setZero();
+      estimate.inliers = inliers;
+      estimate.num_inliers = static_cast<int>(inliers.size());
+      std::vector<double> inlier_parallax;
+      for (int k : inliers) inlier_parallax.push_back(AngleBetween(R * f1[k], f2[k]));
+      estimate.median_parallax_deg = Median(inlier_parallax) / kDegToRad;
+      estimate.median_residual = Median(inlier_parallax);
+      estimate.cheirality_ratio = 1.0;
+      estimate.flags = kRelativePosePureRotation;
+      return estimate;
+    }
+  }
+
+  // Hypothesis: the paper's six-point rotation, or the RANSAC baseline.
+  Eigen::Matrix3d R;
+  Eigen::Vector3d t;
+  Scored best;
+  if (options.sampler == CorrespondenceSampler::kRansac5) {
+    Eigen::Vector3d t_ransac;
+    if (!RansacFivePoint(f1, f2, options, &R, &t_ransac)) {
+      return Reject("RANSAC five-point found no essential matrix");
+    }
+    best = ScoreRotation(f1, f2, R, t_ransac, options.max_epipolar_error, &t);
+  } else {
+    std::vector<int> six;
+    switch (options.sampler) {
+      case CorrespondenceSampler::kGrid:
+        six = SelectGridCorrespondences(matches, options.grid_cols, options.grid_rows, kNumSamples,
+                                        options.min_cell_distance);
+        break;
+      case CorrespondenceSampler::kRandom:
+        six = SelectRandomCorrespondences(matches, kNumSamples, options.seed);
+        break;
+      case CorrespondenceSampler::kRoi:
+        six = SelectRoiCorrespondences(matches, options.grid_cols, options.grid_rows, kNumSamples);
+        break;
+      case CorrespondenceSampler::kRansac5:
+        break;
+    }
+    if (static_cast<int>(six.size()) < kNumSamples) {
+      return Reject("could not select six correspondences");
+    }
+    for (const RotationCandidate& candidate : RotationCandidatesFromSix(f1, f2, six)) {
+      Eigen::Vector3d candidate_t;
+      Scored scored = ScoreRotation(f1, f2, candidate.R,
+                                    TranslationFromRotation(f1, f2, candidate.support, candidate.R),
+                                    options.max_epipolar_error, &candidate_t);
+      if (scored.cost < best.cost) {
+        best = std::move(scored);
+        R = candidate.R;
+        t = candidate_t;
+      }
+    }
+    if (!std::isfinite(best.cost)) {
+      return Reject("the six-point solvers returned no rotation");
+    }
+  }
+  if (static_cast<int>(best.inliers.size()) < kNumSamples) {
+    return Reject("rotation inconsistent with the epipolar constraint: only " +
+                  std::to_string(best.inliers.size()) + " inliers");
+  }
+
+  // Refine on all inliers, drop the matches the refined model does not explain and refit, until
+  // the inlier set is stable (a few rounds at most), so that the estimate is a fit of its final
+  // inliers only.
+  std::vector<int> inliers = best.inliers;
+  constexpr int kMaxRefineRounds = 4;
+  for (int round = 0;; ++round) {
+    if (!RefineOnInliers(f1, f2, inliers, &R, &t)) {
+      return Reject("refinement diverged");
+    }
+    if (round + 1 == kMaxRefineRounds) break;
+    std::vector<int> rescored = ScoreHypothesis(f1, f2, R, t, options.max_epipolar_error).inliers;
+    if (static_cast<int>(rescored.size()) < options.min_num_inliers) {
+      return Reject("only " + std::to_string(rescored.size()) + " inliers after refinement");
+    }
+    if (rescored == inliers) break;
+    inliers = std::move(rescored);
+  }
+
+  // The paper's consistency check: the rotation must explain most of the verified matches.
+  const double ratio = static_cast<double>(inliers.size()) / static_cast<double>(n);
+  if (ratio < options.min_inlier_ratio) {
+    return Reject("rotation inconsistent with the epipolar constraint: only " + Percent(ratio) +
+                  " of the matches are inliers");
+  }
+
+  // Translation direction from the rotation, then the four-fold (R, +-t, twisted R) ambiguity of
+  // the epipolar constraint resolved by cheirality.
+  t = TranslationFromRotation(f1, f2, inliers, R);
+  const Eigen::Matrix3d R_refined = R;
+  const Eigen::Matrix3d R_twisted = Eigen::AngleAxisd(kPi, t).toRotationMatrix() * R;
+  int best_in_front = -1;
+  Eigen::Matrix3d R_final = R;
+  Eigen::Vector3d t_final = t;
+  for (const Eigen::Matrix3d* R_option : {&R_refined, &R_twisted}) {
+    for (double sign : {1.0, -1.0}) {
+      const int in_front = CountInFront(f1, f2, inliers, *R_option, sign * t);
+      if (in_front > best_in_front) {
+        best_in_front = in_front;
+        R_final = *R_option;
+        t_final = sign * t;
+      }
+    }
+  }
+
+  RelativePoseEstimate estimate;
+  estimate.success = true;
+  estimate.rotation = Eigen::Quaterniond(R_final).normalized();
+  estimate.translation = t_final;
+  estimate.inliers = inliers;
+  estimate.num_inliers = static_cast<int>(inliers.size());
+  std::vector<double> residuals, parallax;
+  for (int k : inliers) {
+    residuals.push_back(EpipolarError(R_final, t_final, f1[k], f2[k]));
+    parallax.push_back(AngleBetween(R_final * f1[k], f2[k]));
+  }
+  estimate.median_residual = Median(residuals);
+  estimate.median_parallax_deg = Median(parallax) / kDegToRad;
+  estimate.cheirality_ratio = static_cast<double>(best_in_front) / inliers.size();
+  if (estimate.median_parallax_deg < options.pure_rotation_parallax_deg) {
+    estimate.flags |= kRelativePosePureRotation;
+    estimate.translation.setZero();
+  }
+  if (!estimate.rotation.coeffs().allFinite() || !estimate.translation.allFinite()) {
+    return Reject("non-finite estimate");
+  }
+  return estimate;
+}
+
+}  // namespace ramap

@@ -1,0 +1,113 @@
+// Relative rotation (and translation direction) of an image pair from bearing vectors.
+//
+// Method (DESIGN.md step 1; "Pushing the Envelope of Rotation Averaging for Visual SLAM", Li,
+// Yuan, Latecki, Ling): six well-spread correspondences are chosen with a grid
+// (geometry/correspondence_sampling.h), the rotation is solved from them independently of the
+// translation with Kneip's rotation-only solvers (L. Kneip, R. Siegwart, M. Pollefeys, "Finding
+// the Exact Rotation between Two Images Independently of the Translation", ECCV 2012, as shipped by
+// OpenGV), kept only when consistent with the epipolar constraint over the pair's inliers, then
+// refined on all inliers by minimising Kneip & Lynen's eigenvalue objective ("Direct Optimization
+// of Frame-to-Frame Rotation", ICCV 2013). The translation direction follows from the rotation.
+//
+// Convention (ramap-wide, COLMAP's): x_cam = R * x_world + t. The edge (i, j) holds
+// R_ij = R_j * R_i^T, i.e. the rotation cam_j_from_cam_i, and the unit translation t_ij of
+// cam_j_from_cam_i: x_j = R_ij * x_i + lambda * t_ij for some lambda > 0. Here image 1 is i and
+// image 2 is j. (OpenGV returns the inverse, camera-2-to-camera-1: f1 ~ R f2 + t.)
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ramap/geometry/correspondence_sampling.h"
+
+namespace ramap {
+
+struct RelativePoseOptions {
+  // Pairs with fewer verified matches, or fewer inliers after estimation, are rejected
+  // (COLMAP's TwoViewGeometryOptions::min_num_inliers).
+  int min_num_inliers = 15;
+  // Grid of the paper's selection, the same for both images. 8 x 6 gives roughly square cells on
+  // 4:3 images and 48 cells, enough for six well-separated ones (our choice; the paper does not
+  // state its grid).
+  int grid_cols = 8;
+  int grid_rows = 6;
+  // Greedy spread of the six grid cells: minimum Chebyshev distance in cells, relaxed to 1 when
+  // too few cells remain.
+  int min_cell_distance = 2;
+  CorrespondenceSampler sampler = CorrespondenceSampler::kGrid;
+  // Seeds the random sampler and RANSAC.
+  uint64_t seed = 0;
+  // Epipolar error (radians, angle of a bearing to the epipolar plane) above which a match is
+  // an outlier. 0.008 rad ~ COLMAP's 4 px verification threshold at a 500 px focal length.
+  double max_epipolar_error = 0.008;
+  // A solved rotation is kept only when at least this fraction of the matches are inliers to it
+  // (the paper's epipolar consistency check; ours: verified matches are mostly inliers).
+  double min_inlier_ratio = 0.5;
+  // Median parallax (degrees) of the inliers after rotation compensation below which the pair is
+  // taken as pure rotation / low parallax: flagged, rotation kept, translation zero. 0.5 deg is
+  // ~4 px at a 500 px focal length (our choice).
+  double pure_rotation_parallax_deg = 0.5;
+  // Median angle between the raw bearings (degrees) below which the images are taken as the same
+  // view (duplicate frames, no motion): rejected.
+  double min_motion_deg = 0.01;
+  // Bearings closer than this (RMS, radians) to one great circle in either image are collinear:
+  // the rotation is not determined, rejected.
+  double min_bearing_spread = 1e-3;
+  // RANSAC (sampler = ransac5): iterations cap and success probability.
+  int ransac_max_iterations = 1000;
+  double ransac_probability = 0.999;
+
+  // Throws InputError naming the offending option.
+  void Check() const;
+};
+
+// Flags of an accepted edge.
+enum RelativePoseFlags : uint32_t {
+  kRelativePoseNone = 0,
+  // Median parallax after rotation compensation is below pure_rotation_parallax_deg: the
+  // translation direction is undetermined and set to zero.
+  kRelativePosePureRotation = 1u << 0,
+};
+
+struct RelativePoseEstimate {
+  bool success = false;
+  // cam2_from_cam1 (R_ij) and its unit translation (zero when kRelativePosePureRotation).
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  int num_inliers = 0;
+  // Indices (into the input) of the inliers of the final estimate.
+  std::vector<int> inliers;
+  // Median epipolar error of the inliers (radians).
+  double median_residual = 0;
+  // Median angle between R f1 and f2 over the inliers (degrees).
+  double median_parallax_deg = 0;
+  // Fraction of inliers in front of both cameras (1 for pure rotation).
+  double cheirality_ratio = 0;
+  uint32_t flags = kRelativePoseNone;
+  // Why the edge was rejected (empty on success).
+  std::string reason;
+};
+
+// Estimates cam2_from_cam1 from the matches of one pair. Never throws on degenerate data: bad
+// input (fewer than six / min_num_inliers matches, non-finite values, all keypoints in one grid
+// cell, collinear bearings, no motion) gives success = false and a reason.
+RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
+                                          const RelativePoseOptions& options);
+
+// Epipolar error (radians) of one match under (R, t), x2 = R x1 + t: the mean of the angles of
+// f2 to the epipolar plane in camera 2 and of f1 to the epipolar plane in camera 1.
+double EpipolarError(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const Eigen::Vector3d& f1,
+                     const Eigen::Vector3d& f2);
+
+// The unit translation best explaining the matches `indices` under rotation R: the eigenvector of
+// the smallest eigenvalue of sum_k n_k n_k^T, n_k = (R f1_k) x f2_k (Kneip & Lynen 2013). Sign
+// not fixed. `min_eigenvalue` (optional) receives that eigenvalue, the ICCV 2013 objective.
+Eigen::Vector3d TranslationFromRotation(const std::vector<Eigen::Vector3d>& bearings1,
+                                        const std::vector<Eigen::Vector3d>& bearings2,
+                                        const std::vector<int>& indices, const Eigen::Matrix3d& R,
+                                        double* min_eigenvalue = nullptr);
+
+}  // namespace ramap

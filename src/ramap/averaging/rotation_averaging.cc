@@ -108,6 +108,9 @@ class TangentIrls {
       const int ub = unknown_[edge_b_[edges_[k]]];
       if (ua >= 0 && ub >= 0) off_slot_[k] = slot(std::max(ua, ub), std::min(ua, ub));
     }
+    // Laplacians of view graphs factor with little fill; the simplicial LL^T avoids the BLAS
+    // threading overhead of the supernodal path (measured faster on the 10,000-camera benchmark).
+    solver_.setMode(Eigen::CholmodSimplicialLLt);
     solver_.analyzePattern(matrix_);
   }
 

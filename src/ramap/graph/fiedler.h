@@ -24,8 +24,14 @@ double FiedlerValue(const RotationGraph& graph, bool weighted = false,
 // all residuals below it is the global optimum:
 //   alpha_max = 2 asin( sqrt(1/4 + lambda_2 / (2 d_max)) - 1/2 ),
 // lambda_2 the Fiedler value of the unweighted Laplacian, d_max the largest node degree.
-// 0 when lambda_2 <= 0 or d_max == 0. Example: a complete graph K_n, lambda_2 = n, d_max = n - 1,
-// tends to 2 asin(sqrt(3/4) - 1/2) = 42.9 deg.
+// 0 when lambda_2 <= 0 or d_max == 0. What was checked: the paper (arXiv 1705.01362, extended in
+// TPAMI 2019 "Rotation averaging with the chordal distance: global minimizers and strong
+// duality") states the condition for the unweighted chordal cost, hence the unweighted Laplacian
+// and unweighted degrees; the sources reachable while writing this gave the abstract but not the
+// corollary's text, so the formula is the one of DESIGN.md, checked for consistency: K_3 gives
+// 60 deg, K_n tends to 42.9 deg, sparse view graphs (lambda_2 ~ 1e-3) give hundredths of a degree.
+// Example: a complete graph K_n, lambda_2 = n, d_max = n - 1, tends to 2 asin(sqrt(3/4) - 1/2)
+// = 42.9 deg.
 double StrongDualityResidualBound(double lambda2, int max_degree);
 
 }  // namespace ramap

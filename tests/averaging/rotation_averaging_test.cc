@@ -1,0 +1,237 @@
+#include "ramap/averaging/rotation_averaging.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "ramap/graph/fiedler.h"
+#include "ramap/graph/keyframes.h"
+#include "ramap/graph/synthetic_rotation_graph.h"
+
+namespace ramap {
+namespace {
+
+SyntheticRotationGraph PathWithLoops(double noise_deg, double outlier_fraction, uint32_t seed) {
+  SyntheticRotationGraphOptions options;
+  options.num_nodes = 200;
+  options.forward_neighbours = 8;
+  options.num_loop_edges = 30;
+  options.noise_deg = noise_deg;
+  options.outlier_fraction = outlier_fraction;
+  options.seed = seed;
+  return MakeSyntheticRotationGraph(options);
+}
+
+double TrueEdgeErrorDeg(const SyntheticRotationGraph& synthetic, size_t e) {
+  const RelativeRotationEdge& edge = synthetic.graph.edges[e];
+  return EdgeResidualDeg(edge, synthetic.true_rotations[edge.i], synthetic.true_rotations[edge.j]);
+}
+
+TEST(RotationAveraging, ExactRecoveryWithoutNoise) {
+  const SyntheticRotationGraph synthetic = PathWithLoops(0.0, 0.0, 3);
+  const RotationAveragingResult result = AverageRotations(synthetic.graph, {});
+  ASSERT_EQ(result.rotations.size(), synthetic.true_rotations.size());
+  for (bool estimated : result.estimated) EXPECT_TRUE(estimated);
+  const std::vector<double> errors =
+      AlignedRotationErrorsDeg(result.rotations, synthetic.true_rotations);
+  double max_error = 0.0;
+  for (double error : errors) max_error = std::max(max_error, error);
+  EXPECT_LT(max_error * M_PI / 180.0, 1e-9);
+  EXPECT_TRUE(result.pruned_edges.empty());
+  EXPECT_TRUE(result.certificate.certified);
+}
+
+TEST(RotationAveraging, RejectsBadOptions) {
+  RotationAveragingOptions options;
+  options.sigma_deg = 0.0;
+  EXPECT_FALSE(options.Check());
+  EXPECT_THROW(AverageRotations(PathWithLoops(1.0, 0.0, 1).graph, options), std::invalid_argument);
+}
+
+// Median error of the robust solver versus the chordal optimum of the graph with the outliers
+// removed by an oracle (the noise-only optimum). The robust solver cannot beat that reference by
+// much (it sees the same inliers), and should not lose much to it while the noise is well below
+// the loss scale: Geman-McClure with sigma = 5 deg weights inliers at residuals of ~1-3 deg
+// almost uniformly (weight > 0.5), and an outlier that survives pruning keeps a weight below
+// (sigma^2 / (r^2 + sigma^2))^2 < 0.04 for r > 2 sigma. We allow a factor 1.25 for noise up to
+// 2 deg. At 5 deg per-axis noise the inlier residual angles (~8 deg) exceed sigma, so the loss
+// down-weights good edges unevenly and loses statistical efficiency: we allow a factor 1.75 there
+// (measured 1.54-1.57). 0.05 deg absolute slack covers the medians' sampling noise.
+struct NoiseCase {
+  double noise_deg;
+  double outlier_fraction;
+};
+
+class RotationAveragingNoise : public ::testing::TestWithParam<NoiseCase> {};
+
+TEST_P(RotationAveragingNoise, CloseToInlierOnlyChordalOptimum) {
+  const NoiseCase c = GetParam();
+  const SyntheticRotationGraph synthetic =
+      PathWithLoops(c.noise_deg, c.outlier_fraction, 7 + static_cast<uint32_t>(c.noise_deg * 10));
+  const RotationAveragingResult result = AverageRotations(synthetic.graph, {});
+  int estimated = 0;
+  for (bool e : result.estimated) estimated += e;
+  EXPECT_GE(estimated, 195);
+  const double median = Median(
+      AlignedRotationErrorsDeg(result.rotations, synthetic.true_rotations, result.estimated));
+
+  RotationGraph inliers = synthetic.graph;
+  inliers.edges.clear();
+  for (size_t e = 0; e < synthetic.graph.edges.size(); ++e) {
+    if (!synthetic.is_outlier[e]) inliers.edges.push_back(synthetic.graph.edges[e]);
+  }
+  const ChordalAveragingResult reference = AverageRotationsChordal(inliers);
+  const double reference_median = Median(
+      AlignedRotationErrorsDeg(reference.rotations, synthetic.true_rotations, reference.estimated));
+  const double factor = c.noise_deg <= 2.0 ? 1.25 : 1.75;
+  EXPECT_LT(median, factor * reference_median + 0.05)
+      << "noise " << c.noise_deg << " outliers " << c.outlier_fraction << ": ours " << median
+      << " deg, inlier-only chordal " << reference_median << " deg";
+  std::cout << "noise " << c.noise_deg << " outliers " << c.outlier_fraction << ": ours " << median
+            << " deg, inlier-only chordal " << reference_median << " deg, ratio "
+            << median / reference_median << "\n";
+  EXPECT_GT(median, 0.5 * reference_median);
+
+  // Every outlier whose measurement is off by more than alpha_max must have been pruned. The
+  // residual seen by the solver is the true error plus the errors of the two node estimates,
+  // which are of the order of the per-axis noise: outliers within 3 noise sigmas of alpha_max
+  // may legitimately fall on either side.
+  const RotationAveragingOptions defaults;
+  const double margin_deg = 3.0 * c.noise_deg;
+  int outliers_above = 0;
+  for (size_t e = 0; e < synthetic.graph.edges.size(); ++e) {
+    if (!synthetic.is_outlier[e] ||
+        TrueEdgeErrorDeg(synthetic, e) <= defaults.alpha_max_deg + margin_deg) {
+      continue;
+    }
+    ++outliers_above;
+    EXPECT_NE(result.edge_status[e], EdgeStatus::kKept)
+        << "outlier edge " << e << " true error " << TrueEdgeErrorDeg(synthetic, e) << " residual "
+        << result.edge_residuals_deg[e];
+  }
+  if (c.outlier_fraction > 0) EXPECT_GT(outliers_above, 0);
+  // Pruned edges record their residual above the threshold.
+  for (const PrunedEdge& pruned : result.pruned_edges) {
+    if (pruned.reason == EdgeStatus::kPrunedResidual) {
+      EXPECT_GT(pruned.residual_deg, pruned.threshold_deg);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(RotationAveraging, RotationAveragingNoise,
+                         ::testing::Values(NoiseCase{0.5, 0.0}, NoiseCase{0.5, 0.1},
+                                           NoiseCase{0.5, 0.3}, NoiseCase{2.0, 0.0},
+                                           NoiseCase{2.0, 0.1}, NoiseCase{2.0, 0.3},
+                                           NoiseCase{5.0, 0.0}, NoiseCase{5.0, 0.1},
+                                           NoiseCase{5.0, 0.3}));
+
+TEST(RotationAveraging, CertificateOnLowNoiseGraphMatchesChordalOptimum) {
+  // The bound grows with algebraic connectivity: a well connected graph (each camera linked to
+  // its 12 successors and 400 loop edges) at 0.2 deg noise.
+  SyntheticRotationGraphOptions options;
+  options.num_nodes = 150;
+  options.forward_neighbours = 12;
+  options.num_loop_edges = 400;
+  options.noise_deg = 0.2;
+  options.seed = 11;
+  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(options);
+  const RotationAveragingResult result = AverageRotations(synthetic.graph, {});
+  const RotationCertificate& certificate = result.certificate;
+  ASSERT_TRUE(certificate.computed);
+  EXPECT_TRUE(certificate.certified)
+      << "max residual " << certificate.max_residual_deg << " bound " << certificate.bound_deg;
+  EXPECT_NEAR(certificate.fiedler_value, FiedlerValue(synthetic.graph), 1e-9);
+  EXPECT_NEAR(
+      certificate.bound_deg,
+      StrongDualityResidualBound(certificate.fiedler_value, certificate.max_degree) * 180.0 / M_PI,
+      1e-12);
+  // A certified solution is the global chordal optimum: the plain chordal solver cannot do better.
+  const ChordalAveragingResult chordal = AverageRotationsChordal(synthetic.graph);
+  const double certified_cost = ChordalCost(synthetic.graph, certificate.rotations);
+  const double chordal_cost = ChordalCost(synthetic.graph, chordal.rotations);
+  EXPECT_NEAR(certified_cost, chordal_cost, 1e-9 * chordal_cost + 1e-12);
+  // The robust solution is not the chordal stationary point, so its chordal cost is not lower.
+  EXPECT_GE(ChordalCost(synthetic.graph, result.rotations), certified_cost * (1 - 1e-12));
+}
+
+TEST(RotationAveraging, HighNoiseIsNotCertified) {
+  // A sparse path-like graph has a tiny Fiedler value, so its bound is far below 20 deg noise.
+  const SyntheticRotationGraph synthetic = PathWithLoops(20.0, 0.0, 5);
+  RotationAveragingOptions options;
+  options.max_pruning_rounds = 0;
+  const RotationAveragingResult result = AverageRotations(synthetic.graph, options);
+  EXPECT_FALSE(result.certificate.certified);
+  EXPECT_GT(result.certificate.max_residual_deg, result.certificate.bound_deg);
+}
+
+TEST(RotationAveraging, StrongDualityPruningModeUsesTheBound) {
+  const SyntheticRotationGraph synthetic = PathWithLoops(2.0, 0.1, 21);
+  RotationAveragingOptions options;
+  options.pruning_mode = PruningThresholdMode::kStrongDualityBound;
+  const RotationAveragingResult result = AverageRotations(synthetic.graph, options);
+  ASSERT_FALSE(result.pruned_edges.empty());
+  EXPECT_LE(result.pruning_rounds, options.max_pruning_rounds);
+  for (const PrunedEdge& pruned : result.pruned_edges) {
+    if (pruned.reason != EdgeStatus::kPrunedResidual) continue;
+    EXPECT_LT(pruned.threshold_deg, 45.0);
+    EXPECT_GT(pruned.residual_deg, pruned.threshold_deg);
+  }
+}
+
+TEST(RotationAveraging, WindowsThenGlobalMatchesGlobal) {
+  SyntheticRotationGraphOptions options;
+  options.num_nodes = 150;
+  options.forward_neighbours = 6;
+  options.num_loop_edges = 30;
+  options.noise_deg = 2.0;
+  options.outlier_fraction = 0.1;
+  options.seed = 9;
+  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(options);
+  KeyframeOptions keyframe_options;
+  keyframe_options.keyframe_interval = 30;
+  const Keyframes keyframes = SelectKeyframes(synthetic.graph.node_ids, keyframe_options);
+  const RotationAveragingResult windowed =
+      AverageRotationsInWindows(synthetic.graph, keyframes, {});
+  const RotationAveragingResult global = AverageRotations(synthetic.graph, {});
+  EXPECT_GT(windowed.timings.windows, 0.0);
+  const double windowed_median = Median(
+      AlignedRotationErrorsDeg(windowed.rotations, synthetic.true_rotations, windowed.estimated));
+  const double global_median = Median(
+      AlignedRotationErrorsDeg(global.rotations, synthetic.true_rotations, global.estimated));
+  EXPECT_NEAR(windowed_median, global_median, 0.1 * global_median);
+}
+
+TEST(RotationAveraging, DisconnectedNodesAreReported) {
+  SyntheticRotationGraph synthetic = PathWithLoops(1.0, 0.0, 2);
+  synthetic.graph.node_ids.push_back(1000);
+  synthetic.graph.node_ids.push_back(1001);
+  RelativeRotationEdge island;
+  island.i = 1000;
+  island.j = 1001;
+  synthetic.graph.edges.push_back(island);
+  const RotationAveragingResult result = AverageRotations(synthetic.graph, {});
+  EXPECT_FALSE(result.estimated[200]);
+  EXPECT_FALSE(result.estimated[201]);
+  EXPECT_EQ(result.edge_status.back(), EdgeStatus::kPrunedDisconnected);
+  EXPECT_TRUE(std::isnan(result.edge_residuals_deg.back()));
+}
+
+TEST(RotationAveraging, ChordalCostOfExactRotationsIsZero) {
+  const SyntheticRotationGraph synthetic = PathWithLoops(0.0, 0.0, 4);
+  EXPECT_NEAR(ChordalCost(synthetic.graph, synthetic.true_rotations), 0.0, 1e-20);
+  // One edge off by angle a costs ||I - R||_F^2 = 8 sin^2(a / 2).
+  SyntheticRotationGraph perturbed = synthetic;
+  perturbed.graph.edges[0].R_ij =
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY())) *
+      perturbed.graph.edges[0].R_ij;
+  EXPECT_NEAR(ChordalCost(perturbed.graph, synthetic.true_rotations),
+              8.0 * std::pow(std::sin(0.15), 2), 1e-12);
+  const ChordalAveragingResult exact = AverageRotationsChordal(synthetic.graph);
+  const std::vector<double> errors =
+      AlignedRotationErrorsDeg(exact.rotations, synthetic.true_rotations);
+  for (double error : errors) EXPECT_LT(error, 1e-9);
+}
+
+}  // namespace
+}  // namespace ramap

@@ -38,6 +38,8 @@ std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database
     const Eigen::Vector3d t = geometry.cam2_from_cam1.translation;
     const bool has_pose = geometry.config == TwoViewConfig::kCalibrated && t.norm() > 0;
     for (const FeatureMatch& match : geometry.inlier_matches) {
+      // Keypoints past a strong distortion's fold have no bearing (NaN): leave them out.
+      if (!b1->second[match.point2D_idx1].allFinite() || !b2->second[match.point2D_idx2].allFinite()) continue;
       c.bearings1.push_back(b1->second[match.point2D_idx1]);
       c.bearings2.push_back(b2->second[match.point2D_idx2]);
       c.pixels1.push_back(keypoints1.xy(match.point2D_idx1));

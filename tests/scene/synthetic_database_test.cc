@@ -1,15 +1,14 @@
 // The synthetic scene through the COLMAP database writer and reader: what `ramap synthesize`
-// writes must read back unchanged.
-#include <gtest/gtest.h>
-
-#include <Eigen/Geometry>
+// writes must read back unchanged, and COLMAP must reconstruct it.
 #include <cmath>
-#include <fstream>
 #include <iostream>
 #include <map>
-#include <sstream>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
 
 #include "ramap/io/colmap_database.h"
+#include "ramap/io/colmap_model.h"
 #include "ramap/scene/synthetic.h"
 #include "test_support.h"
 
@@ -48,38 +47,6 @@ TEST(SyntheticDatabase, RoundTripsThroughTheColmapDatabase) {
   }
 }
 
-}  // namespace
-}  // namespace ramap
-
-namespace ramap {
-namespace {
-
-struct ColmapImagePose {
-  Eigen::Quaterniond rotation;
-  Eigen::Vector3d translation;
-};
-
-// Poses by image name from a COLMAP images.txt (every other line holds the pose).
-std::map<std::string, ColmapImagePose> ReadImagesTxtPoses(const std::string& path) {
-  std::map<std::string, ColmapImagePose> poses;
-  std::ifstream file(path);
-  std::string line;
-  bool pose_line = true;
-  while (std::getline(file, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (pose_line) {
-      std::istringstream in(line);
-      uint32_t image_id, camera_id;
-      double qw, qx, qy, qz, tx, ty, tz;
-      std::string name;
-      in >> image_id >> qw >> qx >> qy >> qz >> tx >> ty >> tz >> camera_id >> name;
-      poses[name] = {Eigen::Quaterniond(qw, qx, qy, qz), Eigen::Vector3d(tx, ty, tz)};
-    }
-    pose_line = !pose_line;
-  }
-  return poses;
-}
-
 // An independent check of the synthetic data's conventions (pixel frame, pair order, E, inlier
 // indices): COLMAP's own incremental mapper must recover the true relative rotations.
 TEST(SyntheticDatabase, ColmapMapperRecoversTheTrueRotations) {
@@ -97,17 +64,17 @@ TEST(SyntheticDatabase, ColmapMapperRecoversTheTrueRotations) {
   const SyntheticScene scene = BuildSyntheticScene(options);
   test::TempDir dir;
   WriteColmapDatabase(scene.database, dir / "database.db");
-  const test::CommandResult mapper = test::RunCommand(
-      "mkdir -p " + (dir / "images") + " " + (dir / "sparse") +
-      " && colmap mapper --database_path " + (dir / "database.db") + " --image_path " +
-      (dir / "images") + " --output_path " + (dir / "sparse") +
-      " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0"
-      " --Mapper.ba_refine_extra_params 0 --Mapper.num_threads 2 && colmap model_converter"
-      " --input_path " +
-      (dir / "sparse/0") + " --output_path " + (dir / "sparse/0") + " --output_type TXT");
+  const test::CommandResult mapper =
+      test::RunCommand("mkdir -p " + (dir / "images") + " " + (dir / "sparse") +
+                       " && colmap mapper --database_path " + (dir / "database.db") +
+                       " --image_path " + (dir / "images") + " --output_path " + (dir / "sparse") +
+                       " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0"
+                       " --Mapper.ba_refine_extra_params 0 --Mapper.num_threads 2");
   ASSERT_EQ(mapper.exit_code, 0) << mapper.output;
-  const std::map<std::string, ColmapImagePose> poses =
-      ReadImagesTxtPoses(dir / "sparse/0/images.txt");
+  std::map<std::string, Eigen::Quaterniond> poses;
+  for (const auto& [image_id, image] : ReadColmapModel(dir / "sparse/0").images) {
+    poses[image.name] = image.cam_from_world.rotation;
+  }
   ASSERT_EQ(poses.size(), static_cast<size_t>(options.num_images));
   double worst_deg = 0.0;
   for (const auto& [id1, image1] : scene.ground_truth.images) {
@@ -115,8 +82,7 @@ TEST(SyntheticDatabase, ColmapMapperRecoversTheTrueRotations) {
       if (id1 >= id2) continue;
       const Eigen::Quaterniond truth =
           image2.cam_from_world.rotation * image1.cam_from_world.rotation.conjugate();
-      const Eigen::Quaterniond colmap =
-          poses.at(image2.name).rotation * poses.at(image1.name).rotation.conjugate();
+      const Eigen::Quaterniond colmap = poses.at(image2.name) * poses.at(image1.name).conjugate();
       worst_deg = std::max(worst_deg, truth.angularDistance(colmap) * 180.0 / M_PI);
     }
   }

@@ -17,6 +17,8 @@ namespace ramap {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
+// Inverse iterations for the least-squares start (converges in a few dozen on our problems).
+constexpr int kMaxInverseIterations = 100;
 
 uint64_t PairKey(uint32_t a, uint32_t b) {
   return (static_cast<uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
@@ -161,9 +163,10 @@ std::vector<Constraint> BuildConstraints(const std::map<uint32_t, Eigen::Quatern
     int added = 0;
     for (size_t k = 0; k < ids.size(); ++k) {
       if (k == ref_a) continue;
-      // Camera k predicts X from its pair with one of the reference cameras.
+      // Camera k predicts X from its best-conditioned pair with any other camera of the track
+      // (a sequence frame often has no verified pair with the reference cameras themselves).
       std::optional<PointPrediction> best;
-      for (const size_t partner : {ref_a, ref_b}) {
+      for (size_t partner = 0; partner < ids.size(); ++partner) {
         if (partner == k) continue;
         const auto prediction =
             PredictPoint(ids[k], ids[partner], rays[k], rays[partner], directions, min_angle);
@@ -281,82 +284,96 @@ TranslationAveragingResult AverageTranslations(
   Eigen::SparseMatrix<double> A(num_rows, num_cols);
   A.setFromTriplets(triplets.begin(), triplets.end());
 
-  // Scale gauge: the mean of (c_j - c_i) . u_ij over the known pair directions is one.
-  Eigen::VectorXd g = Eigen::VectorXd::Zero(num_cols);
-  int num_gauge_pairs = 0;
-  for (const PairDirection& pair : pair_directions) {
-    if (!column.count(pair.image_id1) || !column.count(pair.image_id2)) continue;
-    const Eigen::Vector3d u = pair.direction.normalized();
-    if (const int j = column.at(pair.image_id2); j >= 0) g.segment<3>(3 * j) += u;
-    if (const int i = column.at(pair.image_id1); i >= 0) g.segment<3>(3 * i) -= u;
-    ++num_gauge_pairs;
-  }
-  if (num_gauge_pairs == 0)
-    throw std::runtime_error("translation averaging: no pair direction to fix the scale");
-  g /= num_gauge_pairs;
-
-  // x-update: min ||A x - v||^2 subject to g^T x = 1, via one factorisation of A^T A.
+  // Gauge of the solve: the first camera at the origin (its columns are left out) and ||x||_2 fixed,
+  // as in Cui et al. The radius sqrt(#cameras) makes coordinates O(1), so that rho and the
+  // tolerances mean the same on every problem size. A sphere rather than a linear normalisation keeps L1 from putting all of the
+  // scale on one camera while the rest collapse to the origin.
   Eigen::SparseMatrix<double> normal = A.transpose() * A;
   // A tiny ridge keeps the factorisation defined where a camera is only weakly constrained.
-  for (int i = 0; i < num_cols; ++i) normal.coeffRef(i, i) += 1e-10;
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver;
-  solver.compute(normal);
-  if (solver.info() != Eigen::Success)
+  Eigen::SparseMatrix<double> ridge(num_cols, num_cols);
+  ridge.setIdentity();
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> least_squares;
+  least_squares.compute(normal + 1e-10 * ridge);
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> admm_step;
+  admm_step.compute(normal + ridge);
+  if (least_squares.info() != Eigen::Success || admm_step.info() != Eigen::Success) {
     throw std::runtime_error("translation averaging: factorisation failed");
-  const Eigen::VectorXd y = solver.solve(g);
-  const double gy = g.dot(y);
-  auto constrained_solve = [&](const Eigen::VectorXd& v) {
-    const Eigen::VectorXd x0 = solver.solve(A.transpose() * v);
-    return Eigen::VectorXd(x0 + ((1.0 - g.dot(x0)) / gy) * y);
-  };
+  }
 
-  // Least-squares start, then ADMM for least absolute deviations.
-  Eigen::VectorXd x = y / gy;
-  Eigen::VectorXd z = A * x;
+  // Start: the least-squares solution on the sphere, the eigenvector of A^T A of the smallest
+  // eigenvalue, by inverse iteration.
+  const double radius = std::sqrt(static_cast<double>(solved.size()));
+  Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(num_cols, 1.0, 2.0).normalized();
+  for (int k = 0; k < kMaxInverseIterations; ++k) {
+    const Eigen::VectorXd next = least_squares.solve(x).normalized();
+    const double change = std::min((next - x).norm(), (next + x).norm());
+    x = next;
+    if (change < 1e-12) break;
+  }
+  x *= radius;
+
+  // ADMM on min ||z||_1 + [x on the sphere] s.t. z = A y, x = y (scaled form; Boyd et al. 2011).
+  // The y-update's matrix A^T A + I does not depend on rho, so it is factored once.
+  Eigen::VectorXd y = x;
+  Eigen::VectorXd z = A * y;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(num_rows);
-  double rho = options.admm_rho;
-  const double tolerance_primal = options.admm_tolerance * std::sqrt(static_cast<double>(num_rows));
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(num_cols);
+  const double rho = options.admm_rho;
+  const double tolerance_primal =
+      options.admm_tolerance * std::sqrt(static_cast<double>(num_rows + num_cols));
   const double tolerance_dual = options.admm_tolerance * std::sqrt(static_cast<double>(num_cols));
   constexpr int kCostCheckInterval = 50;
   double previous_cost = std::numeric_limits<double>::infinity();
   int iteration = 0;
   for (; iteration < options.max_admm_iterations; ++iteration) {
-    x = constrained_solve(z - u);
-    const Eigen::VectorXd Ax = A * x;
-    const Eigen::VectorXd Ax_relaxed =
-        options.admm_relaxation * Ax + (1.0 - options.admm_relaxation) * z;
+    y = admm_step.solve(A.transpose() * (z - u) + (x - w));
+    const Eigen::VectorXd Ay = A * y;
+    const Eigen::VectorXd Ay_relaxed =
+        options.admm_relaxation * Ay + (1.0 - options.admm_relaxation) * z;
     const Eigen::VectorXd z_previous = z;
-    z = SoftThreshold(Ax_relaxed + u, 1.0 / rho);
-    u += Ax_relaxed - z;
-    const double primal = (Ax - z).norm();
-    const double dual = rho * (A.transpose() * (z - z_previous)).norm();
+    const Eigen::VectorXd x_previous = x;
+    z = SoftThreshold(Ay_relaxed + u, 1.0 / rho);
+    x = radius * (y + w).normalized();
+    u += Ay_relaxed - z;
+    w += y - x;
+    const double primal = std::sqrt((Ay - z).squaredNorm() + (y - x).squaredNorm());
+    const double dual =
+        rho * (A.transpose() * (z - z_previous) + (x - x_previous)).norm();
     // Stopping rule of Boyd et al. 2011, sec. 3.3.1: absolute plus relative tolerances.
     const double relative = options.admm_relative_tolerance;
-    if (primal < tolerance_primal + relative * std::max(Ax.norm(), z.norm()) &&
-        dual < tolerance_dual + relative * rho * (A.transpose() * u).norm()) {
+    if (primal < tolerance_primal + relative * std::max(Ay.norm(), z.norm()) &&
+        dual < tolerance_dual + relative * rho * (A.transpose() * u + w).norm()) {
       ++iteration;
       break;
     }
     // ADMM's residuals shrink slowly once the L1 cost has settled (its tail is long): stop when the
     // cost changed by less than admm_cost_tolerance over the last check window.
     if (iteration % kCostCheckInterval == kCostCheckInterval - 1) {
-      const double cost = Ax.lpNorm<1>();
+      const double cost = (A * x).lpNorm<1>();
       if (std::abs(previous_cost - cost) <= options.admm_cost_tolerance * cost) {
         ++iteration;
         break;
       }
       previous_cost = cost;
     }
-    // Residual balancing (Boyd et al. 2011, sec. 3.4.1). The x-update's matrix does not depend on
-    // rho, so changing it costs nothing; the scaled dual variable is rescaled to match.
-    if (primal > 10 * dual) {
-      rho *= 2;
-      u /= 2;
-    } else if (dual > 10 * primal) {
-      rho /= 2;
-      u *= 2;
-    }
   }
+
+  // The sphere leaves the sign free: the pair directions choose it. Then the documented scale,
+  // mean projected pair baseline = 1.
+  double projected = 0.0;
+  int num_pairs = 0;
+  for (const PairDirection& pair : pair_directions) {
+    const auto i = column.find(pair.image_id1), j = column.find(pair.image_id2);
+    if (i == column.end() || j == column.end()) continue;
+    const Eigen::Vector3d ci = i->second < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(x.segment<3>(3 * i->second));
+    const Eigen::Vector3d cj = j->second < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(x.segment<3>(3 * j->second));
+    projected += pair.direction.normalized().dot(cj - ci);
+    ++num_pairs;
+  }
+  if (num_pairs == 0 || !(std::abs(projected) > 0)) {
+    throw std::runtime_error("translation averaging: the solution does not fit the pair directions");
+  }
+  x *= num_pairs / projected;
   result.num_admm_iterations = iteration;
   result.l1_cost = (A * x).lpNorm<1>();
   result.num_constraints = static_cast<int>(constraints.size());

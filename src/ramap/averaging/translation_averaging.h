@@ -8,9 +8,11 @@
 // direction constraints, these fix the relative baseline lengths along the track, so collinear and
 // forward motion is not degenerate.
 //
-// The system A c = 0 is solved in the L1 sense, min ||A c||_1, with the gauge fixed (one camera at
-// the origin, and the mean projected baseline of the pairs equal to one) by ADMM (Boyd et al.,
-// "Distributed Optimization and Statistical Learning via ADMM", 2011, least absolute deviations).
+// The system A c = 0 is solved in the L1 sense, min ||A c||_1 subject to ||c||_2 = 1 with one
+// camera held at the origin, by ADMM (Boyd et al., "Distributed Optimization and Statistical
+// Learning via ADMM", 2011; the sphere is handled as a projection, a nonconvex splitting), started
+// from the least-squares solution. The result is then scaled so that the mean projected baseline of
+// the pairs is one, with the sign the pair directions agree with.
 #pragma once
 
 #include <Eigen/Core>
@@ -37,15 +39,19 @@ struct PairDirection {
 };
 
 struct TranslationAveragingOptions {
-  // Rays meeting at less than this give ill-conditioned depth ratios (Cui et al. use
-  // well-conditioned pairs only); 3 degrees keeps the law-of-sines factor below ~20.
-  double min_triangulation_angle_deg = 3.0;
+  // Rays meeting at less than this give ill-conditioned depth ratios. Measured on the default
+  // synthetic forward-motion scene (ramap synthesize): 3 deg left the last 7 of 30 frames without a
+  // constraint (they see only far points); 1.5, 1 and 0.5 deg registered all 30 with AUC@1 92.1,
+  // 92.3 and 92.5 %. 1 deg keeps a margin against far-point noise on real data.
+  double min_triangulation_angle_deg = 1.0;
   // Observations used per track (the best-conditioned ones); bounds the cost of long tracks.
   int max_observations_per_track = 8;
   // Tracks used at most (the longest first); constraints grow linearly with it.
   int max_num_tracks = 50000;
-  // ADMM penalty parameter; residuals are in units of the mean baseline, so O(1) is natural.
-  double admm_rho = 1.0;
+  // ADMM penalty parameter. The sphere makes the splitting nonconvex, which needs rho large enough:
+  // on a noisy synthetic ring rho = 1 and 10 oscillated, 30 to 1000 all reached the same L1 cost,
+  // 100 in the fewest iterations. Residual balancing (varying rho) made it oscillate, so rho is fixed.
+  double admm_rho = 100.0;
   // Over-relaxation factor (Boyd et al. recommend 1.5 - 1.8).
   double admm_relaxation = 1.6;
   int max_admm_iterations = 2000;

@@ -34,9 +34,6 @@ std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database
     c.height1 = static_cast<int>(camera1.height);
     c.width2 = static_cast<int>(camera2.width);
     c.height2 = static_cast<int>(camera2.height);
-    const Eigen::Matrix3d R = geometry.cam2_from_cam1.rotation.toRotationMatrix();
-    const Eigen::Vector3d t = geometry.cam2_from_cam1.translation;
-    const bool has_pose = geometry.config == TwoViewConfig::kCalibrated && t.norm() > 0;
     for (const FeatureMatch& match : geometry.inlier_matches) {
       // Keypoints past a strong distortion's fold have no bearing (NaN): leave them out.
       if (!b1->second[match.point2D_idx1].allFinite() || !b2->second[match.point2D_idx2].allFinite()) continue;
@@ -48,6 +45,9 @@ std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database
         c.confidence.push_back(
             EpipolarError(R, t.normalized(), c.bearings1.back(), c.bearings2.back()));
     }
+    // COLMAP 3.8 stores F for every verified pair but no pair pose (qvec is zero), so the match
+    // confidence for the grid selection is the Sampson error under F.
+    if (!geometry.F.isZero()) c.confidence = SampsonErrors(geometry.F, c.pixels1, c.pixels2);
     edges.push_back(std::move(edge));
   }
 

@@ -27,7 +27,7 @@ bool IsUsableTwoViewConfig(TwoViewConfig config);
 // Every pair of `database.two_view_geometries` with a usable config and at least
 // options.min_num_inliers verified matches, estimated on `num_threads` threads. Pairs that fail
 // stay in the result with estimate.success == false and the reason. The confidence of a match (for
-// the grid selection) is its epipolar error under the geometry COLMAP stored.
+// the grid selection) is its Sampson error under the fundamental matrix COLMAP stored.
 std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database,
                                                  const ImageBearings& bearings,
                                                  const RelativePoseOptions& options,

@@ -101,16 +101,16 @@ TEST(RelativePoseRealData, HerzJesusPairsMatchGroundTruth) {
     grid_rotation_errors.push_back(rotation_error(grid.rotation));
     grid_translation_errors.push_back(AngleDeg(grid.translation, truth.translation));
     ransac_rotation_errors.push_back(rotation_error(ransac.rotation));
-    colmap_rotation_errors.push_back(rotation_error(geometry.cam2_from_cam1.rotation));
     std::printf(
-        "%s-%s: %zu matches, %d inliers; rotation error grid %.3f ransac5 %.3f COLMAP %.3f "
-        "deg; translation error grid %.2f deg\n",
+        "%s-%s: %zu matches, %d inliers, true rotation %.2f deg; rotation error grid "
+        "%.3f ransac5 %.3f deg; translation error grid %.2f deg\n",
         image1.name.c_str(), image2.name.c_str(), matches.size(), grid.num_inliers,
-        grid_rotation_errors.back(), ransac_rotation_errors.back(), colmap_rotation_errors.back(),
-        grid_translation_errors.back());
-    // Real matches on a calibrated pair: the grid estimate is as good as the RANSAC baseline.
-    EXPECT_LT(grid_rotation_errors.back(), 1.0);
-    EXPECT_LT(grid_translation_errors.back(), 5.0);
+        Eigen::AngleAxisd(truth.rotation).angle() * kRadToDeg, grid_rotation_errors.back(),
+        ransac_rotation_errors.back(), grid_translation_errors.back());
+    // Measured: grid and ransac5 both 0.01-0.05 deg, translation 0.02-0.2 deg (640 px SIFT).
+    EXPECT_LT(grid_rotation_errors.back(), 0.25);
+    EXPECT_LT(grid_translation_errors.back(), 1.0);
+    EXPECT_EQ(grid.flags, kRelativePoseNone);
     EXPECT_GT(grid.num_inliers, 0.8 * matches.size());
   }
   ASSERT_GE(grid_rotation_errors.size(), 3u) << "too few calibrated pairs in the fixture";

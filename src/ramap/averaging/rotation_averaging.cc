@@ -400,9 +400,64 @@ RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
       threshold_deg =
           KeptGraphBound(graph, keep, result.estimated, &lambda2, &max_degree) * kRadToDeg;
     }
-    bool pruned_any = false;
+    // A node most of whose kept edges exceed the threshold is more likely mis-estimated than
+    // surrounded by outliers; pruning would strand it on whichever edges happen to agree with
+    // its wrong estimate. Re-initialise it from the consensus of its neighbours instead.
+    std::vector<bool> suspect(n, false);
+    if (options.reinitialize_suspect_nodes &&
+        options.pruning_mode == PruningThresholdMode::kFixedAngle) {
+      std::vector<int> degree(n, 0);
+      std::vector<int> above(n, 0);
+      for (size_t e = 0; e < graph.edges.size(); ++e) {
+        if (!keep[e]) continue;
+        const bool high = result.edge_residuals_deg[e] > threshold_deg;
+        for (int node : {indexed.a[e], indexed.b[e]}) {
+          ++degree[node];
+          above[node] += high;
+        }
+      }
+      for (size_t k = 0; k < n; ++k) suspect[k] = degree[k] >= 3 && 2 * above[k] > degree[k];
+    }
+    bool changed = false;
+    if (std::find(suspect.begin(), suspect.end(), true) != suspect.end()) {
+      std::vector<std::vector<Eigen::Quaterniond>> candidates(n);
+      for (size_t e = 0; e < graph.edges.size(); ++e) {
+        if (!keep[e]) continue;
+        const int a = indexed.a[e];
+        const int b = indexed.b[e];
+        const Eigen::Quaterniond& R_ab = graph.edges[e].R_ij;
+        if (suspect[a]) candidates[a].push_back(R_ab.conjugate() * result.rotations[b]);
+        if (suspect[b]) candidates[b].push_back(R_ab * result.rotations[a]);
+      }
+      const double agree_rad = threshold_deg * kDegToRad;
+      for (size_t k = 0; k < n; ++k) {
+        if (!suspect[k]) continue;
+        int best_support = -1;
+        Eigen::Quaterniond best = result.rotations[k];
+        for (const Eigen::Quaterniond& candidate : candidates[k]) {
+          int support = 0;
+          for (const Eigen::Quaterniond& other : candidates[k]) {
+            support += candidate.angularDistance(other) < agree_rad;
+          }
+          if (support > best_support) {
+            best_support = support;
+            best = candidate;
+          }
+        }
+        // The neighbours agree with the current estimate: the node is right and most of its
+        // edges are outliers, which are pruned as usual.
+        if (best.angularDistance(result.rotations[k]) < agree_rad) {
+          suspect[k] = false;
+          continue;
+        }
+        result.rotations[k] = best.normalized();
+        result.reinitialized_nodes.push_back(graph.node_ids[k]);
+        changed = true;
+      }
+    }
     for (size_t e = 0; e < graph.edges.size(); ++e) {
       if (!keep[e] || !(result.edge_residuals_deg[e] > threshold_deg)) continue;
+      if (suspect[indexed.a[e]] || suspect[indexed.b[e]]) continue;
       keep[e] = false;
       result.edge_status[e] = EdgeStatus::kPrunedResidual;
       PrunedEdge pruned;
@@ -412,9 +467,9 @@ RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
       pruned.threshold_deg = threshold_deg;
       pruned.reason = EdgeStatus::kPrunedResidual;
       result.pruned_edges.push_back(pruned);
-      pruned_any = true;
+      changed = true;
     }
-    if (!pruned_any) break;
+    if (!changed) break;
     ++result.pruning_rounds;
     RestrictToLargestComponent(graph, indexed, round, &result, &keep);
     irls = std::make_unique<TangentIrls>(graph, indexed.a, indexed.b, KeptEdges(keep),

@@ -63,6 +63,12 @@ struct RotationAveragingOptions {
   double alpha_max_deg = 45.0;
   // Pruning rounds, each followed by an IRLS run (paper: 3). 0 disables pruning.
   int max_pruning_rounds = 3;
+  // In kFixedAngle mode, a node with at least 3 kept edges of which a strict majority exceed
+  // alpha_max is taken as mis-estimated rather than surrounded by outliers: its edges are not
+  // pruned in that round and it is re-initialised from the neighbour prediction that most other
+  // predictions agree with (within alpha_max). Without this, an L1 start that left a node far off
+  // strands it on an outlier edge once its inlier edges are pruned (seen at 30% outliers).
+  bool reinitialize_suspect_nodes = true;
   // Scale IRLS weights by the edges' own weights (inlier counts). Off as in Chatterjee & Govindu.
   bool use_edge_weights = false;
   // Compute the strong-duality certificate (a Fiedler value and a chordal refinement).
@@ -120,7 +126,8 @@ struct RotationAveragingResult {
   std::vector<PrunedEdge> pruned_edges;       // in pruning order
   int l1_iterations = 0;
   int irls_iterations = 0;  // over all IRLS runs
-  int pruning_rounds = 0;   // rounds that removed at least one edge
+  int pruning_rounds = 0;   // rounds that removed an edge or re-initialised a node
+  std::vector<uint32_t> reinitialized_nodes;  // suspect nodes re-initialised during pruning
   RotationCertificate certificate;
   RotationAveragingTimings timings;
 };

@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <random>
 #include <utility>
+
+#include <Eigen/Geometry>
 
 #include "ramap/util/error.h"
 
@@ -196,6 +199,22 @@ std::vector<int> SelectRoiCorrespondences(const TwoViewCorrespondences& matches,
     }
   }
   return {};
+}
+
+std::vector<double> SampsonErrors(const Eigen::Matrix3d& F,
+                                  const std::vector<Eigen::Vector2d>& pixels1,
+                                  const std::vector<Eigen::Vector2d>& pixels2) {
+  std::vector<double> errors(pixels1.size(), 0.0);
+  if (F.isZero()) return errors;
+  for (size_t k = 0; k < pixels1.size(); ++k) {
+    const Eigen::Vector3d x1 = pixels1[k].homogeneous(), x2 = pixels2[k].homogeneous();
+    const Eigen::Vector3d Fx1 = F * x1, Ftx2 = F.transpose() * x2;
+    const double numerator = x2.dot(Fx1);
+    const double denominator = Fx1.head<2>().squaredNorm() + Ftx2.head<2>().squaredNorm();
+    errors[k] =
+        denominator > 0 ? numerator * numerator / denominator : std::numeric_limits<double>::max();
+  }
+  return errors;
 }
 
 }  // namespace ramap

@@ -80,4 +80,10 @@ std::vector<int> SelectRandomCorrespondences(const TwoViewCorrespondences& match
 std::vector<int> SelectRoiCorrespondences(const TwoViewCorrespondences& matches, int cols, int rows,
                                           int num_samples);
 
+// Sampson errors (pixels^2) of matches under a fundamental matrix F (x2^T F x1 = 0): a per-match
+// confidence for the selection, lower is better. Zero for every match when F is zero (unknown).
+std::vector<double> SampsonErrors(const Eigen::Matrix3d& F,
+                                  const std::vector<Eigen::Vector2d>& pixels1,
+                                  const std::vector<Eigen::Vector2d>& pixels2);
+
 }  // namespace ramap

@@ -36,14 +36,13 @@ std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database
     c.height2 = static_cast<int>(camera2.height);
     for (const FeatureMatch& match : geometry.inlier_matches) {
       // Keypoints past a strong distortion's fold have no bearing (NaN): leave them out.
-      if (!b1->second[match.point2D_idx1].allFinite() || !b2->second[match.point2D_idx2].allFinite()) continue;
+      if (!b1->second[match.point2D_idx1].allFinite() ||
+          !b2->second[match.point2D_idx2].allFinite())
+        continue;
       c.bearings1.push_back(b1->second[match.point2D_idx1]);
       c.bearings2.push_back(b2->second[match.point2D_idx2]);
       c.pixels1.push_back(keypoints1.xy(match.point2D_idx1));
       c.pixels2.push_back(keypoints2.xy(match.point2D_idx2));
-      if (has_pose)
-        c.confidence.push_back(
-            EpipolarError(R, t.normalized(), c.bearings1.back(), c.bearings2.back()));
     }
     // COLMAP 3.8 stores F for every verified pair but no pair pose (qvec is zero), so the match
     // confidence for the grid selection is the Sampson error under F.

@@ -7,15 +7,22 @@ int RunDatabaseInfo(int argc, char** argv);
 int RunEvaluate(int argc, char** argv);
 int RunMapper(int argc, char** argv);
 int RunModelConverter(int argc, char** argv);
+int RunRelativePoses(int argc, char** argv);
+int RunRotationAverager(int argc, char** argv);
 int RunSynthesize(int argc, char** argv);
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {
       {"mapper", "camera poses and points from a COLMAP database by motion averaging", RunMapper},
+      {"relative_poses", "relative pose of every verified pair (grid 6-point, Kneip)",
+       RunRelativePoses},
+      {"rotation_averager", "absolute rotations by robust rotation averaging, certified",
+       RunRotationAverager},
       {"evaluate", "score a model's camera poses against ground truth (ATE, AUC)", RunEvaluate},
       {"database_info", "counts and checks what a COLMAP database holds", RunDatabaseInfo},
       {"model_converter", "convert a COLMAP sparse model between BIN and TXT", RunModelConverter},
-      {"synthesize", "a synthetic scene with exact ground truth (database, model, TUM)", RunSynthesize},
+      {"synthesize", "a synthetic scene with exact ground truth (database, model, TUM)",
+       RunSynthesize},
   };
   return commands;
 }

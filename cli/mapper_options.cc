@@ -4,8 +4,7 @@
 
 namespace ramap::cli {
 
-void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
-  // Relative poses (stage 1).
+void AddRelativePoseOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
   app.add_option("--RelativePose.min_num_inliers", o->relative_pose.min_num_inliers,
                  "pairs with fewer verified matches are not used")
       ->capture_default_str();
@@ -19,7 +18,10 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
   app.add_option("--RelativePose.pure_rotation_parallax_deg",
                  o->relative_pose.pure_rotation_parallax_deg)
       ->capture_default_str();
-  // Pose graph (stage 2).
+  app.add_option("--Mapper.num_threads", o->num_threads)->capture_default_str();
+}
+
+void AddRotationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
   app.add_option("--PoseGraph.sequential", text->sequential,
                  "auto|1|0: keyframe windows for sequences, one view graph for collections")
       ->capture_default_str();
@@ -42,6 +44,11 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
   app.add_option("--RotationAveraging.max_pruning_rounds", ra.max_pruning_rounds)
       ->capture_default_str();
   app.add_option("--RotationAveraging.certificate", ra.compute_certificate)->capture_default_str();
+}
+
+void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
+  AddRelativePoseOptions(app, o, text);
+  AddRotationAveragingOptions(app, o, text);
   // Translation averaging (stage 4).
   TranslationAveragingOptions& ta = o->translation_averaging;
   app.add_option("--TranslationAveraging.min_triangulation_angle_deg",
@@ -65,7 +72,6 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
   app.add_option("--BundleAdjustment.loss_scale_px", o->bundle_adjustment.loss_scale_px)
       ->capture_default_str();
   app.add_option("--Mapper.min_component_size", o->min_component_size)->capture_default_str();
-  app.add_option("--Mapper.num_threads", o->num_threads)->capture_default_str();
 }
 
 void FinishMapperOptions(const MapperOptionText& text, MapperOptions* options) {

@@ -18,6 +18,11 @@ struct MapperOptionText {
   std::string pruning = "fixed";
 };
 
+// Stage 1: --RelativePose.* and --Mapper.num_threads.
+void AddRelativePoseOptions(CLI::App& app, MapperOptions* options, MapperOptionText* text);
+// Stages 2 and 3: --PoseGraph.* and --RotationAveraging.*.
+void AddRotationAveragingOptions(CLI::App& app, MapperOptions* options, MapperOptionText* text);
+
 // Adds --RelativePose.*, --PoseGraph.*, --RotationAveraging.*, --TranslationAveraging.*,
 // --Triangulation.*, --BundleAdjustment.* and --Mapper.* options bound to `options` (defaults shown
 // from the structs).

@@ -1,7 +1,6 @@
 #include "ramap/pipeline/mapper.h"
 
 #include <algorithm>
-#include <cctype>
 #include <iomanip>
 #include <ostream>
 #include <set>
@@ -10,7 +9,9 @@
 
 #include "ramap/graph/tracks.h"
 #include "ramap/pipeline/bearings.h"
+#include "ramap/pipeline/image_order.h"
 #include "ramap/pipeline/relative_poses.h"
+#include "ramap/pipeline/rotation_stage.h"
 #include "ramap/util/error.h"
 #include "ramap/util/timer.h"
 
@@ -43,48 +44,23 @@ class StageLog {
   std::ostream* progress_;
 };
 
-// Splits "frame_000123.png" into ("frame_", 123, true); names without a trailing number give false.
-struct NameKey {
-  std::string prefix;
-  long long number = 0;
-  bool has_number = false;
-};
-
-NameKey SplitName(const std::string& name) {
-  const std::string stem = name.substr(0, name.find_last_of('.'));
-  size_t digits = stem.size();
-  while (digits > 0 && std::isdigit(static_cast<unsigned char>(stem[digits - 1]))) --digits;
-  NameKey key;
-  key.prefix = stem.substr(0, digits);
-  if (digits < stem.size() && stem.size() - digits < 18) {
-    key.number = std::stoll(stem.substr(digits));
-    key.has_number = true;
-  }
-  return key;
-}
-
-// Image ids in capture order: by name, numerically where names end in frame numbers.
+// Image ids in capture order (pipeline/image_order.h).
 std::vector<uint32_t> ImagesInOrder(const FeatureDatabase& database) {
-  std::vector<std::pair<NameKey, const Image*>> keyed;
-  for (const auto& [id, image] : database.images) keyed.push_back({SplitName(image.name), &image});
-  std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
-    if (a.first.prefix != b.first.prefix) return a.first.prefix < b.first.prefix;
-    if (a.first.number != b.first.number) return a.first.number < b.first.number;
-    return a.second->name < b.second->name;
-  });
   std::vector<uint32_t> ids;
-  for (const auto& [key, image] : keyed) ids.push_back(image->image_id);
-  return ids;
+  std::vector<std::string> names;
+  for (const auto& [id, image] : database.images) {
+    ids.push_back(id);
+    names.push_back(image.name);
+  }
+  std::vector<uint32_t> ordered;
+  for (const size_t k : CaptureOrder(names)) ordered.push_back(ids[k]);
+  return ordered;
 }
 
-bool LooksSequential(const FeatureDatabase& database) {
-  std::set<std::string> prefixes;
-  for (const auto& [id, image] : database.images) {
-    const NameKey key = SplitName(image.name);
-    if (!key.has_number) return false;
-    prefixes.insert(key.prefix);
-  }
-  return prefixes.size() == 1;
+bool DatabaseLooksSequential(const FeatureDatabase& database) {
+  std::vector<std::string> names;
+  for (const auto& [id, image] : database.images) names.push_back(image.name);
+  return LooksSequential(names);
 }
 
 std::string PairName(const FeatureDatabase& database, uint32_t id1, uint32_t id2) {
@@ -121,22 +97,11 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
 
   // Rotation averaging: keyframe windows first for sequences, the whole graph for collections.
   Timer timer;
-  RotationAveragingResult rotations;
-  if (context.sequential) {
-    std::set<uint32_t> members(graph.node_ids.begin(), graph.node_ids.end());
-    std::vector<uint32_t> frames;
-    for (const uint32_t id : context.order) {
-      if (members.count(id)) frames.push_back(id);
-    }
-    const Keyframes keyframes = SelectKeyframes(frames, options.pose_graph);
-    context.summary.num_keyframes += static_cast<int>(keyframes.keyframe_ids.size());
-    const std::vector<EdgeKind> kinds = ClassifyEdges(graph, keyframes);
-    context.summary.num_loop_edges +=
-        static_cast<int>(std::count(kinds.begin(), kinds.end(), EdgeKind::kLoop));
-    rotations = AverageRotationsInWindows(graph, keyframes, options.rotation_averaging);
-  } else {
-    rotations = AverageRotations(graph, options.rotation_averaging);
-  }
+  const RotationStageResult stage = AverageViewGraphRotations(
+      graph, context.order, context.sequential, options.pose_graph, options.rotation_averaging);
+  const RotationAveragingResult& rotations = stage.rotations;
+  context.summary.num_keyframes += stage.num_keyframes;
+  context.summary.num_loop_edges += stage.num_loop_edges;
   std::map<uint32_t, Eigen::Quaterniond> world_rotations;
   for (size_t k = 0; k < rotations.node_ids.size(); ++k) {
     if (rotations.estimated[k]) {
@@ -333,7 +298,7 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
 
   // Stage 2: the pose graph, one reconstruction per connected component.
   summary.sequential = options.order == InputOrder::kSequential ||
-                       (options.order == InputOrder::kAuto && LooksSequential(database));
+                       (options.order == InputOrder::kAuto && DatabaseLooksSequential(database));
   const std::vector<uint32_t> order = ImagesInOrder(database);
   const std::vector<int> labels = ConnectedComponents(graph);
   const int num_components =

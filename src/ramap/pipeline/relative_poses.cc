@@ -1,6 +1,7 @@
 #include "ramap/pipeline/relative_poses.h"
 
 #include <atomic>
+#include <string>
 #include <thread>
 
 namespace ramap {
@@ -13,7 +14,7 @@ bool IsUsableTwoViewConfig(TwoViewConfig config) {
 std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database,
                                                  const ImageBearings& bearings,
                                                  const RelativePoseOptions& options,
-                                                 int num_threads) {
+                                                 int num_threads, std::ostream* progress) {
   std::vector<ViewGraphEdge> edges;
   for (const auto& [pair_id, geometry] : database.two_view_geometries) {
     if (!IsUsableTwoViewConfig(geometry.config)) continue;
@@ -52,16 +53,45 @@ std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database
 
   // Pairs are independent: a shared counter hands them out to the threads.
   std::atomic<size_t> next{0};
-  auto work = [&] {
+  std::atomic<size_t> done{0};
+  size_t reported = 0;  // tens of percent shown so far; touched by the reporting thread only
+  auto report_progress = [&](size_t finished) {
+    if (reported == 0) *progress << "[ramap] relative poses of " << edges.size() << " pairs:";
+    reported = finished * 10 / edges.size();
+    *progress << " " << 10 * reported << "%" << std::flush;
+  };
+  auto work = [&](bool report) {
     for (size_t k = next++; k < edges.size(); k = next++) {
       edges[k].estimate = EstimateRelativePose(edges[k].correspondences, options);
+      const size_t finished = ++done;
+      // One line that grows by tens of percent (readable on a terminal and in a log), written by
+      // the calling thread only: streams are not thread-safe.
+      if (report && progress != nullptr && finished * 10 / edges.size() > reported) {
+        report_progress(finished);
+      }
     }
   };
   std::vector<std::thread> threads;
-  for (int t = 1; t < num_threads; ++t) threads.emplace_back(work);
-  work();
+  for (int t = 1; t < num_threads; ++t) threads.emplace_back(work, false);
+  work(true);
   for (std::thread& thread : threads) thread.join();
+  if (progress != nullptr && !edges.empty()) {
+    if (reported < 10) report_progress(edges.size());
+    *progress << "\n" << std::flush;
+  }
   return edges;
+}
+
+std::vector<RelativePoseRecord> AcceptedRelativePoses(const FeatureDatabase& database,
+                                                      const std::vector<ViewGraphEdge>& edges) {
+  std::vector<RelativePoseRecord> records;
+  for (const ViewGraphEdge& edge : edges) {
+    if (!edge.estimate.success) continue;
+    records.push_back({database.images.at(edge.image_id1).name,
+                       database.images.at(edge.image_id2).name, edge.estimate.rotation,
+                       edge.estimate.translation, edge.estimate.num_inliers, edge.estimate.flags});
+  }
+  return records;
 }
 
 }  // namespace ramap

@@ -2,11 +2,13 @@
 #pragma once
 
 #include <cstdint>
+#include <ostream>
 #include <string>
 #include <vector>
 
 #include "ramap/geometry/correspondence_sampling.h"
 #include "ramap/geometry/relative_pose.h"
+#include "ramap/io/relative_pose_file.h"
 #include "ramap/pipeline/bearings.h"
 #include "ramap/scene/features.h"
 
@@ -27,10 +29,15 @@ bool IsUsableTwoViewConfig(TwoViewConfig config);
 // Every pair of `database.two_view_geometries` with a usable config and at least
 // options.min_num_inliers verified matches, estimated on `num_threads` threads. Pairs that fail
 // stay in the result with estimate.success == false and the reason. The confidence of a match (for
-// the grid selection) is its Sampson error under the fundamental matrix COLMAP stored.
+// the grid selection) is its Sampson error under the fundamental matrix COLMAP stored. With
+// `progress`, one line there counts the pairs done in tens of percent.
 std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database,
                                                  const ImageBearings& bearings,
                                                  const RelativePoseOptions& options,
-                                                 int num_threads);
+                                                 int num_threads, std::ostream* progress = nullptr);
+
+// The accepted edges (estimate.success) by image name, as `ramap relative_poses` writes them.
+std::vector<RelativePoseRecord> AcceptedRelativePoses(const FeatureDatabase& database,
+                                                      const std::vector<ViewGraphEdge>& edges);
 
 }  // namespace ramap

@@ -1,0 +1,81 @@
+// `ramap relative_poses --database_path DB --output_path edges.txt`: stage 1 of the mapper on its
+// own: the relative pose of every verified pair of a COLMAP database (grid-selected six points and
+// Kneip's rotation-only solvers by default), one line per accepted edge (io/relative_pose_file.h),
+// and a count of the rejected pairs by reason.
+#include <iomanip>
+#include <iostream>
+#include <map>
+
+#include "mapper_options.h"
+#include "options.h"
+#include "ramap/io/colmap_database.h"
+#include "ramap/io/relative_pose_file.h"
+#include "ramap/pipeline/relative_poses.h"
+#include "ramap/util/error.h"
+#include "ramap/util/timer.h"
+
+namespace ramap::cli {
+namespace {
+
+// "only 12 inliers after refinement" -> "only N inliers after refinement": reasons grouped by kind.
+std::string ReasonKind(const std::string& reason) {
+  std::string kind;
+  bool in_number = false;
+  for (const char c : reason) {
+    const bool digit = std::isdigit(static_cast<unsigned char>(c)) || (in_number && c == '.');
+    if (digit && !in_number) kind += 'N';
+    if (!digit) kind += c;
+    in_number = digit;
+  }
+  return kind;
+}
+
+}  // namespace
+
+int RunRelativePoses(int argc, char** argv) {
+  CLI::App app("Relative pose of every verified image pair of a COLMAP database.",
+               "ramap relative_poses");
+  std::string database_path, output_path;
+  app.add_option("--database_path", database_path, "COLMAP database with verified matches")
+      ->required();
+  app.add_option("--output_path", output_path,
+                 "text file: NAME1 NAME2 qw qx qy qz tx ty tz num_inliers flags")
+      ->required();
+  MapperOptions options;
+  MapperOptionText text;
+  AddRelativePoseOptions(app, &options, &text);
+  if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
+  FinishMapperOptions(text, &options);
+
+  const FeatureDatabase database = ReadColmapDatabase(database_path);
+  const ImageBearings bearings = ComputeBearings(database, database_path);
+  Timer timer;
+  const std::vector<ViewGraphEdge> edges = EstimateRelativePoses(
+      database, bearings, options.relative_pose, options.num_threads, &std::cout);
+  const double seconds = timer.ElapsedSeconds();
+
+  const std::vector<RelativePoseRecord> records = AcceptedRelativePoses(database, edges);
+  std::map<std::string, int> rejected;
+  for (const ViewGraphEdge& edge : edges) {
+    if (!edge.estimate.success) ++rejected[ReasonKind(edge.estimate.reason)];
+  }
+  if (records.empty()) {
+    throw InputError(database_path,
+                     edges.empty() ? "no image pair has verified matches with a usable geometry "
+                                     "(run a COLMAP matcher first)"
+                                   : "every one of the " + std::to_string(edges.size()) +
+                                         " verified pairs was rejected");
+  }
+  WriteRelativePoses(records, output_path);
+  std::cout << "ramap relative_poses: " << records.size() << " of " << edges.size()
+            << " verified pairs (" << CorrespondenceSamplerName(options.relative_pose.sampler)
+            << " sampler) in " << std::fixed << std::setprecision(2) << seconds << " s ("
+            << std::setprecision(3) << 1000.0 * seconds / edges.size() << " ms per pair on "
+            << options.num_threads << " threads) -> " << output_path << "\n";
+  for (const auto& [reason, count] : rejected) {
+    std::cout << "  rejected " << count << ": " << reason << "\n";
+  }
+  return 0;
+}
+
+}  // namespace ramap::cli

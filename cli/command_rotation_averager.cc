@@ -1,0 +1,116 @@
+// `ramap rotation_averager --database_path DB | --relative_poses edges.txt --output_path
+// rotations.txt`: stages 1-3 of the mapper (or 2-3 from a relative pose file): robust rotation
+// averaging with pruning and the strong-duality certificate on the largest connected view graph,
+// one line per image (io/relative_pose_file.h).
+#include <iomanip>
+#include <iostream>
+#include <map>
+
+#include "mapper_options.h"
+#include "options.h"
+#include "ramap/io/colmap_database.h"
+#include "ramap/io/relative_pose_file.h"
+#include "ramap/pipeline/image_order.h"
+#include "ramap/pipeline/relative_poses.h"
+#include "ramap/pipeline/rotation_stage.h"
+#include "ramap/util/error.h"
+#include "ramap/util/timer.h"
+
+namespace ramap::cli {
+namespace {
+
+// Relative poses by image name, from a database (stage 1) or a file.
+std::vector<RelativePoseRecord> LoadRelativePoses(const std::string& database_path,
+                                                  const std::string& relative_poses_path,
+                                                  const MapperOptions& options) {
+  if (!relative_poses_path.empty()) return ReadRelativePoses(relative_poses_path);
+  const FeatureDatabase database = ReadColmapDatabase(database_path);
+  const ImageBearings bearings = ComputeBearings(database, database_path);
+  const std::vector<RelativePoseRecord> records = AcceptedRelativePoses(
+      database, EstimateRelativePoses(database, bearings, options.relative_pose,
+                                      options.num_threads, &std::cout));
+  if (records.empty()) throw InputError(database_path, "no image pair gave a relative pose");
+  return records;
+}
+
+}  // namespace
+
+int RunRotationAverager(int argc, char** argv) {
+  CLI::App app("Absolute rotations by robust rotation averaging (L1 + IRLS, pruning, certificate).",
+               "ramap rotation_averager");
+  std::string database_path, relative_poses_path, output_path;
+  auto* database_option =
+      app.add_option("--database_path", database_path, "COLMAP database (relative poses first)");
+  auto* edges_option = app.add_option("--relative_poses", relative_poses_path,
+                                      "relative pose file written by ramap relative_poses");
+  database_option->excludes(edges_option);
+  app.add_option("--output_path", output_path, "text file: NAME qw qx qy qz (cam_from_world)")
+      ->required();
+  MapperOptions options;
+  MapperOptionText text;
+  AddRelativePoseOptions(app, &options, &text);
+  AddRotationAveragingOptions(app, &options, &text);
+  if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
+  FinishMapperOptions(text, &options);
+  if (database_path.empty() && relative_poses_path.empty()) {
+    throw InputError("rotation_averager", "give --database_path or --relative_poses");
+  }
+
+  const std::vector<RelativePoseRecord> records =
+      LoadRelativePoses(database_path, relative_poses_path, options);
+  // Nodes are numbered by image name; the first edge between two images counts.
+  std::map<std::string, uint32_t> ids;
+  std::vector<std::string> names;
+  auto id_of = [&](const std::string& name) {
+    auto [it, inserted] = ids.emplace(name, static_cast<uint32_t>(names.size()));
+    if (inserted) names.push_back(name);
+    return it->second;
+  };
+  RotationGraph graph;
+  for (const RelativePoseRecord& r : records) {
+    graph.edges.push_back({id_of(r.image_name1), id_of(r.image_name2), r.rotation,
+                           static_cast<double>(std::max(r.num_inliers, 1))});
+  }
+  for (uint32_t k = 0; k < names.size(); ++k) graph.node_ids.push_back(k);
+  std::vector<uint32_t> order;
+  for (const size_t k : CaptureOrder(names)) order.push_back(static_cast<uint32_t>(k));
+  const bool sequential = options.order == InputOrder::kSequential ||
+                          (options.order == InputOrder::kAuto && LooksSequential(names));
+
+  Timer timer;
+  const RotationStageResult stage = AverageViewGraphRotations(
+      graph, order, sequential, options.pose_graph, options.rotation_averaging);
+  const double seconds = timer.ElapsedSeconds();
+  const RotationAveragingResult& result = stage.rotations;
+  std::vector<RotationRecord> rotations;
+  for (size_t k = 0; k < result.node_ids.size(); ++k) {
+    if (result.estimated[k]) rotations.push_back({names[result.node_ids[k]], result.rotations[k]});
+  }
+  std::sort(
+      rotations.begin(), rotations.end(),
+      [](const RotationRecord& a, const RotationRecord& b) { return a.image_name < b.image_name; });
+  WriteRotations(rotations, output_path);
+
+  const RotationCertificate& certificate = result.certificate;
+  const RotationAveragingTimings& t = result.timings;
+  std::cout << std::fixed << std::setprecision(3) << "ramap rotation_averager: " << rotations.size()
+            << " of " << names.size() << " images, " << graph.edges.size() << " edges ("
+            << result.pruned_edges.size() << " pruned), "
+            << (sequential ? std::to_string(stage.num_keyframes) + " keyframes, " +
+                                 std::to_string(stage.num_loop_edges) + " loop edges, "
+                           : std::string("unordered, "))
+            << seconds << " s -> " << output_path << "\n"
+            << "  phases (s): windows " << t.windows << ", init " << t.init << ", L1 " << t.l1
+            << ", IRLS " << t.irls << ", pruning " << t.pruning << ", certificate " << t.certificate
+            << "\n";
+  if (certificate.computed) {
+    std::cout << "  certificate: "
+              << (certificate.certified ? "certified globally optimal" : "not certified")
+              << " (max kept residual " << certificate.max_residual_deg << " deg, bound "
+              << certificate.bound_deg << " deg, lambda2 " << certificate.fiedler_value
+              << ", d_max " << certificate.max_degree << ")\n";
+  }
+  return 0;
+}
+
+}  // namespace ramap::cli

@@ -1,0 +1,17 @@
+// Capture order of images from their names, for sequential input: "frame_000123.png" sorts by the
+// number at the end of its stem (numerically, so "img_9" comes before "img_10").
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace ramap {
+
+// Positions of `names` in capture order: by the name's prefix, then by its trailing frame number,
+// then by the whole name (names without a number sort by name within their prefix).
+std::vector<size_t> CaptureOrder(const std::vector<std::string>& names);
+
+// True when every name ends in a frame number and all share one prefix: a video or a drive.
+bool LooksSequential(const std::vector<std::string>& names);
+
+}  // namespace ramap

@@ -12,11 +12,11 @@ void AddRelativePoseOptions(CLI::App& app, MapperOptions* o, MapperOptionText* t
   app.add_option("--RelativePose.grid_rows", o->relative_pose.grid_rows)->capture_default_str();
   app.add_option("--RelativePose.sampler", text->sampler, "grid|random|roi|ransac5")
       ->capture_default_str();
-  app.add_option("--RelativePose.max_epipolar_error", o->relative_pose.max_epipolar_error,
-                 "radians")
+  app.add_option("--RelativePose.max_epipolar_error_px", o->relative_pose.max_epipolar_error_px,
+                 "pixels")
       ->capture_default_str();
-  app.add_option("--RelativePose.pure_rotation_parallax_deg",
-                 o->relative_pose.pure_rotation_parallax_deg)
+  app.add_option("--RelativePose.pure_rotation_parallax_px",
+                 o->relative_pose.pure_rotation_parallax_px, "pixels")
       ->capture_default_str();
   app.add_option("--Mapper.num_threads", o->num_threads)->capture_default_str();
 }
@@ -118,7 +118,8 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"grid_cols", o.relative_pose.grid_cols},
         {"grid_rows", o.relative_pose.grid_rows},
         {"sampler", CorrespondenceSamplerName(o.relative_pose.sampler)},
-        {"max_epipolar_error", o.relative_pose.max_epipolar_error}}},
+        {"max_epipolar_error_px", o.relative_pose.max_epipolar_error_px},
+        {"pure_rotation_parallax_px", o.relative_pose.pure_rotation_parallax_px}}},
       {"PoseGraph",
        {{"sequential", o.order == InputOrder::kAuto         ? "auto"
                        : o.order == InputOrder::kSequential ? "1"

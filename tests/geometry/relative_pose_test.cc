@@ -53,6 +53,7 @@ SyntheticPair MakePair(const Eigen::Matrix3d& R, const Eigen::Vector3d& center2,
   pair.t = -R * center2;
   pair.matches.width1 = pair.matches.width2 = kWidth;
   pair.matches.height1 = pair.matches.height2 = kHeight;
+  pair.matches.focal_length_px = kFocal;
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u01(0, 1);
   std::normal_distribution<double> noise(0, noise_px);
@@ -224,6 +225,7 @@ TEST(RelativePoseTest, RejectsCollinearPoints) {
   SyntheticPair pair;
   pair.matches.width1 = pair.matches.width2 = kWidth;
   pair.matches.height1 = pair.matches.height2 = kHeight;
+  pair.matches.focal_length_px = kFocal;
   const Eigen::Vector3d t = -motion.R * motion.center2;
   for (int k = 0; k < 30; ++k) {
     const Eigen::Vector3d x1 =
@@ -237,6 +239,15 @@ TEST(RelativePoseTest, RejectsCollinearPoints) {
   const RelativePoseEstimate estimate = EstimateRelativePose(pair.matches, {});
   EXPECT_FALSE(estimate.success);
   EXPECT_NE(estimate.reason.find("collinear"), std::string::npos) << estimate.reason;
+}
+
+TEST(RelativePoseTest, RejectsUnknownFocalLength) {
+  const Motion motion = Motions()[0];
+  SyntheticPair pair = MakePair(motion.R, motion.center2, 100, 0, 4);
+  pair.matches.focal_length_px = 0;
+  const RelativePoseEstimate estimate = EstimateRelativePose(pair.matches, {});
+  EXPECT_FALSE(estimate.success);
+  EXPECT_NE(estimate.reason.find("focal length unknown"), std::string::npos) << estimate.reason;
 }
 
 TEST(RelativePoseTest, RejectsIdenticalImages) {
@@ -277,7 +288,7 @@ TEST(RelativePoseTest, OptionsCheck) {
   options.min_num_inliers = 5;
   EXPECT_THROW(options.Check(), InputError);
   options = {};
-  options.max_epipolar_error = 0;
+  options.max_epipolar_error_px = 0;
   EXPECT_THROW(options.Check(), InputError);
   options = {};
   options.grid_rows = 0;

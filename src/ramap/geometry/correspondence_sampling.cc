@@ -1,5 +1,6 @@
 #include "ramap/geometry/correspondence_sampling.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -8,8 +9,6 @@
 #include <numeric>
 #include <random>
 #include <utility>
-
-#include <Eigen/Geometry>
 
 #include "ramap/util/error.h"
 

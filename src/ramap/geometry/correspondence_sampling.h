@@ -24,6 +24,9 @@ struct TwoViewCorrespondences {
   std::vector<Eigen::Vector2d> pixels2;    // keypoint positions in image 2
   int width1 = 0, height1 = 0;             // image sizes in pixels
   int width2 = 0, height2 = 0;
+  // Mean focal length of the two cameras in pixels: turns the estimator's pixel thresholds into
+  // angles. 0 (unknown) makes the estimator reject the pair.
+  double focal_length_px = 0.0;
   // Per-match confidence, lower is better (e.g. Sampson error or descriptor distance); the caller
   // fills it. Empty means all matches are equally good (ties broken by index).
   std::vector<double> confidence;

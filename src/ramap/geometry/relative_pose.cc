@@ -235,7 +235,8 @@ std::vector<RotationCandidate> RotationCandidatesFromSix(const std::vector<Eigen
 
 // The RANSAC baseline: OpenGV's central relative pose problem with Nister's five-point solver.
 bool RansacFivePoint(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen::Vector3d>& f2,
-                     const RelativePoseOptions& options, Eigen::Matrix3d* R, Eigen::Vector3d* t) {
+                     const RelativePoseOptions& options, double max_epipolar_error,
+                     Eigen::Matrix3d* R, Eigen::Vector3d* t) {
   using Problem = opengv::sac_problems::relative_pose::CentralRelativePoseSacProblem;
   const opengv::bearingVectors_t b1 = ToOpenGv(f1), b2 = ToOpenGv(f2);
   try {
@@ -244,7 +245,7 @@ bool RansacFivePoint(const std::vector<Eigen::Vector3d>& f1, const std::vector<E
     // OpenGV seeds its own generator (fixed when randomSeed is false); options.seed is unused.
     ransac.sac_model_ = std::make_shared<Problem>(adapter, Problem::NISTER, false);
     // OpenGV's score is the sum over both views of 1 - cos(reprojection angle).
-    ransac.threshold_ = 2.0 * (1.0 - std::cos(options.max_epipolar_error));
+    ransac.threshold_ = 2.0 * (1.0 - std::cos(max_epipolar_error));
     ransac.max_iterations_ = options.ransac_max_iterations;
     ransac.probability_ = options.ransac_probability;
     if (!ransac.computeModel()) return false;
@@ -276,14 +277,12 @@ void RelativePoseOptions::Check() const {
   }
   if (grid_cols < 1 || grid_rows < 1) throw InputError(source, "grid_cols/grid_rows must be >= 1");
   if (min_cell_distance < 1) throw InputError(source, "min_cell_distance must be >= 1");
-  if (!(max_epipolar_error > 0 && max_epipolar_error < kPi / 2)) {
-    throw InputError(source, "max_epipolar_error must be in (0, pi/2) radians");
-  }
+  if (!(max_epipolar_error_px > 0)) throw InputError(source, "max_epipolar_error_px must be > 0");
   if (!(min_inlier_ratio >= 0 && min_inlier_ratio <= 1)) {
     throw InputError(source, "min_inlier_ratio must be in [0, 1]");
   }
-  if (!(pure_rotation_parallax_deg >= 0)) {
-    throw InputError(source, "pure_rotation_parallax_deg must be >= 0");
+  if (!(pure_rotation_parallax_px >= 0)) {
+    throw InputError(source, "pure_rotation_parallax_px must be >= 0");
   }
   if (!(min_motion_deg >= 0)) throw InputError(source, "min_motion_deg must be >= 0");
   if (!(min_bearing_spread >= 0)) throw InputError(source, "min_bearing_spread must be >= 0");
@@ -333,6 +332,12 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
   if (matches.width1 <= 0 || matches.height1 <= 0 || matches.width2 <= 0 || matches.height2 <= 0) {
     return Reject("image sizes must be positive");
   }
+  if (!(matches.focal_length_px > 0) || !std::isfinite(matches.focal_length_px)) {
+    return Reject("focal length unknown: pixel thresholds cannot be turned into angles");
+  }
+  // Pixel thresholds as angles (small-angle: an angle times the focal length is pixels).
+  const double max_epipolar_error = options.max_epipolar_error_px / matches.focal_length_px;
+  const double parallax_threshold = options.pure_rotation_parallax_px / matches.focal_length_px;
   std::vector<Eigen::Vector3d> f1(n), f2(n);
   for (size_t k = 0; k < n; ++k) {
     const bool finite = matches.bearings1[k].allFinite() && matches.bearings2[k].allFinite() &&
@@ -378,8 +383,6 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
     }
   }
 
-  const double parallax_threshold = options.pure_rotation_parallax_deg * kDegToRad;
-
   // Pure rotation / low parallax: the epipolar constraint is then satisfied by any translation and
   // the solvers are ill-posed, so test for it first with a pure-rotation fit, refit once on the
   // matches it explains.
@@ -389,8 +392,7 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
     for (size_t k = 0; k < n; ++k) parallax[k] = AngleBetween(R * f1[k], f2[k]);
     if (Median(parallax) < parallax_threshold) {
       std::vector<int> inliers;
-      const double inlier_threshold =
-          std::max(2.0 * parallax_threshold, options.max_epipolar_error);
+      const double inlier_threshold = std::max(2.0 * parallax_threshold, max_epipolar_error);
       for (size_t k = 0; k < n; ++k) {
         if (parallax[k] < inlier_threshold) inliers.push_back(static_cast<int>(k));
       }
@@ -420,10 +422,10 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
   Scored best;
   if (options.sampler == CorrespondenceSampler::kRansac5) {
     Eigen::Vector3d t_ransac;
-    if (!RansacFivePoint(f1, f2, options, &R, &t_ransac)) {
+    if (!RansacFivePoint(f1, f2, options, max_epipolar_error, &R, &t_ransac)) {
       return Reject("RANSAC five-point found no essential matrix");
     }
-    best = ScoreRotation(f1, f2, R, t_ransac, options.max_epipolar_error, &t);
+    best = ScoreRotation(f1, f2, R, t_ransac, max_epipolar_error, &t);
   } else {
     std::vector<int> six;
     switch (options.sampler) {
@@ -447,7 +449,7 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
       Eigen::Vector3d candidate_t;
       Scored scored = ScoreRotation(f1, f2, candidate.R,
                                     TranslationFromRotation(f1, f2, candidate.support, candidate.R),
-                                    options.max_epipolar_error, &candidate_t);
+                                    max_epipolar_error, &candidate_t);
       if (scored.cost < best.cost) {
         best = std::move(scored);
         R = candidate.R;
@@ -473,7 +475,7 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
       return Reject("refinement diverged");
     }
     if (round + 1 == kMaxRefineRounds) break;
-    std::vector<int> rescored = ScoreHypothesis(f1, f2, R, t, options.max_epipolar_error).inliers;
+    std::vector<int> rescored = ScoreHypothesis(f1, f2, R, t, max_epipolar_error).inliers;
     if (static_cast<int>(rescored.size()) < options.min_num_inliers) {
       return Reject("only " + std::to_string(rescored.size()) + " inliers after refinement");
     }
@@ -521,7 +523,7 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
   estimate.median_residual = Median(residuals);
   estimate.median_parallax_deg = Median(parallax) / kDegToRad;
   estimate.cheirality_ratio = static_cast<double>(best_in_front) / inliers.size();
-  if (estimate.median_parallax_deg < options.pure_rotation_parallax_deg) {
+  if (Median(parallax) < parallax_threshold) {
     estimate.flags |= kRelativePosePureRotation;
     estimate.translation.setZero();
   }

@@ -35,6 +35,8 @@ std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database
     c.height1 = static_cast<int>(camera1.height);
     c.width2 = static_cast<int>(camera2.width);
     c.height2 = static_cast<int>(camera2.height);
+    c.focal_length_px = 0.5 * (bearings.focal_lengths_px.at(camera1.camera_id) +
+                               bearings.focal_lengths_px.at(camera2.camera_id));
     for (const FeatureMatch& match : geometry.inlier_matches) {
       // Keypoints past a strong distortion's fold have no bearing (NaN): leave them out.
       if (!b1->second[match.point2D_idx1].allFinite() ||

@@ -58,6 +58,10 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
   app.add_option("--TranslationAveraging.max_admm_iterations", ta.max_admm_iterations)
       ->capture_default_str();
   app.add_option("--TranslationAveraging.admm_rho", ta.admm_rho)->capture_default_str();
+  app.add_option("--TranslationAveraging.pair_constraint_weight", ta.pair_constraint_weight)
+      ->capture_default_str();
+  app.add_option("--TranslationAveraging.admm_adaptive_rho", ta.admm_adaptive_rho)
+      ->capture_default_str();
   // Structure (stage 5) and refinement (stage 6).
   app.add_option("--Triangulation.max_reprojection_error_px",
                  o->structure.max_reprojection_error_px)
@@ -137,7 +141,8 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
        {{"min_triangulation_angle_deg", ta.min_triangulation_angle_deg},
         {"max_num_tracks", ta.max_num_tracks},
         {"max_admm_iterations", ta.max_admm_iterations},
-        {"admm_rho", ta.admm_rho}}},
+        {"admm_rho", ta.admm_rho},
+        {"pair_constraint_weight", ta.pair_constraint_weight}}},
       {"Triangulation",
        {{"max_reprojection_error_px", o.structure.max_reprojection_error_px},
         {"min_triangulation_angle_deg", o.structure.min_triangulation_angle_deg}}},

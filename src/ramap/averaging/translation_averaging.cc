@@ -201,6 +201,9 @@ void TranslationAveragingOptions::Check() const {
   if (max_observations_per_track < 2) throw std::invalid_argument("max_observations_per_track < 2");
   if (max_num_tracks < 1) throw std::invalid_argument("max_num_tracks must be >= 1");
   if (!(admm_rho > 0)) throw std::invalid_argument("admm_rho must be > 0");
+  if (!(pair_constraint_weight > 0)) {
+    throw std::invalid_argument("pair_constraint_weight must be > 0");
+  }
   if (!(admm_relaxation > 0 && admm_relaxation < 2)) {
     throw std::invalid_argument("admm_relaxation must be in (0, 2)");
   }
@@ -222,6 +225,25 @@ TranslationAveragingResult AverageTranslations(
   std::vector<Constraint> constraints =
       BuildConstraints(rotations, directions, tracks, options, &result.num_tracks_used);
 
+  // Pair rows: c_j - c_i = s_ij d_ij with a scale s_ij >= 1 per pair (Ozyesil & Singer, "Robust
+  // camera location estimation by convex programming", CVPR 2015). The bound fixes the scale and
+  // makes the problem convex; without it the homogeneous track system admits collapsed solutions
+  // (on KITTI 07 the L1 solution on a sphere put all the scale on the first 50 frames and the other
+  // 110 on one point).
+  struct PairRow {
+    uint32_t i = 0, j = 0;
+    Eigen::Vector3d direction;
+  };
+  std::vector<PairRow> pairs;
+  for (const PairDirection& pair : pair_directions) {
+    if (pair.image_id1 == pair.image_id2 || !pair.direction.allFinite() ||
+        pair.direction.norm() == 0 || !rotations.count(pair.image_id1) ||
+        !rotations.count(pair.image_id2)) {
+      continue;
+    }
+    pairs.push_back({pair.image_id1, pair.image_id2, pair.direction.normalized()});
+  }
+
   // Solve the largest set of cameras that the constraints connect.
   UnionFind components;
   std::set<uint32_t> constrained;
@@ -229,9 +251,13 @@ TranslationAveragingResult AverageTranslations(
     for (const uint32_t id : {c.a.to, c.b.from, c.b.to}) components.Union(c.a.from, id);
     constrained.insert({c.a.from, c.a.to, c.b.from, c.b.to});
   }
-  if (constrained.empty()) {
+  for (const PairRow& pair : pairs) {
+    components.Union(pair.i, pair.j);
+    constrained.insert({pair.i, pair.j});
+  }
+  if (pairs.empty()) {
     throw std::runtime_error(
-        "translation averaging: no usable track constraint (too little parallax?)");
+        "translation averaging: no pair direction (every pair is a pure rotation?)");
   }
   std::map<uint32_t, int> component_size;
   for (const uint32_t image_id : constrained) ++component_size[components.Find(image_id)];
@@ -256,12 +282,18 @@ TranslationAveragingResult AverageTranslations(
   constraints.erase(std::remove_if(constraints.begin(), constraints.end(),
                                    [&](const Constraint& c) { return !column.count(c.a.from); }),
                     constraints.end());
+  pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                             [&](const PairRow& pair) { return !column.count(pair.i); }),
+              pairs.end());
 
-  // A x = 0 with x the stacked centres of all cameras but the gauge camera (fixed at the origin).
-  const int num_rows = 3 * static_cast<int>(constraints.size());
-  const int num_cols = 3 * (static_cast<int>(solved.size()) - 1);
+  // B v = 0 with v = (centres of all cameras but the gauge camera, fixed at the origin; one scale
+  // per pair). Track rows first, then pair rows.
+  const int num_cameras = static_cast<int>(solved.size()) - 1;
+  const int num_position_cols = 3 * num_cameras;
+  const int num_cols = num_position_cols + static_cast<int>(pairs.size());
+  const int num_rows = 3 * static_cast<int>(constraints.size() + pairs.size());
   std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(constraints.size() * 36);
+  triplets.reserve(constraints.size() * 36 + pairs.size() * 9);
   auto add_block = [&](int row, uint32_t image_id, const Eigen::Matrix3d& block) {
     const int cam = column.at(image_id);
     if (cam < 0) return;
@@ -281,44 +313,66 @@ TranslationAveragingResult AverageTranslations(
     add_block(row, c.b.from, -c.weight * (I - c.b.M));
     add_block(row, c.b.to, -c.weight * c.b.M);
   }
-  Eigen::SparseMatrix<double> A(num_rows, num_cols);
-  A.setFromTriplets(triplets.begin(), triplets.end());
+  const double w_pair = options.pair_constraint_weight;
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    const int row = 3 * static_cast<int>(constraints.size() + k);
+    add_block(row, pairs[k].j, w_pair * I);
+    add_block(row, pairs[k].i, -w_pair * I);
+    for (int r = 0; r < 3; ++r) {
+      triplets.emplace_back(row + r, num_position_cols + static_cast<int>(k),
+                            -w_pair * pairs[k].direction(r));
+    }
+  }
+  Eigen::SparseMatrix<double> B(num_rows, num_cols);
+  B.setFromTriplets(triplets.begin(), triplets.end());
 
-  // Gauge of the solve: the first camera at the origin (its columns are left out) and ||x||_2 fixed,
-  // as in Cui et al. The radius sqrt(#cameras) makes coordinates O(1), so that rho and the
-  // tolerances mean the same on every problem size. A sphere rather than a linear normalisation keeps L1 from putting all of the
-  // scale on one camera while the rest collapse to the origin.
-  Eigen::SparseMatrix<double> normal = A.transpose() * A;
-  // A tiny ridge keeps the factorisation defined where a camera is only weakly constrained.
+  // Keeps the scales >= 1; positions are free.
+  auto project = [&](Eigen::VectorXd v) {
+    v.tail(pairs.size()) = v.tail(pairs.size()).cwiseMax(1.0);
+    return v;
+  };
+
+  // Start: least squares with every scale at 1, min ||B_c c + B_s 1||^2, then each scale set to
+  // the projected baseline it implies (at least 1).
+  Eigen::SparseMatrix<double> normal = B.transpose() * B;
   Eigen::SparseMatrix<double> ridge(num_cols, num_cols);
   ridge.setIdentity();
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> least_squares;
-  least_squares.compute(normal + 1e-10 * ridge);
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> admm_step;
-  admm_step.compute(normal + ridge);
-  if (least_squares.info() != Eigen::Success || admm_step.info() != Eigen::Success) {
+  Eigen::VectorXd x = Eigen::VectorXd::Ones(num_cols);
+  {
+    const Eigen::SparseMatrix<double> B_c = B.leftCols(num_position_cols);
+    const Eigen::SparseMatrix<double> B_s = B.rightCols(pairs.size());
+    Eigen::SparseMatrix<double> normal_c = B_c.transpose() * B_c;
+    Eigen::SparseMatrix<double> ridge_c(num_position_cols, num_position_cols);
+    ridge_c.setIdentity();
+    // A tiny ridge keeps the factorisation defined where a camera is only weakly constrained.
+    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> least_squares(normal_c +
+                                                                           1e-10 * ridge_c);
+    if (least_squares.info() != Eigen::Success) {
+      throw std::runtime_error("translation averaging: factorisation failed");
+    }
+    x.head(num_position_cols) =
+        least_squares.solve(-(B_c.transpose() * (B_s * Eigen::VectorXd::Ones(pairs.size()))));
+    auto center = [&](uint32_t id) -> Eigen::Vector3d {
+      const int cam = column.at(id);
+      return cam < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(x.segment<3>(3 * cam));
+    };
+    for (size_t k = 0; k < pairs.size(); ++k) {
+      x(num_position_cols + k) = pairs[k].direction.dot(center(pairs[k].j) - center(pairs[k].i));
+    }
+    x = project(x);
+  }
+
+  // ADMM on min ||z||_1 + [scales >= 1](x) s.t. z = B y, x = y (scaled form; Boyd et al. 2011).
+  // The y-update's matrix B^T B + I does not depend on rho, so it is factored once.
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> admm_step(normal + ridge);
+  if (admm_step.info() != Eigen::Success) {
     throw std::runtime_error("translation averaging: factorisation failed");
   }
-
-  // Start: the least-squares solution on the sphere, the eigenvector of A^T A of the smallest
-  // eigenvalue, by inverse iteration.
-  const double radius = std::sqrt(static_cast<double>(solved.size()));
-  Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(num_cols, 1.0, 2.0).normalized();
-  for (int k = 0; k < kMaxInverseIterations; ++k) {
-    const Eigen::VectorXd next = least_squares.solve(x).normalized();
-    const double change = std::min((next - x).norm(), (next + x).norm());
-    x = next;
-    if (change < 1e-12) break;
-  }
-  x *= radius;
-
-  // ADMM on min ||z||_1 + [x on the sphere] s.t. z = A y, x = y (scaled form; Boyd et al. 2011).
-  // The y-update's matrix A^T A + I does not depend on rho, so it is factored once.
   Eigen::VectorXd y = x;
-  Eigen::VectorXd z = A * y;
+  Eigen::VectorXd z = B * y;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(num_rows);
   Eigen::VectorXd w = Eigen::VectorXd::Zero(num_cols);
-  const double rho = options.admm_rho;
+  double rho = options.admm_rho;
   const double tolerance_primal =
       options.admm_tolerance * std::sqrt(static_cast<double>(num_rows + num_cols));
   const double tolerance_dual = options.admm_tolerance * std::sqrt(static_cast<double>(num_cols));
@@ -326,30 +380,38 @@ TranslationAveragingResult AverageTranslations(
   double previous_cost = std::numeric_limits<double>::infinity();
   int iteration = 0;
   for (; iteration < options.max_admm_iterations; ++iteration) {
-    y = admm_step.solve(A.transpose() * (z - u) + (x - w));
-    const Eigen::VectorXd Ay = A * y;
-    const Eigen::VectorXd Ay_relaxed =
-        options.admm_relaxation * Ay + (1.0 - options.admm_relaxation) * z;
+    y = admm_step.solve(B.transpose() * (z - u) + (x - w));
+    const Eigen::VectorXd By = B * y;
+    const Eigen::VectorXd By_relaxed =
+        options.admm_relaxation * By + (1.0 - options.admm_relaxation) * z;
     const Eigen::VectorXd z_previous = z;
     const Eigen::VectorXd x_previous = x;
-    z = SoftThreshold(Ay_relaxed + u, 1.0 / rho);
-    x = radius * (y + w).normalized();
-    u += Ay_relaxed - z;
+    z = SoftThreshold(By_relaxed + u, 1.0 / rho);
+    x = project(y + w);
+    u += By_relaxed - z;
     w += y - x;
-    const double primal = std::sqrt((Ay - z).squaredNorm() + (y - x).squaredNorm());
-    const double dual =
-        rho * (A.transpose() * (z - z_previous) + (x - x_previous)).norm();
+    const double primal = std::sqrt((By - z).squaredNorm() + (y - x).squaredNorm());
+    const double dual = rho * (B.transpose() * (z - z_previous) + (x - x_previous)).norm();
     // Stopping rule of Boyd et al. 2011, sec. 3.3.1: absolute plus relative tolerances.
     const double relative = options.admm_relative_tolerance;
-    if (primal < tolerance_primal + relative * std::max(Ay.norm(), z.norm()) &&
-        dual < tolerance_dual + relative * rho * (A.transpose() * u + w).norm()) {
+    if (primal < tolerance_primal + relative * std::max(By.norm(), z.norm()) &&
+        dual < tolerance_dual + relative * rho * (B.transpose() * u + w).norm()) {
       ++iteration;
       break;
+    }
+    // Residual balancing (Boyd et al. 2011, sec. 3.4.1): the y-update does not depend on rho, so
+    // changing it costs nothing but rescaling the scaled duals.
+    if (options.admm_adaptive_rho) {
+      if (primal > 10.0 * dual) {
+        rho *= 2.0, u /= 2.0, w /= 2.0;
+      } else if (dual > 10.0 * primal) {
+        rho /= 2.0, u *= 2.0, w *= 2.0;
+      }
     }
     // ADMM's residuals shrink slowly once the L1 cost has settled (its tail is long): stop when the
     // cost changed by less than admm_cost_tolerance over the last check window.
     if (iteration % kCostCheckInterval == kCostCheckInterval - 1) {
-      const double cost = (A * x).lpNorm<1>();
+      const double cost = (B * x).lpNorm<1>();
       if (std::abs(previous_cost - cost) <= options.admm_cost_tolerance * cost) {
         ++iteration;
         break;
@@ -358,30 +420,24 @@ TranslationAveragingResult AverageTranslations(
     }
   }
 
-  // The sphere leaves the sign free: the pair directions choose it. Then the documented scale,
-  // mean projected pair baseline = 1.
+  // The documented scale: mean projected pair baseline = 1.
+  auto solved_center = [&](uint32_t id) -> Eigen::Vector3d {
+    const int cam = column.at(id);
+    return cam < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(x.segment<3>(3 * cam));
+  };
   double projected = 0.0;
-  int num_pairs = 0;
-  for (const PairDirection& pair : pair_directions) {
-    const auto i = column.find(pair.image_id1), j = column.find(pair.image_id2);
-    if (i == column.end() || j == column.end()) continue;
-    const Eigen::Vector3d ci = i->second < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(x.segment<3>(3 * i->second));
-    const Eigen::Vector3d cj = j->second < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(x.segment<3>(3 * j->second));
-    projected += pair.direction.normalized().dot(cj - ci);
-    ++num_pairs;
+  for (const PairRow& pair : pairs) {
+    projected += pair.direction.dot(solved_center(pair.j) - solved_center(pair.i));
   }
-  if (num_pairs == 0 || !(std::abs(projected) > 0)) {
-    throw std::runtime_error("translation averaging: the solution does not fit the pair directions");
+  if (!(projected > 0)) {
+    throw std::runtime_error(
+        "translation averaging: the solution does not fit the pair directions");
   }
-  x *= num_pairs / projected;
   result.num_admm_iterations = iteration;
-  result.l1_cost = (A * x).lpNorm<1>();
-  result.num_constraints = static_cast<int>(constraints.size());
-  for (const uint32_t image_id : solved) {
-    const int cam = column.at(image_id);
-    result.centers[image_id] =
-        cam < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(x.segment<3>(3 * cam));
-  }
+  result.l1_cost = (B * x).lpNorm<1>();
+  result.num_constraints = static_cast<int>(constraints.size() + pairs.size());
+  const double scale = static_cast<double>(pairs.size()) / projected;
+  for (const uint32_t image_id : solved) result.centers[image_id] = scale * solved_center(image_id);
   result.seconds = timer.ElapsedSeconds();
   return result;
 }

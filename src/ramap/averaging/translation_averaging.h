@@ -8,11 +8,16 @@
 // direction constraints, these fix the relative baseline lengths along the track, so collinear and
 // forward motion is not degenerate.
 //
-// The system A c = 0 is solved in the L1 sense, min ||A c||_1 subject to ||c||_2 = 1 with one
-// camera held at the origin, by ADMM (Boyd et al., "Distributed Optimization and Statistical
-// Learning via ADMM", 2011; the sphere is handled as a projection, a nonconvex splitting), started
-// from the least-squares solution. The result is then scaled so that the mean projected baseline of
-// the pairs is one, with the sign the pair directions agree with.
+// Pair directions add rows c_j - c_i = s_ij d_ij with one scale s_ij >= 1 per pair (the
+// "least unsquared deviations" constraint of Ozyesil & Singer, CVPR 2015). The homogeneous track
+// system alone admits collapsed solutions (many cameras on one point, which satisfies every track
+// among them); the bound excludes them, fixes the scale and makes the problem convex.
+//
+// The stacked system is solved in the L1 sense, min ||B v||_1 over v = (centres, scales) with the
+// scales >= 1 and one camera held at the origin, by ADMM (Boyd et al., "Distributed Optimization
+// and Statistical Learning via ADMM", 2011; the bound is a projection), started from the
+// least-squares solution with every scale at 1. The result is then scaled so that the mean
+// projected baseline of the pairs is one.
 #pragma once
 
 #include <Eigen/Core>
@@ -47,11 +52,18 @@ struct TranslationAveragingOptions {
   // Observations used per track (the best-conditioned ones); bounds the cost of long tracks.
   int max_observations_per_track = 8;
   // Tracks used at most (the longest first); constraints grow linearly with it.
-  int max_num_tracks = 50000;
+  int max_num_tracks = 5000;
+  // Weight of a pair row (c_j - c_i = s_ij d_ij, residual in position units) against a track row
+  // (residual in baselines).
+  double pair_constraint_weight = 10.0;
   // ADMM penalty parameter. The sphere makes the splitting nonconvex, which needs rho large enough:
   // on a noisy synthetic ring rho = 1 and 10 oscillated, 30 to 1000 all reached the same L1 cost,
-  // 100 in the fewest iterations. Residual balancing (varying rho) made it oscillate, so rho is fixed.
-  double admm_rho = 100.0;
+  // 100 in the fewest iterations. Residual balancing (varying rho) made it oscillate, so rho is
+  // fixed.
+  double admm_rho = 10.0;
+  // Residual balancing: rho doubled or halved whenever the primal and dual residuals differ by
+  // more than 10x (Boyd et al. 2011, sec. 3.4.1).
+  bool admm_adaptive_rho = true;
   // Over-relaxation factor (Boyd et al. recommend 1.5 - 1.8).
   double admm_relaxation = 1.6;
   int max_admm_iterations = 2000;
@@ -75,7 +87,7 @@ struct TranslationAveragingResult {
   // Images with rotations but no usable constraint, not positioned.
   std::vector<uint32_t> unconstrained_images;
   int num_tracks_used = 0;
-  int num_constraints = 0;  // 3-row blocks
+  int num_constraints = 0;  // 3-row blocks: track constraints and pair rows
   int num_admm_iterations = 0;
   double l1_cost = 0.0;
   double seconds = 0.0;

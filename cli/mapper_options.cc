@@ -55,6 +55,10 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
                  ta.min_triangulation_angle_deg)
       ->capture_default_str();
   app.add_option("--TranslationAveraging.max_num_tracks", ta.max_num_tracks)->capture_default_str();
+  app.add_option("--TranslationAveraging.solver", text->translation_solver, "irls|admm")
+      ->capture_default_str();
+  app.add_option("--TranslationAveraging.max_irls_iterations", ta.max_irls_iterations)
+      ->capture_default_str();
   app.add_option("--TranslationAveraging.max_admm_iterations", ta.max_admm_iterations)
       ->capture_default_str();
   app.add_option("--TranslationAveraging.admm_rho", ta.admm_rho)->capture_default_str();
@@ -105,6 +109,14 @@ void FinishMapperOptions(const MapperOptionText& text, MapperOptions* options) {
     throw InputError("--RotationAveraging.pruning",
                      "'" + text.pruning + "' is not fixed or duality");
   }
+  if (text.translation_solver == "irls") {
+    options->translation_averaging.solver = TranslationSolver::kIrls;
+  } else if (text.translation_solver == "admm") {
+    options->translation_averaging.solver = TranslationSolver::kAdmm;
+  } else {
+    throw InputError("--TranslationAveraging.solver",
+                     "'" + text.translation_solver + "' is not irls or admm");
+  }
   options->bundle_adjustment.num_threads = options->num_threads;
   try {
     options->Check();
@@ -140,6 +152,8 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
       {"TranslationAveraging",
        {{"min_triangulation_angle_deg", ta.min_triangulation_angle_deg},
         {"max_num_tracks", ta.max_num_tracks},
+        {"solver", ta.solver == TranslationSolver::kIrls ? "irls" : "admm"},
+        {"max_irls_iterations", ta.max_irls_iterations},
         {"max_admm_iterations", ta.max_admm_iterations},
         {"admm_rho", ta.admm_rho},
         {"pair_constraint_weight", ta.pair_constraint_weight}}},

@@ -16,6 +16,7 @@ struct MapperOptionText {
   std::string sampler = "grid";
   std::string loss = "geman_mcclure";
   std::string pruning = "fixed";
+  std::string translation_solver = "irls";
 };
 
 // Stage 1: --RelativePose.* and --Mapper.num_threads.

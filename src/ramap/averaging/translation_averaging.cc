@@ -192,6 +192,165 @@ Eigen::VectorXd SoftThreshold(const Eigen::VectorXd& v, double kappa) {
   return (v.array() - kappa).max(0.0) - (-v.array() - kappa).max(0.0);
 }
 
+Eigen::VectorXd ProjectScales(Eigen::VectorXd v, int num_position_cols) {
+  v.tail(v.size() - num_position_cols) = v.tail(v.size() - num_position_cols).cwiseMax(1.0);
+  return v;
+}
+
+// min ||B v||_1 over v = (positions, scales >= 1) by ADMM, from `x` (feasible).
+Eigen::VectorXd SolveByAdmm(const Eigen::SparseMatrix<double>& B, int num_position_cols,
+                            Eigen::VectorXd x, const TranslationAveragingOptions& options,
+                            int* iterations) {
+  const int num_rows = static_cast<int>(B.rows());
+  const int num_cols = static_cast<int>(B.cols());
+  Eigen::SparseMatrix<double> ridge(num_cols, num_cols);
+  ridge.setIdentity();
+  const Eigen::SparseMatrix<double> normal = B.transpose() * B;
+  // ADMM on min ||z||_1 + [scales >= 1](x) s.t. z = B y, x = y (scaled form; Boyd et al. 2011).
+  // The y-update's matrix B^T B + I does not depend on rho, so it is factored once.
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> admm_step(normal + ridge);
+  if (admm_step.info() != Eigen::Success) {
+    throw std::runtime_error("translation averaging: factorisation failed");
+  }
+  Eigen::VectorXd y = x;
+  Eigen::VectorXd z = B * y;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(num_rows);
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(num_cols);
+  double rho = options.admm_rho;
+  const double tolerance_primal =
+      options.admm_tolerance * std::sqrt(static_cast<double>(num_rows + num_cols));
+  const double tolerance_dual = options.admm_tolerance * std::sqrt(static_cast<double>(num_cols));
+  constexpr int kCostCheckInterval = 50;
+  double previous_cost = std::numeric_limits<double>::infinity();
+  int iteration = 0;
+  for (; iteration < options.max_admm_iterations; ++iteration) {
+    y = admm_step.solve(B.transpose() * (z - u) + (x - w));
+    const Eigen::VectorXd By = B * y;
+    const Eigen::VectorXd By_relaxed =
+        options.admm_relaxation * By + (1.0 - options.admm_relaxation) * z;
+    const Eigen::VectorXd z_previous = z;
+    const Eigen::VectorXd x_previous = x;
+    z = SoftThreshold(By_relaxed + u, 1.0 / rho);
+    x = ProjectScales(y + w, num_position_cols);
+    u += By_relaxed - z;
+    w += y - x;
+    const double primal = std::sqrt((By - z).squaredNorm() + (y - x).squaredNorm());
+    const double dual = rho * (B.transpose() * (z - z_previous) + (x - x_previous)).norm();
+    // Stopping rule of Boyd et al. 2011, sec. 3.3.1: absolute plus relative tolerances.
+    const double relative = options.admm_relative_tolerance;
+    if (primal < tolerance_primal + relative * std::max(By.norm(), z.norm()) &&
+        dual < tolerance_dual + relative * rho * (B.transpose() * u + w).norm()) {
+      ++iteration;
+      break;
+    }
+    // Residual balancing (Boyd et al. 2011, sec. 3.4.1): the y-update does not depend on rho, so
+    // changing it costs nothing but rescaling the scaled duals.
+    if (options.admm_adaptive_rho) {
+      if (primal > 10.0 * dual) {
+        rho *= 2.0, u /= 2.0, w /= 2.0;
+      } else if (dual > 10.0 * primal) {
+        rho /= 2.0, u *= 2.0, w *= 2.0;
+      }
+    }
+    // ADMM's residuals shrink slowly once the L1 cost has settled (its tail is long): stop when the
+    // cost changed by less than admm_cost_tolerance over the last check window.
+    if (iteration % kCostCheckInterval == kCostCheckInterval - 1) {
+      const double cost = (B * x).lpNorm<1>();
+      if (std::abs(previous_cost - cost) <= options.admm_cost_tolerance * cost) {
+        ++iteration;
+        break;
+      }
+      previous_cost = cost;
+    }
+  }
+
+  *iterations = iteration;
+  return x;
+}
+
+// The same problem by iteratively reweighted least squares: each 3-row block (a track constraint
+// or a pair row) is weighted by 1 / max(|r|, irls_min_residual), which makes the weighted squares
+// an approximation of the sum of block norms (the L1 objective of Ozyesil & Singer's LUD), and each
+// step is one direct sparse solve, so that scale travels the length of a long sequence in one step
+// rather than over thousands of ADMM iterations. Scales at their bound are held at 1 by a stiff
+// diagonal term (the pattern of the normal matrix never changes, so it is analysed once); a held
+// scale is released when its pair alone would want it above 1.
+Eigen::VectorXd SolveByIrls(const Eigen::SparseMatrix<double>& B, int num_position_cols,
+                            Eigen::VectorXd x, const TranslationAveragingOptions& options,
+                            int* iterations) {
+  const int num_cols = static_cast<int>(B.cols());
+  const int num_scales = num_cols - num_position_cols;
+  const int num_blocks = static_cast<int>(B.rows()) / 3;
+  const int first_pair_block = num_blocks - num_scales;
+  const Eigen::SparseMatrix<double> Bt = B.transpose();
+  std::vector<bool> held(num_scales);
+  for (int k = 0; k < num_scales; ++k) held[k] = x(num_position_cols + k) <= 1.0;
+  Eigen::VectorXd row_weights(B.rows());
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver;
+  bool analysed = false;
+  int iteration = 0;
+  for (; iteration < options.max_irls_iterations; ++iteration) {
+    const Eigen::VectorXd residuals = B * x;
+    for (int b = 0; b < num_blocks; ++b) {
+      const double weight =
+          1.0 / std::max(residuals.segment<3>(3 * b).norm(), options.irls_min_residual);
+      row_weights.segment<3>(3 * b).setConstant(weight);
+    }
+    Eigen::SparseMatrix<double> normal = Bt * row_weights.asDiagonal() * B;
+    // Stiffness of a held scale: far above anything the data puts on the diagonal.
+    const double stiffness = 1e6 * std::max(1.0, normal.diagonal().maxCoeff());
+    Eigen::VectorXd diagonal = Eigen::VectorXd::Constant(num_cols, 1e-10);
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(num_cols);
+    for (int k = 0; k < num_scales; ++k) {
+      if (!held[k]) continue;
+      diagonal(num_position_cols + k) = stiffness;
+      rhs(num_position_cols + k) = stiffness;
+    }
+    Eigen::SparseMatrix<double> regularised = normal;
+    for (int c = 0; c < num_cols; ++c) regularised.coeffRef(c, c) += diagonal(c);
+    if (!analysed) {
+      solver.analyzePattern(regularised);
+      analysed = true;
+    }
+    solver.factorize(regularised);
+    if (solver.info() != Eigen::Success) {
+      throw std::runtime_error("translation averaging: factorisation failed");
+    }
+    Eigen::VectorXd next = solver.solve(rhs);
+    // Active set: a free scale below 1 is held; a held scale is released when its pair row alone
+    // (s = d . (c_j - c_i), the only row it appears in) would put it above 1.
+    const Eigen::VectorXd next_residuals = B * next;
+    for (int k = 0; k < num_scales; ++k) {
+      double& scale = next(num_position_cols + k);
+      if (held[k]) {
+        const int b = first_pair_block + k;
+        // The pair row is w (c_j - c_i - s d): its scale column holds -w d.
+        Eigen::Vector3d column_entries = Eigen::Vector3d::Zero();
+        for (Eigen::SparseMatrix<double>::InnerIterator it(B, num_position_cols + k); it; ++it) {
+          column_entries(it.row() - 3 * b) = it.value();
+        }
+        const double w_squared = column_entries.squaredNorm();
+        const double preferred =
+            scale - column_entries.dot(next_residuals.segment<3>(3 * b)) / w_squared;
+        scale = 1.0;
+        if (preferred > 1.0) held[k] = false;
+      } else if (scale < 1.0) {
+        scale = 1.0;
+        held[k] = true;
+      }
+    }
+    const double change = (next.head(num_position_cols) - x.head(num_position_cols)).norm() /
+                          std::max(1e-12, next.head(num_position_cols).norm());
+    x = std::move(next);
+    if (change < options.irls_tolerance) {
+      ++iteration;
+      break;
+    }
+  }
+  *iterations = iteration;
+  return x;
+}
+
 }  // namespace
 
 void TranslationAveragingOptions::Check() const {
@@ -207,6 +366,9 @@ void TranslationAveragingOptions::Check() const {
   if (!(admm_relaxation > 0 && admm_relaxation < 2)) {
     throw std::invalid_argument("admm_relaxation must be in (0, 2)");
   }
+  if (max_irls_iterations < 0) throw std::invalid_argument("max_irls_iterations must be >= 0");
+  if (!(irls_tolerance > 0)) throw std::invalid_argument("irls_tolerance must be > 0");
+  if (!(irls_min_residual > 0)) throw std::invalid_argument("irls_min_residual must be > 0");
   if (max_admm_iterations < 0) throw std::invalid_argument("max_admm_iterations must be >= 0");
   if (!(admm_tolerance > 0)) throw std::invalid_argument("admm_tolerance must be > 0");
   if (!(admm_cost_tolerance >= 0)) throw std::invalid_argument("admm_cost_tolerance must be >= 0");
@@ -326,17 +488,8 @@ TranslationAveragingResult AverageTranslations(
   Eigen::SparseMatrix<double> B(num_rows, num_cols);
   B.setFromTriplets(triplets.begin(), triplets.end());
 
-  // Keeps the scales >= 1; positions are free.
-  auto project = [&](Eigen::VectorXd v) {
-    v.tail(pairs.size()) = v.tail(pairs.size()).cwiseMax(1.0);
-    return v;
-  };
-
   // Start: least squares with every scale at 1, min ||B_c c + B_s 1||^2, then each scale set to
   // the projected baseline it implies (at least 1).
-  Eigen::SparseMatrix<double> normal = B.transpose() * B;
-  Eigen::SparseMatrix<double> ridge(num_cols, num_cols);
-  ridge.setIdentity();
   Eigen::VectorXd x = Eigen::VectorXd::Ones(num_cols);
   {
     const Eigen::SparseMatrix<double> B_c = B.leftCols(num_position_cols);
@@ -359,66 +512,14 @@ TranslationAveragingResult AverageTranslations(
     for (size_t k = 0; k < pairs.size(); ++k) {
       x(num_position_cols + k) = pairs[k].direction.dot(center(pairs[k].j) - center(pairs[k].i));
     }
-    x = project(x);
+    x = ProjectScales(x, num_position_cols);
   }
 
-  // ADMM on min ||z||_1 + [scales >= 1](x) s.t. z = B y, x = y (scaled form; Boyd et al. 2011).
-  // The y-update's matrix B^T B + I does not depend on rho, so it is factored once.
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> admm_step(normal + ridge);
-  if (admm_step.info() != Eigen::Success) {
-    throw std::runtime_error("translation averaging: factorisation failed");
-  }
-  Eigen::VectorXd y = x;
-  Eigen::VectorXd z = B * y;
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(num_rows);
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(num_cols);
-  double rho = options.admm_rho;
-  const double tolerance_primal =
-      options.admm_tolerance * std::sqrt(static_cast<double>(num_rows + num_cols));
-  const double tolerance_dual = options.admm_tolerance * std::sqrt(static_cast<double>(num_cols));
-  constexpr int kCostCheckInterval = 50;
-  double previous_cost = std::numeric_limits<double>::infinity();
-  int iteration = 0;
-  for (; iteration < options.max_admm_iterations; ++iteration) {
-    y = admm_step.solve(B.transpose() * (z - u) + (x - w));
-    const Eigen::VectorXd By = B * y;
-    const Eigen::VectorXd By_relaxed =
-        options.admm_relaxation * By + (1.0 - options.admm_relaxation) * z;
-    const Eigen::VectorXd z_previous = z;
-    const Eigen::VectorXd x_previous = x;
-    z = SoftThreshold(By_relaxed + u, 1.0 / rho);
-    x = project(y + w);
-    u += By_relaxed - z;
-    w += y - x;
-    const double primal = std::sqrt((By - z).squaredNorm() + (y - x).squaredNorm());
-    const double dual = rho * (B.transpose() * (z - z_previous) + (x - x_previous)).norm();
-    // Stopping rule of Boyd et al. 2011, sec. 3.3.1: absolute plus relative tolerances.
-    const double relative = options.admm_relative_tolerance;
-    if (primal < tolerance_primal + relative * std::max(By.norm(), z.norm()) &&
-        dual < tolerance_dual + relative * rho * (B.transpose() * u + w).norm()) {
-      ++iteration;
-      break;
-    }
-    // Residual balancing (Boyd et al. 2011, sec. 3.4.1): the y-update does not depend on rho, so
-    // changing it costs nothing but rescaling the scaled duals.
-    if (options.admm_adaptive_rho) {
-      if (primal > 10.0 * dual) {
-        rho *= 2.0, u /= 2.0, w /= 2.0;
-      } else if (dual > 10.0 * primal) {
-        rho /= 2.0, u *= 2.0, w *= 2.0;
-      }
-    }
-    // ADMM's residuals shrink slowly once the L1 cost has settled (its tail is long): stop when the
-    // cost changed by less than admm_cost_tolerance over the last check window.
-    if (iteration % kCostCheckInterval == kCostCheckInterval - 1) {
-      const double cost = (B * x).lpNorm<1>();
-      if (std::abs(previous_cost - cost) <= options.admm_cost_tolerance * cost) {
-        ++iteration;
-        break;
-      }
-      previous_cost = cost;
-    }
-  }
+  int iterations = 0;
+  x = options.solver == TranslationSolver::kIrls
+          ? SolveByIrls(B, num_position_cols, x, options, &iterations)
+          : SolveByAdmm(B, num_position_cols, x, options, &iterations);
+  result.num_solver_iterations = iterations;
 
   // The documented scale: mean projected pair baseline = 1.
   auto solved_center = [&](uint32_t id) -> Eigen::Vector3d {
@@ -433,7 +534,6 @@ TranslationAveragingResult AverageTranslations(
     throw std::runtime_error(
         "translation averaging: the solution does not fit the pair directions");
   }
-  result.num_admm_iterations = iteration;
   result.l1_cost = (B * x).lpNorm<1>();
   result.num_constraints = static_cast<int>(constraints.size() + pairs.size());
   const double scale = static_cast<double>(pairs.size()) / projected;

@@ -43,6 +43,11 @@ struct PairDirection {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
 };
 
+enum class TranslationSolver {
+  kIrls,  // iteratively reweighted least squares, one direct solve per step (default)
+  kAdmm,  // ADMM (Boyd et al. 2011), the design's solver: cheap steps, a long tail on sequences
+};
+
 struct TranslationAveragingOptions {
   // Rays meeting at less than this give ill-conditioned depth ratios. Measured on the default
   // synthetic forward-motion scene (ramap synthesize): 3 deg left the last 7 of 30 frames without a
@@ -56,6 +61,13 @@ struct TranslationAveragingOptions {
   // Weight of a pair row (c_j - c_i = s_ij d_ij, residual in position units) against a track row
   // (residual in baselines).
   double pair_constraint_weight = 10.0;
+  TranslationSolver solver = TranslationSolver::kIrls;
+  // IRLS: steps at most; stop when the positions change by less than irls_tolerance (relative);
+  // residual floor of the weights 1 / max(|r|, irls_min_residual) (scales are >= 1, so positions
+  // are in units of at least the shortest baseline and 1e-4 is far below any real residual).
+  int max_irls_iterations = 100;
+  double irls_tolerance = 1e-6;
+  double irls_min_residual = 1e-4;
   // ADMM penalty parameter. The sphere makes the splitting nonconvex, which needs rho large enough:
   // on a noisy synthetic ring rho = 1 and 10 oscillated, 30 to 1000 all reached the same L1 cost,
   // 100 in the fewest iterations. Residual balancing (varying rho) made it oscillate, so rho is
@@ -88,7 +100,7 @@ struct TranslationAveragingResult {
   std::vector<uint32_t> unconstrained_images;
   int num_tracks_used = 0;
   int num_constraints = 0;  // 3-row blocks: track constraints and pair rows
-  int num_admm_iterations = 0;
+  int num_solver_iterations = 0;
   double l1_cost = 0.0;
   double seconds = 0.0;
 };

@@ -105,11 +105,12 @@ bool RefineOnInliers(const std::vector<Eigen::Vector3d>& f1, const std::vector<E
   problem.SetManifold(t_data, new ceres::SphereManifold<3>);
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = ceres::DENSE_QR;
-  solver_options.max_num_iterations = 100;
-  // Noise-free pairs have a zero-residual minimum; tight tolerances let Gauss-Newton reach it.
-  solver_options.function_tolerance = 1e-16;
-  solver_options.gradient_tolerance = 1e-20;
-  solver_options.parameter_tolerance = 1e-16;
+  solver_options.max_num_iterations = 50;
+  // Noise-free pairs have a zero-residual minimum that Gauss-Newton approaches quadratically, so
+  // these tolerances still reach it; on real pairs they stop once the cost no longer moves.
+  solver_options.function_tolerance = 1e-12;
+  solver_options.gradient_tolerance = 1e-16;
+  solver_options.parameter_tolerance = 1e-12;
   solver_options.num_threads = 1;
   solver_options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
@@ -122,6 +123,20 @@ bool RefineOnInliers(const std::vector<Eigen::Vector3d>& f1, const std::vector<E
   *R = refined.normalized().toRotationMatrix();
   *t = refined_t.normalized();
   return true;
+}
+
+// Matches on which the rotation candidates of the six-point solvers are ranked.
+constexpr int kNumPreemptiveMatches = 200;
+
+// At most `max_count` of `indices`, evenly spaced (all of them when there are few enough).
+std::vector<int> EvenSubset(const std::vector<int>& indices, int max_count) {
+  if (static_cast<int>(indices.size()) <= max_count) return indices;
+  std::vector<int> subset;
+  subset.reserve(max_count);
+  for (int k = 0; k < max_count; ++k) {
+    subset.push_back(indices[static_cast<size_t>(k) * indices.size() / max_count]);
+  }
+  return subset;
 }
 
 // Number of `indices` triangulating in front of both cameras under x2 = R x1 + t.
@@ -197,13 +212,15 @@ struct RotationCandidate {
   std::vector<int> support;
 };
 
-// Candidate rotations from the six selected matches: Kneip's five-point rotation-only solver on
-// each five of the six (so that one bad match among the six still leaves a clean subset; the
-// other inliers disambiguate), plus the eigensolver on all six started from the identity and from
-// the six's pure-rotation fit.
+// Candidate rotations from the six selected matches. Kneip's five-point rotation-only solver on
+// five of the six (the other inliers disambiguate its up to 20 roots), `leave_out` naming the one
+// left out; with leave_out < 0, the eigensolver on all six started from the identity and from the
+// six's pure-rotation fit (a good start under small baselines), and that fit itself. Trying every
+// five of the six means that one bad match among the six still leaves a clean subset.
 std::vector<RotationCandidate> RotationCandidatesFromSix(const std::vector<Eigen::Vector3d>& f1,
                                                          const std::vector<Eigen::Vector3d>& f2,
-                                                         const std::vector<int>& six) {
+                                                         const std::vector<int>& six,
+                                                         int leave_out) {
   const opengv::bearingVectors_t b1 = ToOpenGv(f1), b2 = ToOpenGv(f2);
   std::vector<RotationCandidate> candidates;
   auto add = [&](const opengv::rotation_t& R_2to1, const std::vector<int>& support) {
@@ -213,16 +230,15 @@ std::vector<RotationCandidate> RotationCandidatesFromSix(const std::vector<Eigen
   };
   try {
     opengv::relative_pose::CentralRelativeAdapter adapter(b1, b2);
-    for (size_t leave_out = 0; leave_out < six.size(); ++leave_out) {
+    if (leave_out >= 0) {
       std::vector<int> five;
-      for (size_t i = 0; i < six.size(); ++i) {
+      for (int i = 0; i < static_cast<int>(six.size()); ++i) {
         if (i != leave_out) five.push_back(six[i]);
       }
       for (const auto& R : opengv::relative_pose::fivept_kneip(adapter, five)) add(R, five);
+      return candidates;
     }
-    // The eigensolver starts from the adapter's rotation (identity here).
     add(opengv::relative_pose::eigensolver(adapter, six), six);
-    // Pure-rotation fit of the six, a good start under small baselines.
     const Eigen::Matrix3d R_rot = FitPureRotation(f1, f2, six);
     candidates.push_back({R_rot, six});
     opengv::relative_pose::CentralRelativeAdapter started(b1, b2, R_rot.transpose());
@@ -286,6 +302,9 @@ void RelativePoseOptions::Check() const {
   }
   if (!(min_motion_deg >= 0)) throw InputError(source, "min_motion_deg must be >= 0");
   if (!(min_bearing_spread >= 0)) throw InputError(source, "min_bearing_spread must be >= 0");
+  if (max_refinement_matches < kNumSamples) {
+    throw InputError(source, "max_refinement_matches must be at least 6");
+  }
   if (ransac_max_iterations < 1) throw InputError(source, "ransac_max_iterations must be >= 1");
   if (!(ransac_probability > 0 && ransac_probability < 1)) {
     throw InputError(source, "ransac_probability must be in (0, 1)");
@@ -445,20 +464,36 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
     if (static_cast<int>(six.size()) < kNumSamples) {
       return Reject("could not select six correspondences");
     }
-    for (const RotationCandidate& candidate : RotationCandidatesFromSix(f1, f2, six)) {
-      Eigen::Vector3d candidate_t;
-      Scored scored = ScoreRotation(f1, f2, candidate.R,
-                                    TranslationFromRotation(f1, f2, candidate.support, candidate.R),
-                                    max_epipolar_error, &candidate_t);
-      if (scored.cost < best.cost) {
-        best = std::move(scored);
-        R = candidate.R;
-        t = candidate_t;
-      }
+    // Preemptive scoring (Nister, "Preemptive RANSAC", ICCV 2003): the up to ~40 candidates are
+    // ranked on an even subset of the matches, and only the best is scored on all of them.
+    std::vector<Eigen::Vector3d> f1_subset, f2_subset;
+    for (const int k : EvenSubset(all, kNumPreemptiveMatches)) {
+      f1_subset.push_back(f1[k]);
+      f2_subset.push_back(f2[k]);
     }
-    if (!std::isfinite(best.cost)) {
+    double best_subset_cost = std::numeric_limits<double>::infinity();
+    auto consider = [&](const std::vector<RotationCandidate>& candidates) {
+      for (const RotationCandidate& candidate : candidates) {
+        Eigen::Vector3d candidate_t;
+        const Scored scored =
+            ScoreRotation(f1_subset, f2_subset, candidate.R,
+                          TranslationFromRotation(f1, f2, candidate.support, candidate.R),
+                          max_epipolar_error, &candidate_t);
+        if (scored.cost < best_subset_cost) {
+          best_subset_cost = scored.cost;
+          R = candidate.R;
+          t = candidate_t;
+        }
+      }
+    };
+    consider(RotationCandidatesFromSix(f1, f2, six, -1));
+    for (int leave_out = 0; leave_out < kNumSamples; ++leave_out) {
+      consider(RotationCandidatesFromSix(f1, f2, six, leave_out));
+    }
+    if (!std::isfinite(best_subset_cost)) {
       return Reject("the six-point solvers returned no rotation");
     }
+    best = ScoreRotation(f1, f2, R, t, max_epipolar_error, &t);
   }
   if (static_cast<int>(best.inliers.size()) < kNumSamples) {
     return Reject("rotation inconsistent with the epipolar constraint: only " +
@@ -471,7 +506,7 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
   std::vector<int> inliers = best.inliers;
   constexpr int kMaxRefineRounds = 4;
   for (int round = 0;; ++round) {
-    if (!RefineOnInliers(f1, f2, inliers, &R, &t)) {
+    if (!RefineOnInliers(f1, f2, EvenSubset(inliers, options.max_refinement_matches), &R, &t)) {
       return Reject("refinement diverged");
     }
     if (round + 1 == kMaxRefineRounds) break;

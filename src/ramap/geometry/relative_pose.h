@@ -61,6 +61,11 @@ struct RelativePoseOptions {
   // Bearings closer than this (RMS, radians) to one great circle in either image are collinear:
   // the rotation is not determined, rejected.
   double min_bearing_spread = 1e-3;
+  // The non-linear refinement uses at most this many inliers (evenly spaced through the match
+  // list); the inlier set itself is always re-scored on every match. Pairs of large images carry
+  // thousands of matches, and the refinement's cost grows with them while its accuracy stops
+  // improving long before.
+  int max_refinement_matches = 500;
   // RANSAC (sampler = ransac5): iterations cap and success probability.
   int ransac_max_iterations = 1000;
   double ransac_probability = 0.999;

@@ -181,12 +181,12 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
         "no translation constraint links it to the rest (too little parallax?)";
   }
   component.num_translation_constraints = positions.num_constraints;
-  component.num_admm_iterations = positions.num_admm_iterations;
+  component.num_solver_iterations = positions.num_solver_iterations;
   context.log.Record("translation averaging", timer.ElapsedSeconds(),
                      std::to_string(positions.centers.size()) + " positions from " +
                          std::to_string(directions.size()) + " pair directions and " +
                          std::to_string(positions.num_tracks_used) + " tracks, " +
-                         std::to_string(positions.num_admm_iterations) + " ADMM iterations");
+                         std::to_string(positions.num_solver_iterations) + " solver iterations");
 
   // Structure: triangulate every track with the poses fixed.
   timer.Restart();

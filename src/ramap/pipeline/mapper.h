@@ -75,7 +75,7 @@ struct MapperComponentSummary {
   double certificate_bound_deg = 0.0;
   double max_rotation_residual_deg = 0.0;
   int num_translation_constraints = 0;
-  int num_admm_iterations = 0;
+  int num_solver_iterations = 0;
   BundleAdjustmentSummary bundle_adjustment;  // zeros when not refined
 };
 

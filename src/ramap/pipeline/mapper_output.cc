@@ -40,7 +40,7 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
           {"max_residual_deg", c.max_rotation_residual_deg}}},
         {"translation_averaging",
          {{"num_constraints", c.num_translation_constraints},
-          {"num_admm_iterations", c.num_admm_iterations}}},
+          {"num_solver_iterations", c.num_solver_iterations}}},
     };
     if (c.bundle_adjustment.num_observations > 0) {
       const BundleAdjustmentSummary& ba = c.bundle_adjustment;

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "ramap/averaging/block_normal_equations.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
@@ -272,9 +273,10 @@ Eigen::VectorXd SolveByAdmm(const Eigen::SparseMatrix<double>& B, int num_positi
 // or a pair row) is weighted by 1 / max(|r|, irls_min_residual), which makes the weighted squares
 // an approximation of the sum of block norms (the L1 objective of Ozyesil & Singer's LUD), and each
 // step is one direct sparse solve, so that scale travels the length of a long sequence in one step
-// rather than over thousands of ADMM iterations. Scales at their bound are held at 1 by a stiff
-// diagonal term (the pattern of the normal matrix never changes, so it is analysed once); a held
-// scale is released when its pair alone would want it above 1.
+// rather than over thousands of ADMM iterations (block_normal_equations.h keeps each step to a
+// reweighting and a numeric refactorisation). Scales at their bound are held at 1 (their columns
+// move to the right-hand side); a held scale is released when its pair row alone would want it
+// above 1.
 Eigen::VectorXd SolveByIrls(const Eigen::SparseMatrix<double>& B, int num_position_cols,
                             Eigen::VectorXd x, const TranslationAveragingOptions& options,
                             int* iterations) {
@@ -282,62 +284,62 @@ Eigen::VectorXd SolveByIrls(const Eigen::SparseMatrix<double>& B, int num_positi
   const int num_scales = num_cols - num_position_cols;
   const int num_blocks = static_cast<int>(B.rows()) / 3;
   const int first_pair_block = num_blocks - num_scales;
-  const Eigen::SparseMatrix<double> Bt = B.transpose();
   std::vector<bool> held(num_scales);
   for (int k = 0; k < num_scales; ++k) held[k] = x(num_position_cols + k) <= 1.0;
-  Eigen::VectorXd row_weights(B.rows());
+  // The pair row of scale k is w (c_j - c_i - s d): its column holds -w d.
+  std::vector<Eigen::Vector3d> scale_columns(num_scales, Eigen::Vector3d::Zero());
+  for (int k = 0; k < num_scales; ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(B, num_position_cols + k); it; ++it) {
+      scale_columns[k](it.row() - 3 * (first_pair_block + k)) = it.value();
+    }
+  }
+  std::vector<int> scale_column_ids(num_scales);
+  for (int k = 0; k < num_scales; ++k) scale_column_ids[k] = num_position_cols + k;
+  const BlockNormalEquations equations(B, scale_column_ids);
+  const std::vector<double> ones(num_scales, 1.0);
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver;
-  bool analysed = false;
+  solver.analyzePattern(equations.pattern());
+  Eigen::VectorXd block_weights(num_blocks);
+  Eigen::SparseMatrix<double> normal;
+  Eigen::VectorXd rhs;
   int iteration = 0;
   for (; iteration < options.max_irls_iterations; ++iteration) {
     const Eigen::VectorXd residuals = B * x;
     for (int b = 0; b < num_blocks; ++b) {
-      const double weight =
+      block_weights(b) =
           1.0 / std::max(residuals.segment<3>(3 * b).norm(), options.irls_min_residual);
-      row_weights.segment<3>(3 * b).setConstant(weight);
     }
-    Eigen::SparseMatrix<double> normal = Bt * row_weights.asDiagonal() * B;
-    // Stiffness of a held scale: far above anything the data puts on the diagonal.
-    const double stiffness = 1e6 * std::max(1.0, normal.diagonal().maxCoeff());
-    Eigen::VectorXd diagonal = Eigen::VectorXd::Constant(num_cols, 1e-10);
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(num_cols);
-    for (int k = 0; k < num_scales; ++k) {
-      if (!held[k]) continue;
-      diagonal(num_position_cols + k) = stiffness;
-      rhs(num_position_cols + k) = stiffness;
-    }
-    Eigen::SparseMatrix<double> regularised = normal;
-    for (int c = 0; c < num_cols; ++c) regularised.coeffRef(c, c) += diagonal(c);
-    if (!analysed) {
-      solver.analyzePattern(regularised);
-      analysed = true;
-    }
-    solver.factorize(regularised);
+    equations.Assemble(block_weights, held, ones, &normal, &rhs);
+    // A tiny ridge keeps the factorisation defined where a camera is only weakly constrained.
+    solver.setShift(1e-10);
+    solver.factorize(normal);
     if (solver.info() != Eigen::Success) {
       throw std::runtime_error("translation averaging: factorisation failed");
     }
     Eigen::VectorXd next = solver.solve(rhs);
     // Active set: a free scale below 1 is held; a held scale is released when its pair row alone
-    // (s = d . (c_j - c_i), the only row it appears in) would put it above 1.
+    // (the only row it appears in) would put it above 1.
+    // Every row is homogeneous but for the held scales, so at least one must stay held: the one
+    // its pair would lengthen least.
     const Eigen::VectorXd next_residuals = B * next;
+    int tightest = -1;
+    double tightest_preferred = std::numeric_limits<double>::infinity();
     for (int k = 0; k < num_scales; ++k) {
       double& scale = next(num_position_cols + k);
       if (held[k]) {
-        const int b = first_pair_block + k;
-        // The pair row is w (c_j - c_i - s d): its scale column holds -w d.
-        Eigen::Vector3d column_entries = Eigen::Vector3d::Zero();
-        for (Eigen::SparseMatrix<double>::InnerIterator it(B, num_position_cols + k); it; ++it) {
-          column_entries(it.row() - 3 * b) = it.value();
-        }
-        const double w_squared = column_entries.squaredNorm();
+        const Eigen::Vector3d& column = scale_columns[k];
         const double preferred =
-            scale - column_entries.dot(next_residuals.segment<3>(3 * b)) / w_squared;
-        scale = 1.0;
+            scale - column.dot(next_residuals.segment<3>(3 * (first_pair_block + k))) /
+                        column.squaredNorm();
+        if (preferred < tightest_preferred) tightest_preferred = preferred, tightest = k;
         if (preferred > 1.0) held[k] = false;
       } else if (scale < 1.0) {
         scale = 1.0;
         held[k] = true;
       }
+    }
+    if (std::find(held.begin(), held.end(), true) == held.end() && tightest >= 0) {
+      held[tightest] = true;
     }
     const double change = (next.head(num_position_cols) - x.head(num_position_cols)).norm() /
                           std::max(1e-12, next.head(num_position_cols).norm());

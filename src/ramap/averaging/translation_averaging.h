@@ -65,8 +65,10 @@ struct TranslationAveragingOptions {
   // IRLS: steps at most; stop when the positions change by less than irls_tolerance (relative);
   // residual floor of the weights 1 / max(|r|, irls_min_residual) (scales are >= 1, so positions
   // are in units of at least the shortest baseline and 1e-4 is far below any real residual).
-  int max_irls_iterations = 100;
-  double irls_tolerance = 1e-6;
+  // Measured on the benchmark sets: 20 steps already give their final ATE to 3 digits (KITTI 07:
+  // 1.87% of the path at 20, 1.91% at 40 and 100 steps).
+  int max_irls_iterations = 50;
+  double irls_tolerance = 1e-5;
   double irls_min_residual = 1e-4;
   // ADMM penalty parameter. The sphere makes the splitting nonconvex, which needs rho large enough:
   // on a noisy synthetic ring rho = 1 and 10 oscillated, 30 to 1000 all reached the same L1 cost,

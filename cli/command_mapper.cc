@@ -5,9 +5,11 @@
 #include "mapper_options.h"
 #include "options.h"
 #include "ramap/io/colmap_database.h"
+#include "ramap/io/point_colors.h"
 #include "ramap/pipeline/mapper.h"
 #include "ramap/pipeline/mapper_output.h"
 #include "ramap/util/error.h"
+#include "ramap/util/timer.h"
 
 namespace ramap::cli {
 namespace {
@@ -37,11 +39,13 @@ void PrintSummaryTable(const MapperSummary& s, const std::string& output_path, s
 
 int RunMapper(int argc, char** argv) {
   CLI::App app("Camera poses and points from a COLMAP database by motion averaging", "mapper");
-  std::string database_path, output_path, output_type = "BIN";
+  std::string database_path, image_path, output_path, output_type = "BIN";
   int log_level = 1;
   app.add_option("--database_path", database_path,
                  "COLMAP database (features and verified matches)")
       ->required();
+  app.add_option("--image_path", image_path,
+                 "folder of the images (optional): points get their colours from it");
   app.add_option("--output_path", output_path, "folder for the models 0, 1, ... and summary.json")
       ->required();
   app.add_option("--output_type", output_type, "BIN or TXT")->capture_default_str();
@@ -57,10 +61,31 @@ int RunMapper(int argc, char** argv) {
   }
 
   const FeatureDatabase database = ReadColmapDatabase(database_path);
-  const MapperResult result =
+  MapperResult result =
       ramap::RunMapper(database, options, database_path, log_level > 0 ? &std::cout : nullptr);
+  if (!image_path.empty()) {
+    Timer timer;
+    int num_read = 0;
+    std::vector<std::string> unreadable;
+    for (Reconstruction& reconstruction : result.reconstructions) {
+      const PointColorSummary colors = ColorPointsFromImages(image_path, &reconstruction);
+      num_read += colors.num_images_read;
+      unreadable.insert(unreadable.end(), colors.unreadable_images.begin(),
+                        colors.unreadable_images.end());
+    }
+    if (log_level > 0) {
+      std::cout << "[ramap] " << std::left << std::setw(22) << "point colours" << std::right
+                << std::fixed << std::setprecision(3) << std::setw(8) << timer.ElapsedSeconds()
+                << " s  from " << num_read << " images in " << image_path << "\n";
+    }
+    for (const std::string& name : unreadable) {
+      std::cerr << "ramap mapper: warning: cannot read " << image_path << "/" << name
+                << ": its points keep no colour from it\n";
+    }
+  }
   const nlohmann::json run = {{"command", "mapper"},
                               {"database_path", database_path},
+                              {"image_path", image_path},
                               {"options", MapperOptionsToJson(options)}};
   WriteMapperOutput(result, output_path,
                     output_type == "BIN" ? ModelFormat::kBinary : ModelFormat::kText, run);

@@ -3,6 +3,7 @@
 namespace ramap::cli {
 
 // One function per subcommand, each in its own command_<name>.cc.
+int RunCompare(int argc, char** argv);
 int RunDatabaseInfo(int argc, char** argv);
 int RunEvaluate(int argc, char** argv);
 int RunMapper(int argc, char** argv);
@@ -19,6 +20,8 @@ const std::vector<Command>& AllCommands() {
       {"rotation_averager", "absolute rotations by robust rotation averaging, certified",
        RunRotationAverager},
       {"evaluate", "score a model's camera poses against ground truth (ATE, AUC)", RunEvaluate},
+      {"compare", "COLMAP's BA mapper vs ramap on one database: accuracy, time, figures",
+       RunCompare},
       {"database_info", "counts and checks what a COLMAP database holds", RunDatabaseInfo},
       {"model_converter", "convert a COLMAP sparse model between BIN and TXT", RunModelConverter},
       {"synthesize", "a synthetic scene with exact ground truth (database, model, TUM)",

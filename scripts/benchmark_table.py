@@ -41,8 +41,8 @@ def fmt(value, digits=2, suffix=""):
 def main(folders):
     accuracy = [
         "| data set | images | variant | registered | AUC@1 | AUC@3 | AUC@5 | rot. err. median (deg) "
-        "| ATE RMSE | ATE / path | ATE / extent |",
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+        "| rel. rot. err. median (deg) | ATE RMSE | ATE / path | ATE / extent |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
     ]
     timing = [
         "| data set | features + matching (s, COLMAP) | COLMAP mapper (s) | ramap (s) | ramap+BA (s) "
@@ -64,14 +64,15 @@ def main(folders):
             report = read_json(os.path.join(folder, variant + ".eval.json"))
             if report is None:
                 state = "failed" if seconds[variant] is None else "no ground truth"
-                accuracy.append(f"| {name} | - | {label} | {state} | | | | | | | |")
+                accuracy.append(f"| {name} | - | {label} | {state} | | | | | | | | |")
                 continue
             auc = report["relative"]["auc_by_threshold_deg"]
             ate = report["ate"]
             accuracy.append(
                 f"| {name} | {report['num_images']} | {label} | {report['num_registered']} "
                 f"| {fmt(100 * auc['1'], 1)} | {fmt(100 * auc['3'], 1)} | {fmt(100 * auc['5'], 1)} "
-                f"| {fmt(report['rotation_error_deg']['median'], 3)} | {fmt(ate['rmse'], 4)} "
+                f"| {fmt(report['rotation_error_deg']['median'], 3)} "
+                f"| {fmt(report['relative']['rotation_error_median_deg'], 3)} | {fmt(ate['rmse'], 4)} "
                 f"| {fmt(100 * ate['rmse_over_path_length'], 2, '%')} "
                 f"| {fmt(100 * ate['rmse_over_extent'], 2, '%')} |")
         colmap_s = seconds["colmap"]
@@ -85,7 +86,9 @@ def main(folders):
             f"| {name} | {env.get('features_and_matching_seconds', '-')} | {fmt(colmap_s)}{origin} "
             f"| {fmt(seconds['ramap'])} | {fmt(seconds['ramap_ba'])} | {ratio('ramap')} "
             f"| {ratio('ramap_ba')} |")
-    print("Accuracy (AUC in %, ATE in ground-truth units after Sim(3) alignment):\n")
+    print("Accuracy (AUC in %; rotation error after Sim(3) alignment of the camera centres; "
+          "relative rotation error over all image pairs, free of any alignment; ATE in "
+          "ground-truth units):\n")
     print("\n".join(accuracy))
     print("\nWall time of each mapper as a whole process, and COLMAP's time over ramap's:\n")
     print("\n".join(timing))

@@ -1,0 +1,41 @@
+#include "ramap/io/point_colors.h"
+
+#include <cmath>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+
+namespace ramap {
+
+PointColorSummary ColorPointsFromImages(const std::string& image_path,
+                                        Reconstruction* reconstruction) {
+  PointColorSummary summary;
+  std::map<uint64_t, Eigen::Vector3d> sums;
+  std::map<uint64_t, int> counts;
+  for (const auto& [image_id, image] : reconstruction->images) {
+    const cv::Mat bgr = cv::imread(image_path + "/" + image.name, cv::IMREAD_COLOR);
+    if (bgr.empty()) {
+      summary.unreadable_images.push_back(image.name);
+      continue;
+    }
+    ++summary.num_images_read;
+    for (const Point2D& point : image.points2D) {
+      if (point.point3D_id == kInvalidPoint3DId) continue;
+      const int col = static_cast<int>(std::floor(point.xy.x()));
+      const int row = static_cast<int>(std::floor(point.xy.y()));
+      if (col < 0 || row < 0 || col >= bgr.cols || row >= bgr.rows) continue;
+      const cv::Vec3b pixel = bgr.at<cv::Vec3b>(row, col);
+      auto [sum, inserted] = sums.emplace(point.point3D_id, Eigen::Vector3d::Zero());
+      sum->second += Eigen::Vector3d(pixel[2], pixel[1], pixel[0]);
+      ++counts[point.point3D_id];
+    }
+  }
+  for (const auto& [point3D_id, sum] : sums) {
+    auto it = reconstruction->points3D.find(point3D_id);
+    if (it == reconstruction->points3D.end()) continue;
+    const Eigen::Vector3d mean = (sum / counts.at(point3D_id)).array().round();
+    it->second.color = mean.cast<uint8_t>();
+  }
+  return summary;
+}
+
+}  // namespace ramap

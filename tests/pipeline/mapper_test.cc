@@ -1,0 +1,144 @@
+// The mapper end to end on synthetic scenes: exact recovery without noise (sequences, forward
+// motion, orbits, unordered collections), several connected components, and unusable input.
+#include "ramap/pipeline/mapper.h"
+
+#include <gtest/gtest.h>
+
+#include "ramap/eval/pose_metrics.h"
+#include "ramap/scene/synthetic.h"
+#include "ramap/util/error.h"
+
+namespace ramap {
+namespace {
+
+PoseEvaluation MapAndEvaluate(const SyntheticScene& scene, MapperResult* result_out = nullptr) {
+  const MapperResult result = RunMapper(scene.database, MapperOptions(), "synthetic");
+  std::vector<std::string> names;
+  for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
+  EXPECT_FALSE(result.reconstructions.empty());
+  const PoseEvaluation evaluation = EvaluatePoses(PosesByName(result.reconstructions.front()),
+                                                  PosesByName(scene.ground_truth), names);
+  if (result_out != nullptr) *result_out = result;
+  return evaluation;
+}
+
+SyntheticSceneOptions NoiseFree(SyntheticLayout layout, SyntheticPath path, int num_images) {
+  SyntheticSceneOptions options;
+  options.layout = layout;
+  options.path = path;
+  options.num_images = num_images;
+  options.num_points = 1500;
+  options.pixel_noise_sigma = 0.0;
+  options.outlier_ratio = 0.0;
+  options.seed = 11;
+  return options;
+}
+
+struct ExactCase {
+  const char* name;
+  SyntheticSceneOptions options;
+};
+
+class MapperExactRecovery : public ::testing::TestWithParam<ExactCase> {};
+
+// Keypoints are float32 (as in a COLMAP database): ~1e-5 px rounding bounds what exact can mean.
+TEST_P(MapperExactRecovery, EveryImageAndPoseWithoutNoise) {
+  const SyntheticScene scene = BuildSyntheticScene(GetParam().options);
+  MapperResult result;
+  const PoseEvaluation evaluation = MapAndEvaluate(scene, &result);
+  EXPECT_EQ(evaluation.num_registered, GetParam().options.num_images);
+  EXPECT_EQ(result.reconstructions.size(), 1u);
+  EXPECT_LT(evaluation.relative_rotation_error_median_deg, 1e-4);
+  EXPECT_LT(evaluation.rotation_error_max_deg, 1e-3);
+  EXPECT_LT(evaluation.ate_rmse_over_extent, 1e-5);
+  EXPECT_GT(result.summary.components.front().num_points, 1000);
+  EXPECT_LT(result.summary.components.front().mean_reprojection_error_px, 1e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, MapperExactRecovery,
+    ::testing::Values(
+        ExactCase{"forward_line",
+                  NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 30)},
+        ExactCase{"loop", NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLoop, 60)},
+        ExactCase{"orbit", NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kCircle, 24)},
+        ExactCase{"unordered", NoiseFree(SyntheticLayout::kUnordered, SyntheticPath::kLine, 20)}),
+    [](const ::testing::TestParamInfo<ExactCase>& info) { return info.param.name; });
+
+TEST(Mapper, NoisySequenceWithWrongMatchesAndOutlierPairs) {
+  SyntheticSceneOptions options;
+  options.path = SyntheticPath::kLoop;
+  options.num_images = 60;
+  options.num_points = 2000;
+  options.pixel_noise_sigma = 0.5;
+  options.outlier_ratio = 0.1;
+  options.num_outlier_pairs = 5;
+  options.seed = 4;
+  const SyntheticScene scene = BuildSyntheticScene(options);
+  const PoseEvaluation evaluation = MapAndEvaluate(scene);
+  EXPECT_EQ(evaluation.num_registered, 60);
+  EXPECT_LT(evaluation.relative_rotation_error_median_deg, 0.1);
+  EXPECT_LT(evaluation.ate_rmse_over_path_length, 0.01);
+}
+
+// Two sequences that share no verified pair: two models, largest first, both complete.
+TEST(Mapper, EveryConnectedComponentIsReconstructed) {
+  SyntheticScene scene =
+      BuildSyntheticScene(NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 30));
+  for (auto it = scene.database.two_view_geometries.begin();
+       it != scene.database.two_view_geometries.end();) {
+    const bool crosses = (it->second.image_id1 <= 18) != (it->second.image_id2 <= 18);
+    it = crosses ? scene.database.two_view_geometries.erase(it) : std::next(it);
+  }
+  const MapperResult result = RunMapper(scene.database, MapperOptions(), "synthetic");
+  ASSERT_EQ(result.reconstructions.size(), 2u);
+  EXPECT_EQ(result.reconstructions[0].images.size(), 18u);
+  EXPECT_EQ(result.reconstructions[1].images.size(), 12u);
+  EXPECT_EQ(result.summary.num_registered_images, 30);
+  EXPECT_TRUE(result.summary.dropped_images.empty());
+}
+
+void ExpectInputError(const FeatureDatabase& database, const std::string& message) {
+  try {
+    RunMapper(database, MapperOptions(), "db.sqlite");
+    ADD_FAILURE() << "no error, expected: " << message;
+  } catch (const InputError& error) {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("db.sqlite"), std::string::npos) << what;
+    EXPECT_NE(what.find(message), std::string::npos) << what;
+  }
+}
+
+TEST(Mapper, UnusableDatabasesAreClearErrors) {
+  const SyntheticScene scene =
+      BuildSyntheticScene(NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 10));
+  FeatureDatabase no_geometries = scene.database;
+  no_geometries.two_view_geometries.clear();
+  ExpectInputError(no_geometries, "no image pair has verified matches");
+
+  FeatureDatabase single = scene.database;
+  single.images.erase(std::next(single.images.begin()), single.images.end());
+  single.two_view_geometries.clear();
+  ExpectInputError(single, "no image pair has verified matches");
+
+  FeatureDatabase empty = scene.database;
+  empty.images.clear();
+  ExpectInputError(empty, "the database has no images");
+
+  // Every verified pair's inliers paired at random: no relative pose survives.
+  FeatureDatabase outliers = scene.database;
+  uint32_t shift = 1;
+  for (auto& [pair_id, geometry] : outliers.two_view_geometries) {
+    const size_t n = geometry.inlier_matches.size();
+    for (size_t k = 0; k < n; ++k) {
+      geometry.inlier_matches[k].point2D_idx2 = scene.database.two_view_geometries.at(pair_id)
+                                                    .inlier_matches[(k * 7 + shift) % n]
+                                                    .point2D_idx2;
+    }
+    ++shift;
+  }
+  ExpectInputError(outliers, "rejected");
+}
+
+}  // namespace
+}  // namespace ramap

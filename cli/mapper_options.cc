@@ -79,6 +79,9 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
       ->capture_default_str();
   app.add_option("--BundleAdjustment.loss_scale_px", o->bundle_adjustment.loss_scale_px)
       ->capture_default_str();
+  app.add_option("--BundleAdjustment.max_num_points", o->bundle_adjustment.max_num_points,
+                 "points adjusted at most (0: all); every track is triangulated again after")
+      ->capture_default_str();
   app.add_option("--Mapper.min_component_size", o->min_component_size)->capture_default_str();
 }
 
@@ -166,7 +169,8 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"num_threads", o.num_threads}}},
       {"BundleAdjustment",
        {{"max_num_iterations", o.bundle_adjustment.max_num_iterations},
-        {"loss_scale_px", o.bundle_adjustment.loss_scale_px}}},
+        {"loss_scale_px", o.bundle_adjustment.loss_scale_px},
+        {"max_num_points", o.bundle_adjustment.max_num_points}}},
   };
 }
 

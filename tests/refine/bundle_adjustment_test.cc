@@ -89,5 +89,50 @@ TEST(BundleAdjustment, RecoversPerturbedPosesAndPoints) {
   }
 }
 
+TEST(BundleAdjustment, PointSubsetPrefersLongTracksAndCoversEveryImage) {
+  std::mt19937 rng(3);
+  Scene scene = MakeScene(rng);
+  // Points 0-49 seen by every image; 50-199 cut to images 1-2 only, except 150-199 seen by 3-4.
+  for (auto& [id, point] : scene.reconstruction.points3D) {
+    if (id < 50) continue;
+    std::vector<TrackElement> kept;
+    for (const TrackElement& e : point.track) {
+      const bool keep = id < 150 ? e.image_id <= 2 : (e.image_id == 3 || e.image_id == 4);
+      if (keep) {
+        kept.push_back(e);
+      } else {
+        scene.reconstruction.images.at(e.image_id).points2D[e.point2D_idx].point3D_id =
+            kInvalidPoint3DId;
+      }
+    }
+    point.track = kept;
+  }
+  BundleAdjustmentOptions options;
+  options.max_num_points = 60;
+  options.min_observations_per_image = 55;
+  const Reconstruction subset = PointsForBundleAdjustment(scene.reconstruction, options);
+  // The 50 full tracks first, 10 more up to the cap (points 50-59, images 1 and 2), then only
+  // what images 3 and 4 still need to reach 55 observations (points 150-154).
+  for (uint64_t id = 0; id < 60; ++id) EXPECT_TRUE(subset.points3D.count(id)) << id;
+  std::map<uint32_t, int> per_image;
+  for (const auto& [id, point] : subset.points3D) {
+    for (const TrackElement& e : point.track) ++per_image[e.image_id];
+  }
+  EXPECT_EQ(per_image[1], 60);
+  EXPECT_EQ(per_image[2], 60);
+  EXPECT_EQ(per_image[3], 55);
+  EXPECT_EQ(per_image[4], 55);
+  EXPECT_EQ(per_image[5], 50);
+  EXPECT_EQ(subset.points3D.size(), 65u);
+  // Observations of the points left out are detached.
+  for (const auto& [image_id, image] : subset.images) {
+    for (const Point2D& point : image.points2D) {
+      EXPECT_TRUE(point.point3D_id == kInvalidPoint3DId || subset.points3D.count(point.point3D_id));
+    }
+  }
+  options.max_num_points = 0;
+  EXPECT_EQ(PointsForBundleAdjustment(scene.reconstruction, options).points3D.size(), 200u);
+}
+
 }  // namespace
 }  // namespace ramap

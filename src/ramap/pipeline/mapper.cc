@@ -208,15 +208,31 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
                          std::to_string(structure.mean_reprojection_error_px) + " px");
 
   if (options.refine) {
+    // Bundle adjustment on the best-connected points, then every track triangulated again with
+    // the refined poses.
+    Reconstruction adjusted = PointsForBundleAdjustment(*reconstruction, options.bundle_adjustment);
     component.bundle_adjustment =
-        BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, reconstruction,
+        BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, &adjusted,
                      options.bundle_adjustment);
     const BundleAdjustmentSummary& ba = component.bundle_adjustment;
-    component.num_points = ba.num_points;
     context.log.Record("bundle adjustment", ba.seconds,
-                       "RMSE " + std::to_string(ba.initial_rmse_px) + " -> " +
+                       std::to_string(ba.num_points) + " points, RMSE " +
+                           std::to_string(ba.initial_rmse_px) + " -> " +
                            std::to_string(ba.final_rmse_px) + " px, " +
                            std::to_string(ba.num_iterations) + " iterations");
+    timer.Restart();
+    std::map<uint32_t, Rigid3d> refined;
+    for (const auto& [id, image] : adjusted.images) refined[id] = image.cam_from_world;
+    *reconstruction =
+        BuildReconstruction(database, refined, tracks, context.bearings.bearings,
+                            context.bearings.focal_lengths_px, options.structure, &structure);
+    component.num_points = structure.num_points;
+    component.num_observations = structure.num_observations;
+    component.mean_reprojection_error_px = structure.mean_reprojection_error_px;
+    context.log.Record("triangulation", timer.ElapsedSeconds(),
+                       "again with the refined poses: " + std::to_string(structure.num_points) +
+                           " points, mean reprojection error " +
+                           std::to_string(structure.mean_reprojection_error_px) + " px");
   }
   component.num_images = static_cast<int>(reconstruction->images.size());
   context.summary.components.push_back(component);

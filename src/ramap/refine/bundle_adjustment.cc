@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <set>
 #include <stdexcept>
 
 #include "ramap/util/timer.h"
@@ -168,6 +170,46 @@ void BundleAdjustmentOptions::Check() const {
   if (num_threads < 1) throw std::invalid_argument("num_threads must be >= 1");
   if (!(max_reprojection_error_px > 0))
     throw std::invalid_argument("max_reprojection_error_px > 0");
+  if (max_num_points < 0) throw std::invalid_argument("max_num_points must be >= 0");
+  if (min_observations_per_image < 0) {
+    throw std::invalid_argument("min_observations_per_image must be >= 0");
+  }
+}
+
+Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
+                                         const BundleAdjustmentOptions& options) {
+  if (options.max_num_points == 0 ||
+      static_cast<int>(reconstruction.points3D.size()) <= options.max_num_points) {
+    return reconstruction;
+  }
+  std::vector<uint64_t> by_length;
+  for (const auto& [id, point] : reconstruction.points3D) by_length.push_back(id);
+  std::stable_sort(by_length.begin(), by_length.end(), [&](uint64_t a, uint64_t b) {
+    return reconstruction.points3D.at(a).track.size() > reconstruction.points3D.at(b).track.size();
+  });
+  std::map<uint32_t, int> per_image;
+  std::set<uint64_t> chosen;
+  for (const uint64_t id : by_length) {
+    const std::vector<TrackElement>& track = reconstruction.points3D.at(id).track;
+    const bool needed = std::any_of(track.begin(), track.end(), [&](const TrackElement& e) {
+      return per_image[e.image_id] < options.min_observations_per_image;
+    });
+    if (static_cast<int>(chosen.size()) >= options.max_num_points && !needed) continue;
+    chosen.insert(id);
+    for (const TrackElement& e : track) ++per_image[e.image_id];
+  }
+  Reconstruction subset = reconstruction;
+  for (auto it = subset.points3D.begin(); it != subset.points3D.end();) {
+    it = chosen.count(it->first) ? std::next(it) : subset.points3D.erase(it);
+  }
+  for (auto& [image_id, image] : subset.images) {
+    for (Point2D& point : image.points2D) {
+      if (point.point3D_id != kInvalidPoint3DId && !chosen.count(point.point3D_id)) {
+        point.point3D_id = kInvalidPoint3DId;
+      }
+    }
+  }
+  return subset;
 }
 
 BundleAdjustmentSummary BundleAdjust(

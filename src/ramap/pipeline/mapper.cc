@@ -189,23 +189,27 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
                          std::to_string(positions.num_solver_iterations) + " solver iterations");
 
   // Structure: triangulate every track with the poses fixed.
-  timer.Restart();
   std::map<uint32_t, Rigid3d> poses;
   for (const auto& [id, center] : positions.centers) {
     const Eigen::Quaterniond& R = world_rotations.at(id);
     poses[id] = Rigid3d(R, -(R * center));
   }
-  StructureSummary structure;
-  *reconstruction =
-      BuildReconstruction(database, poses, tracks, context.bearings.bearings,
-                          context.bearings.focal_lengths_px, options.structure, &structure);
-  component.num_points = structure.num_points;
-  component.num_observations = structure.num_observations;
-  component.mean_reprojection_error_px = structure.mean_reprojection_error_px;
-  context.log.Record("triangulation", timer.ElapsedSeconds(),
-                     std::to_string(structure.num_points) + " points of " +
-                         std::to_string(tracks.size()) + " tracks, mean reprojection error " +
-                         std::to_string(structure.mean_reprojection_error_px) + " px");
+  auto triangulate = [&](const std::map<uint32_t, Rigid3d>& fixed_poses,
+                         const std::string& what) {
+    Timer structure_timer;
+    StructureSummary structure;
+    *reconstruction =
+        BuildReconstruction(database, fixed_poses, tracks, context.bearings.bearings,
+                            context.bearings.focal_lengths_px, options.structure, &structure);
+    component.num_points = structure.num_points;
+    component.num_observations = structure.num_observations;
+    component.mean_reprojection_error_px = structure.mean_reprojection_error_px;
+    context.log.Record("triangulation", structure_timer.ElapsedSeconds(),
+                       what + std::to_string(structure.num_points) + " points of " +
+                           std::to_string(tracks.size()) + " tracks, mean reprojection error " +
+                           std::to_string(structure.mean_reprojection_error_px) + " px");
+  };
+  triangulate(poses, "");
 
   if (options.refine) {
     // Bundle adjustment on the best-connected points, then every track triangulated again with
@@ -220,19 +224,9 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
                            std::to_string(ba.initial_rmse_px) + " -> " +
                            std::to_string(ba.final_rmse_px) + " px, " +
                            std::to_string(ba.num_iterations) + " iterations");
-    timer.Restart();
     std::map<uint32_t, Rigid3d> refined;
     for (const auto& [id, image] : adjusted.images) refined[id] = image.cam_from_world;
-    *reconstruction =
-        BuildReconstruction(database, refined, tracks, context.bearings.bearings,
-                            context.bearings.focal_lengths_px, options.structure, &structure);
-    component.num_points = structure.num_points;
-    component.num_observations = structure.num_observations;
-    component.mean_reprojection_error_px = structure.mean_reprojection_error_px;
-    context.log.Record("triangulation", timer.ElapsedSeconds(),
-                       "again with the refined poses: " + std::to_string(structure.num_points) +
-                           " points, mean reprojection error " +
-                           std::to_string(structure.mean_reprojection_error_px) + " px");
+    triangulate(refined, "again with the refined poses: ");
   }
   component.num_images = static_cast<int>(reconstruction->images.size());
   context.summary.components.push_back(component);

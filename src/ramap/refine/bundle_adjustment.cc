@@ -111,6 +111,7 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   }
   ceres::Solver::Options solver_options;
   solver_options.max_num_iterations = options.max_num_iterations;
+  solver_options.function_tolerance = options.function_tolerance;
   solver_options.num_threads = options.num_threads;
   // Dense Schur is fastest while the reduced camera system is small.
   solver_options.linear_solver_type =
@@ -164,6 +165,7 @@ int FilterObservations(const std::vector<Observation>& observations, double max_
 
 void BundleAdjustmentOptions::Check() const {
   if (max_num_iterations < 0) throw std::invalid_argument("max_num_iterations must be >= 0");
+  if (!(function_tolerance >= 0)) throw std::invalid_argument("function_tolerance must be >= 0");
   if (!(loss_scale_px > 0)) throw std::invalid_argument("loss_scale_px must be > 0");
   if (!(min_bearing_z > 0 && min_bearing_z < 1))
     throw std::invalid_argument("min_bearing_z in (0,1)");

@@ -6,6 +6,9 @@ namespace ramap::cli {
 int RunCompare(int argc, char** argv);
 int RunDatabaseInfo(int argc, char** argv);
 int RunEvaluate(int argc, char** argv);
+int RunFeatureExtractor(int argc, char** argv);
+int RunMatcher(int argc, char** argv);
+int RunReconstruct(int argc, char** argv);
 int RunMapper(int argc, char** argv);
 int RunModelConverter(int argc, char** argv);
 int RunRelativePoses(int argc, char** argv);
@@ -14,6 +17,10 @@ int RunSynthesize(int argc, char** argv);
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {
+      {"reconstruct", "images to a COLMAP model: features, matching, mapper", RunReconstruct},
+      {"feature_extractor", "ORB or SIFT features of images into a COLMAP database",
+       RunFeatureExtractor},
+      {"matcher", "matches and verified geometries (sequential or exhaustive)", RunMatcher},
       {"mapper", "camera poses and points from a COLMAP database by motion averaging", RunMapper},
       {"relative_poses", "relative pose of every verified pair (grid 6-point, Kneip)",
        RunRelativePoses},

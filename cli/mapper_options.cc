@@ -79,8 +79,7 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
       ->capture_default_str();
   app.add_option("--BundleAdjustment.loss_scale_px", o->bundle_adjustment.loss_scale_px)
       ->capture_default_str();
-  app.add_option("--BundleAdjustment.function_tolerance",
-                 o->bundle_adjustment.function_tolerance)
+  app.add_option("--BundleAdjustment.function_tolerance", o->bundle_adjustment.function_tolerance)
       ->capture_default_str();
   app.add_option("--BundleAdjustment.max_num_points", o->bundle_adjustment.max_num_points,
                  "points adjusted at most (0: all); every track is triangulated again after")

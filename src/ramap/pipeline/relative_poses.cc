@@ -1,8 +1,6 @@
 #include "ramap/pipeline/relative_poses.h"
 
-#include <atomic>
-#include <string>
-#include <thread>
+#include "ramap/util/parallel.h"
 
 namespace ramap {
 
@@ -53,34 +51,12 @@ std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database
     edges.push_back(std::move(edge));
   }
 
-  // Pairs are independent: a shared counter hands them out to the threads.
-  std::atomic<size_t> next{0};
-  std::atomic<size_t> done{0};
-  size_t reported = 0;  // tens of percent shown so far; touched by the reporting thread only
-  auto report_progress = [&](size_t finished) {
-    if (reported == 0) *progress << "[ramap] relative poses of " << edges.size() << " pairs:";
-    reported = finished * 10 / edges.size();
-    *progress << " " << 10 * reported << "%" << std::flush;
-  };
-  auto work = [&](bool report) {
-    for (size_t k = next++; k < edges.size(); k = next++) {
-      edges[k].estimate = EstimateRelativePose(edges[k].correspondences, options);
-      const size_t finished = ++done;
-      // One line that grows by tens of percent (readable on a terminal and in a log), written by
-      // the calling thread only: streams are not thread-safe.
-      if (report && progress != nullptr && finished * 10 / edges.size() > reported) {
-        report_progress(finished);
-      }
-    }
-  };
-  std::vector<std::thread> threads;
-  for (int t = 1; t < num_threads; ++t) threads.emplace_back(work, false);
-  work(true);
-  for (std::thread& thread : threads) thread.join();
-  if (progress != nullptr && !edges.empty()) {
-    if (reported < 10) report_progress(edges.size());
-    *progress << "\n" << std::flush;
-  }
+  ParallelFor(
+      edges.size(), num_threads,
+      [&](size_t k) {
+        edges[k].estimate = EstimateRelativePose(edges[k].correspondences, options);
+      },
+      progress, "relative poses", "pairs");
   return edges;
 }
 

@@ -1,0 +1,59 @@
+// `ramap reconstruct --image_path DIR --output_path DIR`: features, matching and the mapper in one
+// command, like `colmap automatic_reconstructor`. Writes DIR/database.db (which COLMAP reads too)
+// and DIR/sparse/0, 1, ... with summary.json.
+#include <filesystem>
+#include <iostream>
+
+#include "feature_options.h"
+#include "mapper_options.h"
+#include "options.h"
+#include "ramap/io/colmap_database.h"
+#include "ramap/io/point_colors.h"
+#include "ramap/pipeline/mapper.h"
+#include "ramap/pipeline/mapper_output.h"
+#include "ramap/util/error.h"
+
+namespace ramap::cli {
+
+FeatureDatabase ExtractAndReport(const std::string& image_path, const std::string& image_list,
+                                 const FeatureOptions& options);
+void MatchAndReport(FeatureDatabase* database, const FeatureOptions& options);
+
+int RunReconstruct(int argc, char** argv) {
+  CLI::App app("Camera poses and points from a folder of images: features, matching, mapper.",
+               "ramap reconstruct");
+  std::string image_path, image_list, output_path;
+  app.add_option("--image_path", image_path, "folder of the images")->required();
+  app.add_option("--image_list", image_list, "only these images (names relative to image_path)");
+  app.add_option("--output_path", output_path, "folder for database.db and sparse/")->required();
+  FeatureOptions features;
+  AddExtractionOptions(app, &features);
+  AddMatchingOptions(app, &features);
+  MapperOptions mapper;
+  MapperOptionText text;
+  AddMapperOptions(app, &mapper, &text);
+  if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
+  FinishFeatureOptions(&features);
+  FinishMapperOptions(text, &mapper);
+
+  FeatureDatabase database = ExtractAndReport(image_path, image_list, features);
+  MatchAndReport(&database, features);
+  std::filesystem::create_directories(output_path);
+  const std::string database_path = output_path + "/database.db";
+  WriteColmapDatabase(database, database_path);
+  MapperResult result = RunMapper(database, mapper, database_path, &std::cout);
+  for (Reconstruction& reconstruction : result.reconstructions) {
+    ColorPointsFromImages(image_path, &reconstruction);
+  }
+  const nlohmann::json run = {
+      {"command", "reconstruct"},       {"image_path", image_path},
+      {"database_path", database_path}, {"feature_type", features.type},
+      {"matching_mode", features.mode}, {"options", MapperOptionsToJson(mapper)}};
+  WriteMapperOutput(result, output_path + "/sparse", ModelFormat::kBinary, run);
+  std::cout << "ramap reconstruct: " << result.summary.num_registered_images << " of "
+            << database.images.size() << " images registered in " << result.reconstructions.size()
+            << " model(s) -> " << output_path << "/sparse\n";
+  return 0;
+}
+
+}  // namespace ramap::cli

@@ -1,0 +1,44 @@
+#include "feature_options.h"
+
+namespace ramap::cli {
+
+void AddExtractionOptions(CLI::App& app, FeatureOptions* o) {
+  app.add_option("--ImageReader.camera_model", o->reader.camera_model, "COLMAP camera model")
+      ->capture_default_str();
+  app.add_option("--ImageReader.camera_params", o->reader.camera_params,
+                 "known intrinsics at full resolution, e.g. fx,fy,cx,cy for PINHOLE");
+  app.add_option("--ImageReader.single_camera", o->reader.single_camera,
+                 "1: one camera for all images")
+      ->capture_default_str();
+  app.add_option("--ImageReader.default_focal_length_factor", o->reader.default_focal_length_factor,
+                 "focal length guess, times the longest side, without camera_params")
+      ->capture_default_str();
+  app.add_option("--FeatureExtraction.type", o->type, "orb|sift")->capture_default_str();
+  app.add_option("--FeatureExtraction.max_image_size", o->extraction.max_image_size)
+      ->capture_default_str();
+  app.add_option("--FeatureExtraction.max_num_features", o->extraction.max_num_features)
+      ->capture_default_str();
+  app.add_option("--FeatureExtraction.num_threads", o->reader.num_threads)->capture_default_str();
+}
+
+void AddMatchingOptions(CLI::App& app, FeatureOptions* o) {
+  app.add_option("--Matching.mode", o->mode, "sequential|exhaustive")->capture_default_str();
+  app.add_option("--Matching.overlap", o->matching.overlap,
+                 "sequential: each image with its next N")
+      ->capture_default_str();
+  app.add_option("--Matching.max_ratio", o->matching.max_ratio)->capture_default_str();
+  app.add_option("--Matching.cross_check", o->matching.cross_check)->capture_default_str();
+  app.add_option("--Matching.max_error_px", o->matching.max_error_px)->capture_default_str();
+  app.add_option("--Matching.min_num_inliers", o->matching.min_num_inliers)->capture_default_str();
+  app.add_option("--Matching.num_threads", o->matching.num_threads)->capture_default_str();
+}
+
+void FinishFeatureOptions(FeatureOptions* o) {
+  o->extraction.type = FeatureTypeFromName(o->type);
+  o->matching.mode = MatchingModeFromName(o->mode);
+  o->reader.Check();
+  o->extraction.Check();
+  o->matching.Check();
+}
+
+}  // namespace ramap::cli

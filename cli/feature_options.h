@@ -1,0 +1,26 @@
+// The options of image-list input on the command line, COLMAP-style (--ImageReader.*,
+// --FeatureExtraction.*, --Matching.*), shared by feature_extractor, matcher and reconstruct.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "ramap/features/feature_matching.h"
+#include "ramap/features/image_reader.h"
+
+namespace ramap::cli {
+
+struct FeatureOptions {
+  ImageReaderOptions reader;
+  FeatureExtractionOptions extraction;
+  FeatureMatchingOptions matching;
+  std::string type = "orb";
+  std::string mode = "sequential";
+};
+
+void AddExtractionOptions(CLI::App& app, FeatureOptions* options);
+void AddMatchingOptions(CLI::App& app, FeatureOptions* options);
+// Converts the enum options and checks them; throws InputError naming the option.
+void FinishFeatureOptions(FeatureOptions* options);
+
+}  // namespace ramap::cli

@@ -1,0 +1,233 @@
+#include "ramap/features/feature_matching.h"
+
+#include <Eigen/Core>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
+#include <opencv2/features2d.hpp>
+
+#include "ramap/geometry/camera_projection.h"
+#include "ramap/geometry/relative_pose.h"
+#include "ramap/pipeline/image_order.h"
+#include "ramap/util/error.h"
+#include "ramap/util/parallel.h"
+#include "ramap/util/timer.h"
+
+namespace ramap {
+namespace {
+
+cv::Mat AsMat(const Descriptors& descriptors) {
+  cv::Mat bytes(static_cast<int>(descriptors.size()), descriptors.num_cols, CV_8U,
+                const_cast<uint8_t*>(descriptors.data.data()));
+  if (descriptors.num_cols == 32) return bytes;  // binary (ORB): Hamming on the bytes
+  cv::Mat floats;
+  bytes.convertTo(floats, CV_32F);
+  return floats;
+}
+
+// Best and second-best neighbours of every row of `query` in `train`.
+std::vector<std::vector<cv::DMatch>> KnnMatch(const cv::Mat& query, const cv::Mat& train,
+                                              bool binary) {
+  std::vector<std::vector<cv::DMatch>> knn;
+  if (query.empty() || train.rows < 2) return knn;
+  cv::BFMatcher matcher(binary ? cv::NORM_HAMMING : cv::NORM_L2);
+  matcher.knnMatch(query, train, knn, 2);
+  return knn;
+}
+
+Eigen::Matrix3d CalibrationMatrix(const Camera& camera) {
+  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
+  const std::vector<double>& p = camera.params;
+  switch (camera.model) {
+    case CameraModel::kSimplePinhole:
+    case CameraModel::kSimpleRadial:
+    case CameraModel::kRadial:
+    case CameraModel::kSimpleRadialFisheye:
+    case CameraModel::kRadialFisheye:
+      K(0, 0) = K(1, 1) = p[0];
+      K(0, 2) = p[1];
+      K(1, 2) = p[2];
+      break;
+    default:
+      K(0, 0) = p[0];
+      K(1, 1) = p[1];
+      K(0, 2) = p[2];
+      K(1, 2) = p[3];
+  }
+  return K;
+}
+
+}  // namespace
+
+MatchingMode MatchingModeFromName(const std::string& name) {
+  if (name == "sequential") return MatchingMode::kSequential;
+  if (name == "exhaustive") return MatchingMode::kExhaustive;
+  throw InputError("--Matching.mode", "'" + name + "' is not sequential or exhaustive");
+}
+
+void FeatureMatchingOptions::Check() const {
+  if (overlap < 1) throw InputError("--Matching.overlap", "must be >= 1");
+  if (!(max_ratio > 0 && max_ratio <= 1)) throw InputError("--Matching.max_ratio", "not in (0, 1]");
+  if (!(max_error_px > 0)) throw InputError("--Matching.max_error_px", "must be > 0");
+  if (!(confidence > 0 && confidence < 1)) {
+    throw InputError("--Matching.confidence", "not in (0, 1)");
+  }
+  if (min_num_inliers < 5) throw InputError("--Matching.min_num_inliers", "must be >= 5");
+  if (num_threads < 1) throw InputError("--Matching.num_threads", "must be >= 1");
+}
+
+std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,
+                                           const Descriptors& descriptors2,
+                                           const FeatureMatchingOptions& options) {
+  std::vector<FeatureMatch> matches;
+  if (descriptors1.num_cols != descriptors2.num_cols) return matches;
+  const bool binary = descriptors1.num_cols == 32;
+  const cv::Mat d1 = AsMat(descriptors1), d2 = AsMat(descriptors2);
+  const std::vector<std::vector<cv::DMatch>> forward = KnnMatch(d1, d2, binary);
+  std::vector<int> backward_best;
+  if (options.cross_check) {
+    backward_best.assign(d2.rows, -1);
+    for (const std::vector<cv::DMatch>& knn : KnnMatch(d2, d1, binary)) {
+      if (!knn.empty()) backward_best[knn[0].queryIdx] = knn[0].trainIdx;
+    }
+  }
+  for (const std::vector<cv::DMatch>& knn : forward) {
+    if (knn.size() < 2) continue;
+    if (!(knn[0].distance < options.max_ratio * knn[1].distance)) continue;
+    if (options.cross_check && backward_best[knn[0].trainIdx] != knn[0].queryIdx) continue;
+    matches.push_back(
+        {static_cast<uint32_t>(knn[0].queryIdx), static_cast<uint32_t>(knn[0].trainIdx)});
+  }
+  return matches;
+}
+
+TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Camera& camera1,
+                              const Camera& camera2, const Keypoints& keypoints1,
+                              const Keypoints& keypoints2, const std::vector<FeatureMatch>& matches,
+                              const FeatureMatchingOptions& options) {
+  TwoViewGeometry geometry;
+  geometry.image_id1 = image_id1;
+  geometry.image_id2 = image_id2;
+  geometry.config = TwoViewConfig::kDegenerate;
+  if (static_cast<int>(matches.size()) < options.min_num_inliers) return geometry;
+  // Undistorted normalised coordinates, so that E is estimated with the intrinsics known.
+  std::vector<cv::Point2d> points1, points2;
+  std::vector<FeatureMatch> usable;
+  for (const FeatureMatch& match : matches) {
+    const Eigen::Vector3d b1 = PixelToBearing(camera1, keypoints1.xy(match.point2D_idx1));
+    const Eigen::Vector3d b2 = PixelToBearing(camera2, keypoints2.xy(match.point2D_idx2));
+    if (!b1.allFinite() || !b2.allFinite() || b1.z() <= 0 || b2.z() <= 0) continue;
+    points1.emplace_back(b1.x() / b1.z(), b1.y() / b1.z());
+    points2.emplace_back(b2.x() / b2.z(), b2.y() / b2.z());
+    usable.push_back(match);
+  }
+  if (static_cast<int>(usable.size()) < options.min_num_inliers) return geometry;
+  const double focal = 0.5 * (MeanFocalLength(camera1) + MeanFocalLength(camera2));
+  cv::Mat mask;
+  const cv::Mat E = cv::findEssentialMat(points1, points2, 1.0, cv::Point2d(0, 0), cv::RANSAC,
+                                         options.confidence, options.max_error_px / focal, mask);
+  if (E.rows != 3 || E.cols != 3) return geometry;  // none, or several stacked solutions
+  cv::Mat R, t;
+  cv::Mat pose_mask = mask.clone();
+  cv::recoverPose(E, points1, points2, R, t, 1.0, cv::Point2d(0, 0), pose_mask);
+  for (size_t k = 0; k < usable.size(); ++k) {
+    if (mask.at<uchar>(static_cast<int>(k))) geometry.inlier_matches.push_back(usable[k]);
+  }
+  if (static_cast<int>(geometry.inlier_matches.size()) < options.min_num_inliers) {
+    geometry.inlier_matches.clear();
+    return geometry;
+  }
+  geometry.config = TwoViewConfig::kCalibrated;
+  cv::cv2eigen(E, geometry.E);
+  const Eigen::Matrix3d K1 = CalibrationMatrix(camera1), K2 = CalibrationMatrix(camera2);
+  geometry.F = K2.inverse().transpose() * geometry.E * K1.inverse();
+  // The pair's pose by ramap's own estimator on the inliers (grid-selected six points, refined on
+  // all): OpenCV's minimal-sample E is poorly conditioned through long lenses (templeRing: median
+  // 8.7 deg, with twisted-pair flips), and COLMAP 3.8 stores no pose at all.
+  TwoViewCorrespondences correspondences;
+  correspondences.width1 = static_cast<int>(camera1.width);
+  correspondences.height1 = static_cast<int>(camera1.height);
+  correspondences.width2 = static_cast<int>(camera2.width);
+  correspondences.height2 = static_cast<int>(camera2.height);
+  correspondences.focal_length_px = focal;
+  for (const FeatureMatch& match : geometry.inlier_matches) {
+    const Eigen::Vector2d xy1 = keypoints1.xy(match.point2D_idx1);
+    const Eigen::Vector2d xy2 = keypoints2.xy(match.point2D_idx2);
+    correspondences.pixels1.push_back(xy1);
+    correspondences.pixels2.push_back(xy2);
+    correspondences.bearings1.push_back(PixelToBearing(camera1, xy1));
+    correspondences.bearings2.push_back(PixelToBearing(camera2, xy2));
+  }
+  const RelativePoseEstimate estimate =
+      EstimateRelativePose(correspondences, RelativePoseOptions());
+  if (estimate.success) {
+    geometry.cam2_from_cam1 = Rigid3d(estimate.rotation, estimate.translation);
+  } else {
+    Eigen::Matrix3d rotation;
+    Eigen::Vector3d translation;
+    cv::cv2eigen(R, rotation);
+    cv::cv2eigen(t, translation);
+    geometry.cam2_from_cam1 = Rigid3d(Eigen::Quaterniond(rotation), translation.normalized());
+  }
+  return geometry;
+}
+
+MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOptions& options,
+                              std::ostream* progress) {
+  options.Check();
+  Timer timer;
+  std::vector<uint32_t> ids;
+  std::vector<std::string> names;
+  for (const auto& [id, image] : database->images) {
+    ids.push_back(id);
+    names.push_back(image.name);
+  }
+  std::vector<uint32_t> ordered;
+  for (const size_t k : CaptureOrder(names)) ordered.push_back(ids[k]);
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  for (size_t a = 0; a < ordered.size(); ++a) {
+    const size_t last = options.mode == MatchingMode::kExhaustive
+                            ? ordered.size()
+                            : std::min(ordered.size(), a + 1 + options.overlap);
+    for (size_t b = a + 1; b < last; ++b) {
+      pairs.emplace_back(std::min(ordered[a], ordered[b]), std::max(ordered[a], ordered[b]));
+    }
+  }
+  for (const uint32_t id : ids) {
+    if (!database->descriptors.count(id) || !database->keypoints.count(id)) {
+      throw InputError("database", "image " + database->images.at(id).name +
+                                       " has no keypoints or descriptors: run feature_extractor");
+    }
+  }
+  std::vector<std::vector<FeatureMatch>> matches(pairs.size());
+  std::vector<TwoViewGeometry> geometries(pairs.size());
+  ParallelFor(
+      pairs.size(), options.num_threads,
+      [&](size_t k) {
+        const auto [id1, id2] = pairs[k];
+        matches[k] =
+            MatchDescriptors(database->descriptors.at(id1), database->descriptors.at(id2), options);
+        const Image& image1 = database->images.at(id1);
+        const Image& image2 = database->images.at(id2);
+        geometries[k] =
+            VerifyMatches(id1, id2, database->cameras.at(image1.camera_id),
+                          database->cameras.at(image2.camera_id), database->keypoints.at(id1),
+                          database->keypoints.at(id2), matches[k], options);
+      },
+      progress, "matching", "pairs");
+  database->matches.clear();
+  database->two_view_geometries.clear();
+  MatchingSummary summary;
+  summary.num_pairs = static_cast<int>(pairs.size());
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    const uint64_t pair_id = ImagePairToPairId(pairs[k].first, pairs[k].second);
+    if (!matches[k].empty()) database->matches[pair_id] = std::move(matches[k]);
+    if (!geometries[k].inlier_matches.empty()) {
+      database->two_view_geometries[pair_id] = std::move(geometries[k]);
+      ++summary.num_verified_pairs;
+    }
+  }
+  summary.seconds = timer.ElapsedSeconds();
+  return summary;
+}
+
+}  // namespace ramap

@@ -1,0 +1,67 @@
+// Matching and geometric verification of image pairs for image-list input, written as COLMAP's
+// matcher writes them (matches and two_view_geometries), so that COLMAP's mapper and ramap's read
+// exactly the same data.
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "ramap/scene/features.h"
+
+namespace ramap {
+
+enum class MatchingMode { kSequential, kExhaustive };
+
+// "sequential" or "exhaustive"; throws InputError naming --Matching.mode otherwise.
+MatchingMode MatchingModeFromName(const std::string& name);
+
+struct FeatureMatchingOptions {
+  MatchingMode mode = MatchingMode::kSequential;
+  // Sequential mode: each image is matched with the next `overlap` images in capture order
+  // (COLMAP's SequentialMatching.overlap default, 10).
+  int overlap = 10;
+  // Lowe's ratio test and mutual nearest neighbours (COLMAP's SiftMatching defaults: 0.8, on).
+  double max_ratio = 0.8;
+  bool cross_check = true;
+  // RANSAC on the essential matrix with the cameras' intrinsics: inlier threshold in pixels and
+  // confidence (COLMAP's TwoViewGeometry max_error 4 px, confidence 0.999).
+  double max_error_px = 4.0;
+  double confidence = 0.999;
+  // Pairs with fewer inliers get no two-view geometry (COLMAP's min_num_inliers, 15).
+  int min_num_inliers = 15;
+  int num_threads = 2;
+
+  void Check() const;  // throws InputError naming the option
+};
+
+// Putative matches of two descriptor sets (Hamming distance for 32-byte binary descriptors, L2
+// otherwise), after the ratio test and, if asked, the cross check.
+std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,
+                                           const Descriptors& descriptors2,
+                                           const FeatureMatchingOptions& options);
+
+// The verified geometry of a pair from its putative matches: essential-matrix RANSAC on undistorted
+// keypoints (OpenCV), F from E and the intrinsics, cam2_from_cam1 by EstimateRelativePose on the
+// inliers (from E when that rejects the pair; unit translation).
+// Config kCalibrated with the inliers, or kDegenerate with none when fewer than min_num_inliers
+// survive.
+TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Camera& camera1,
+                              const Camera& camera2, const Keypoints& keypoints1,
+                              const Keypoints& keypoints2, const std::vector<FeatureMatch>& matches,
+                              const FeatureMatchingOptions& options);
+
+struct MatchingSummary {
+  int num_pairs = 0;           // pairs matched
+  int num_verified_pairs = 0;  // pairs with a two-view geometry
+  double seconds = 0.0;
+};
+
+// Matches the pairs `options.mode` chooses among database.images (descriptors must be present)
+// and stores their matches and verified geometries in `database`, replacing earlier ones. With
+// `progress`, one line counts the pairs done in tens of percent.
+MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOptions& options,
+                              std::ostream* progress = nullptr);
+
+}  // namespace ramap

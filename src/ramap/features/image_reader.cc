@@ -1,0 +1,197 @@
+#include "ramap/features/image_reader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "ramap/geometry/camera_projection.h"
+#include "ramap/util/error.h"
+#include "ramap/util/parallel.h"
+#include "ramap/util/timer.h"
+
+namespace ramap {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool HasImageExtension(const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  static const std::vector<std::string> known = {".png", ".jpg", ".jpeg", ".pgm", ".ppm",
+                                                 ".bmp", ".tif", ".tiff", ".webp"};
+  return std::find(known.begin(), known.end(), extension) != known.end();
+}
+
+std::vector<double> ParseParams(const std::string& text) {
+  std::vector<double> params;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      size_t used = 0;
+      params.push_back(std::stod(item, &used));
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw InputError("--ImageReader.camera_params", "'" + item + "' is not a number");
+    }
+  }
+  return params;
+}
+
+// The camera of an image of width x height under `options`.
+Camera MakeCamera(const ImageReaderOptions& options, int width, int height) {
+  Camera camera;
+  camera.model = *CameraModelFromName(options.camera_model);
+  camera.width = static_cast<uint64_t>(width);
+  camera.height = static_cast<uint64_t>(height);
+  if (!options.camera_params.empty()) {
+    camera.params = ParseParams(options.camera_params);
+    camera.has_prior_focal_length = true;
+    return camera;
+  }
+  const double focal = options.default_focal_length_factor * std::max(width, height);
+  camera.params.assign(NumCameraParams(camera.model), 0.0);
+  // f (or fx, fy) first, then the principal point, then distortion at zero.
+  const bool one_focal =
+      camera.model == CameraModel::kSimplePinhole || camera.model == CameraModel::kSimpleRadial ||
+      camera.model == CameraModel::kRadial || camera.model == CameraModel::kSimpleRadialFisheye ||
+      camera.model == CameraModel::kRadialFisheye;
+  size_t k = 0;
+  camera.params[k++] = focal;
+  if (!one_focal) camera.params[k++] = focal;
+  camera.params[k++] = 0.5 * width;
+  camera.params[k++] = 0.5 * height;
+  return camera;
+}
+
+}  // namespace
+
+void ImageReaderOptions::Check() const {
+  const std::optional<CameraModel> model = CameraModelFromName(camera_model);
+  if (!model) {
+    throw InputError("--ImageReader.camera_model", "unknown camera model '" + camera_model + "'");
+  }
+  if (!camera_params.empty()) {
+    const std::vector<double> params = ParseParams(camera_params);
+    if (static_cast<int>(params.size()) != NumCameraParams(*model)) {
+      throw InputError("--ImageReader.camera_params",
+                       camera_model + " takes " + std::to_string(NumCameraParams(*model)) +
+                           " parameters, " + std::to_string(params.size()) + " given");
+    }
+  }
+  if (!(default_focal_length_factor > 0)) {
+    throw InputError("--ImageReader.default_focal_length_factor", "must be > 0");
+  }
+  if (num_threads < 1) throw InputError("--FeatureExtraction.num_threads", "must be >= 1");
+}
+
+std::vector<std::string> ListImages(const std::string& image_path,
+                                    const std::string& image_list_path) {
+  std::vector<std::string> names;
+  if (!image_list_path.empty()) {
+    std::ifstream in(image_list_path);
+    if (!in) throw InputError(image_list_path, "cannot open the image list");
+    std::string line;
+    while (std::getline(in, line)) {
+      const size_t begin = line.find_first_not_of(" \t\r");
+      if (begin == std::string::npos || line[begin] == '#') continue;
+      names.push_back(line.substr(begin, line.find_last_not_of(" \t\r") - begin + 1));
+    }
+    if (names.empty()) throw InputError(image_list_path, "the image list names no image");
+    return names;
+  }
+  std::error_code error;
+  if (!fs::is_directory(image_path, error)) {
+    throw InputError(image_path, "not a folder of images");
+  }
+  for (const fs::directory_entry& entry : fs::directory_iterator(image_path, error)) {
+    if (entry.is_regular_file() && HasImageExtension(entry.path())) {
+      names.push_back(entry.path().filename().string());
+    }
+  }
+  if (error) throw InputError(image_path, "cannot list the folder: " + error.message());
+  if (names.empty()) throw InputError(image_path, "holds no image file (.png, .jpg, ...)");
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+FeatureDatabase ExtractImageFeatures(const std::string& image_path,
+                                     const std::vector<std::string>& names,
+                                     const ImageReaderOptions& reader,
+                                     const FeatureExtractionOptions& extraction,
+                                     ExtractionSummary* summary, std::ostream* progress) {
+  reader.Check();
+  extraction.Check();
+  Timer timer;
+  struct Result {
+    std::string problem;  // empty when read
+    int width = 0, height = 0;
+    ImageFeatures features;
+  };
+  std::vector<Result> results(names.size());
+  ParallelFor(
+      names.size(), reader.num_threads,
+      [&](size_t k) {
+        const std::string path = image_path + "/" + names[k];
+        std::error_code error;
+        if (!fs::is_regular_file(path, error)) {
+          results[k].problem = "no such file";
+          return;
+        }
+        if (fs::file_size(path, error) == 0) {
+          results[k].problem = "empty file";
+          return;
+        }
+        const cv::Mat grey = cv::imread(path, cv::IMREAD_GRAYSCALE);
+        if (grey.empty()) {
+          results[k].problem = "not an image OpenCV can read";
+          return;
+        }
+        results[k].width = grey.cols;
+        results[k].height = grey.rows;
+        results[k].features = ExtractFeatures(grey, extraction);
+      },
+      progress, "feature extraction", "images");
+
+  FeatureDatabase database;
+  std::map<std::pair<int, int>, uint32_t> shared_cameras;  // single_camera: one per image size
+  uint32_t next_image_id = 1;
+  *summary = ExtractionSummary();
+  for (size_t k = 0; k < names.size(); ++k) {
+    Result& result = results[k];
+    if (!result.problem.empty()) {
+      summary->skipped_images.push_back(names[k] + ": " + result.problem);
+      continue;
+    }
+    uint32_t camera_id = 0;
+    const std::pair<int, int> size(result.width, result.height);
+    if (reader.single_camera && shared_cameras.count(size)) {
+      camera_id = shared_cameras.at(size);
+    } else {
+      Camera camera = MakeCamera(reader, result.width, result.height);
+      camera.camera_id = static_cast<uint32_t>(database.cameras.size()) + 1;
+      CheckCameraParams(camera, "--ImageReader.camera_params");
+      camera_id = camera.camera_id;
+      database.cameras[camera_id] = camera;
+      if (reader.single_camera) shared_cameras[size] = camera_id;
+    }
+    Image image;
+    image.image_id = next_image_id++;
+    image.name = names[k];
+    image.camera_id = camera_id;
+    database.images[image.image_id] = image;
+    summary->num_keypoints += static_cast<int>(result.features.keypoints.size());
+    database.keypoints[image.image_id] = std::move(result.features.keypoints);
+    database.descriptors[image.image_id] = std::move(result.features.descriptors);
+    ++summary->num_images;
+  }
+  summary->seconds = timer.ElapsedSeconds();
+  return database;
+}
+
+}  // namespace ramap

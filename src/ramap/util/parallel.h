@@ -1,0 +1,19 @@
+// Independent work items on a few threads, with one progress line that grows by tens of percent
+// (readable on a terminal and in a log alike).
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <ostream>
+#include <string>
+
+namespace ramap {
+
+// Runs work(k) for k in [0, count) on `num_threads` threads (the calling thread among them).
+// With `progress`, "[ramap] <what> of <count> <unit>: 10% 20% ... 100%" is written there by the
+// calling thread only (streams are not thread-safe), ending with a newline.
+void ParallelFor(size_t count, int num_threads, const std::function<void(size_t)>& work,
+                 std::ostream* progress = nullptr, const std::string& what = "",
+                 const std::string& unit = "");
+
+}  // namespace ramap

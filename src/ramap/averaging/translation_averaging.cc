@@ -147,7 +147,7 @@ std::vector<Constraint> BuildConstraints(const std::map<uint32_t, Eigen::Quatern
     if (ids.size() < 2) continue;
     // Reference: the best-conditioned pair (widest ray angle).
     std::optional<PointPrediction> reference;
-    size_t ref_a = 0, ref_b = 0;
+    size_t ref_a = 0;
     for (size_t a = 0; a < ids.size(); ++a) {
       for (size_t b = 0; b < ids.size(); ++b) {
         if (a == b) continue;
@@ -156,7 +156,6 @@ std::vector<Constraint> BuildConstraints(const std::map<uint32_t, Eigen::Quatern
         if (prediction && (!reference || prediction->ray_angle > reference->ray_angle)) {
           reference = prediction;
           ref_a = a;
-          ref_b = b;
         }
       }
     }

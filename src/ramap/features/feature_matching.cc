@@ -1,10 +1,10 @@
 #include "ramap/features/feature_matching.h"
 
 #include <Eigen/Core>
+#include <cstring>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/features2d.hpp>
-#include <cstring>
 
 #include "ramap/geometry/camera_projection.h"
 #include "ramap/geometry/relative_pose.h"
@@ -122,7 +122,8 @@ std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,
                                            const FeatureMatchingOptions& options) {
   std::vector<FeatureMatch> matches;
   if (descriptors1.num_cols != descriptors2.num_cols) return matches;
-  if (descriptors1.num_cols == 32) return MatchBinaryDescriptors(descriptors1, descriptors2, options);
+  if (descriptors1.num_cols == 32)
+    return MatchBinaryDescriptors(descriptors1, descriptors2, options);
   const cv::Mat d1 = AsMat(descriptors1), d2 = AsMat(descriptors2);
   const std::vector<std::vector<cv::DMatch>> forward = KnnMatch(d1, d2, false);
   std::vector<int> backward_best;

@@ -6,9 +6,11 @@
 #include <fstream>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 #include <sstream>
 
 #include "ramap/geometry/camera_projection.h"
+#include "ramap/io/exif.h"
 #include "ramap/util/error.h"
 #include "ramap/util/parallel.h"
 #include "ramap/util/timer.h"
@@ -43,8 +45,10 @@ std::vector<double> ParseParams(const std::string& text) {
   return params;
 }
 
-// The camera of an image of width x height under `options`.
-Camera MakeCamera(const ImageReaderOptions& options, int width, int height) {
+// The camera of an image of width x height under `options`: the given intrinsics, else the EXIF
+// focal length, else COLMAP's guess.
+Camera MakeCamera(const ImageReaderOptions& options, int width, int height,
+                  std::optional<double> exif_focal_px) {
   Camera camera;
   camera.model = *CameraModelFromName(options.camera_model);
   camera.width = static_cast<uint64_t>(width);
@@ -54,7 +58,9 @@ Camera MakeCamera(const ImageReaderOptions& options, int width, int height) {
     camera.has_prior_focal_length = true;
     return camera;
   }
-  const double focal = options.default_focal_length_factor * std::max(width, height);
+  camera.has_prior_focal_length = exif_focal_px.has_value();
+  const double focal =
+      exif_focal_px.value_or(options.default_focal_length_factor * std::max(width, height));
   camera.params.assign(NumCameraParams(camera.model), 0.0);
   // f (or fx, fy) first, then the principal point, then distortion at zero.
   const bool one_focal =
@@ -131,6 +137,7 @@ FeatureDatabase ExtractImageFeatures(const std::string& image_path,
   struct Result {
     std::string problem;  // empty when read
     int width = 0, height = 0;
+    std::optional<double> exif_focal_px;
     ImageFeatures features;
   };
   std::vector<Result> results(names.size());
@@ -155,6 +162,9 @@ FeatureDatabase ExtractImageFeatures(const std::string& image_path,
         results[k].width = grey.cols;
         results[k].height = grey.rows;
         results[k].features = ExtractFeatures(grey, extraction);
+        if (reader.camera_params.empty()) {
+          results[k].exif_focal_px = ExifFocalLengthPx(path, grey.cols, grey.rows);
+        }
       },
       progress, "feature extraction", "images");
 
@@ -173,7 +183,7 @@ FeatureDatabase ExtractImageFeatures(const std::string& image_path,
     if (reader.single_camera && shared_cameras.count(size)) {
       camera_id = shared_cameras.at(size);
     } else {
-      Camera camera = MakeCamera(reader, result.width, result.height);
+      Camera camera = MakeCamera(reader, result.width, result.height, result.exif_focal_px);
       camera.camera_id = static_cast<uint32_t>(database.cameras.size()) + 1;
       CheckCameraParams(camera, "--ImageReader.camera_params");
       camera_id = camera.camera_id;

@@ -13,10 +13,10 @@
 namespace ramap {
 
 struct ImageReaderOptions {
-  // COLMAP's ImageReader options. Without camera_params the focal length is
-  // default_focal_length_factor times the longest side (COLMAP's guess, 1.2) and the principal
-  // point the image centre, other parameters zero; with them, one "a,b,c,..." list in the model's
-  // order at full resolution, used for every image.
+  // COLMAP's ImageReader options. Without camera_params the focal length comes from the image's
+  // EXIF tags (io/exif.h), else it is default_focal_length_factor times the longest side (COLMAP's
+  // guess, 1.2); the principal point is the image centre, other parameters zero. With them, one
+  // "a,b,c,..." list in the model's order at full resolution, used for every image.
   std::string camera_model = "SIMPLE_RADIAL";
   std::string camera_params;
   // One camera for every image (of one size; an image of another size gets its own camera).

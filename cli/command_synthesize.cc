@@ -17,25 +17,6 @@
 #include "ramap/util/error.h"
 
 namespace ramap::cli {
-namespace {
-
-std::vector<double> ParseParams(const std::string& text) {
-  std::vector<double> params;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    try {
-      size_t used = 0;
-      params.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw InputError("--Synthetic.camera_params", "'" + item + "' is not a number");
-    }
-  }
-  return params;
-}
-
-}  // namespace
 
 int RunSynthesize(int argc, char** argv) {
   CLI::App app(
@@ -121,7 +102,7 @@ int RunSynthesize(int argc, char** argv) {
   const std::optional<CameraModel> model = CameraModelFromName(camera_model);
   if (!model) throw InputError("--Synthetic.camera_model", "unknown model '" + camera_model + "'");
   options.camera.model = *model;
-  options.camera.params = ParseParams(camera_params);
+  options.camera.params = ParseCameraParams(camera_params, "--Synthetic.camera_params");
   if (!trajectory_path.empty()) {
     if (options.layout != SyntheticLayout::kSequential) {
       throw InputError("--Synthetic.trajectory_path", "needs --Synthetic.layout sequential");

@@ -29,22 +29,6 @@ bool HasImageExtension(const fs::path& path) {
   return std::find(known.begin(), known.end(), extension) != known.end();
 }
 
-std::vector<double> ParseParams(const std::string& text) {
-  std::vector<double> params;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    try {
-      size_t used = 0;
-      params.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw InputError("--ImageReader.camera_params", "'" + item + "' is not a number");
-    }
-  }
-  return params;
-}
-
 // The camera of an image of width x height under `options`: the given intrinsics, else the EXIF
 // focal length, else COLMAP's guess.
 Camera MakeCamera(const ImageReaderOptions& options, int width, int height,
@@ -54,7 +38,7 @@ Camera MakeCamera(const ImageReaderOptions& options, int width, int height,
   camera.width = static_cast<uint64_t>(width);
   camera.height = static_cast<uint64_t>(height);
   if (!options.camera_params.empty()) {
-    camera.params = ParseParams(options.camera_params);
+    camera.params = ParseCameraParams(options.camera_params, "--ImageReader.camera_params");
     camera.has_prior_focal_length = true;
     return camera;
   }
@@ -83,7 +67,8 @@ void ImageReaderOptions::Check() const {
     throw InputError("--ImageReader.camera_model", "unknown camera model '" + camera_model + "'");
   }
   if (!camera_params.empty()) {
-    const std::vector<double> params = ParseParams(camera_params);
+    const std::vector<double> params =
+        ParseCameraParams(camera_params, "--ImageReader.camera_params");
     if (static_cast<int>(params.size()) != NumCameraParams(*model)) {
       throw InputError("--ImageReader.camera_params",
                        camera_model + " takes " + std::to_string(NumCameraParams(*model)) +

@@ -1,6 +1,10 @@
 #include "ramap/scene/camera.h"
 
 #include <array>
+#include <sstream>
+#include <stdexcept>
+
+#include "ramap/util/error.h"
 
 namespace ramap {
 namespace {
@@ -43,6 +47,22 @@ std::optional<CameraModel> CameraModelFromName(const std::string& name) {
 std::optional<CameraModel> CameraModelFromId(int id) {
   if (id < 0 || id >= static_cast<int>(kModels.size())) return std::nullopt;
   return kModels[id].model;
+}
+
+std::vector<double> ParseCameraParams(const std::string& text, const std::string& option) {
+  std::vector<double> params;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      size_t used = 0;
+      params.push_back(std::stod(item, &used));
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw InputError(option, "'" + item + "' is not a number");
+    }
+  }
+  return params;
 }
 
 }  // namespace ramap

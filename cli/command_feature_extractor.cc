@@ -10,7 +10,6 @@
 
 namespace ramap::cli {
 
-// Shared with `ramap reconstruct`: extracts and reports; throws when no image could be read.
 FeatureDatabase ExtractAndReport(const std::string& image_path, const std::string& image_list,
                                  const FeatureOptions& options) {
   const std::vector<std::string> names = ListImages(image_path, image_list);

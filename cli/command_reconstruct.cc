@@ -15,10 +15,6 @@
 
 namespace ramap::cli {
 
-FeatureDatabase ExtractAndReport(const std::string& image_path, const std::string& image_list,
-                                 const FeatureOptions& options);
-void MatchAndReport(FeatureDatabase* database, const FeatureOptions& options);
-
 int RunReconstruct(int argc, char** argv) {
   CLI::App app("Camera poses and points from a folder of images: features, matching, mapper.",
                "ramap reconstruct");

@@ -23,4 +23,10 @@ void AddMatchingOptions(CLI::App& app, FeatureOptions* options);
 // Converts the enum options and checks them; throws InputError naming the option.
 void FinishFeatureOptions(FeatureOptions* options);
 
+// The steps of feature_extractor and matcher, with their report lines, shared with reconstruct.
+// ExtractAndReport throws InputError when no image could be read.
+FeatureDatabase ExtractAndReport(const std::string& image_path, const std::string& image_list,
+                                 const FeatureOptions& options);
+void MatchAndReport(FeatureDatabase* database, const FeatureOptions& options);
+
 }  // namespace ramap::cli

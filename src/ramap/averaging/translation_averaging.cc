@@ -18,8 +18,6 @@ namespace ramap {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
-// Inverse iterations for the least-squares start (converges in a few dozen on our problems).
-constexpr int kMaxInverseIterations = 100;
 
 uint64_t PairKey(uint32_t a, uint32_t b) {
   return (static_cast<uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
@@ -492,6 +490,11 @@ TranslationAveragingResult AverageTranslations(
   // Start: least squares with every scale at 1, min ||B_c c + B_s 1||^2, then each scale set to
   // the projected baseline it implies (at least 1).
   Eigen::VectorXd x = Eigen::VectorXd::Ones(num_cols);
+  // The centre of an image in the current solution (the gauge camera at the origin).
+  auto center = [&](uint32_t id) -> Eigen::Vector3d {
+    const int cam = column.at(id);
+    return cam < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(x.segment<3>(3 * cam));
+  };
   {
     const Eigen::SparseMatrix<double> B_c = B.leftCols(num_position_cols);
     const Eigen::SparseMatrix<double> B_s = B.rightCols(pairs.size());
@@ -506,10 +509,6 @@ TranslationAveragingResult AverageTranslations(
     }
     x.head(num_position_cols) =
         least_squares.solve(-(B_c.transpose() * (B_s * Eigen::VectorXd::Ones(pairs.size()))));
-    auto center = [&](uint32_t id) -> Eigen::Vector3d {
-      const int cam = column.at(id);
-      return cam < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(x.segment<3>(3 * cam));
-    };
     for (size_t k = 0; k < pairs.size(); ++k) {
       x(num_position_cols + k) = pairs[k].direction.dot(center(pairs[k].j) - center(pairs[k].i));
     }
@@ -523,13 +522,9 @@ TranslationAveragingResult AverageTranslations(
   result.num_solver_iterations = iterations;
 
   // The documented scale: mean projected pair baseline = 1.
-  auto solved_center = [&](uint32_t id) -> Eigen::Vector3d {
-    const int cam = column.at(id);
-    return cam < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(x.segment<3>(3 * cam));
-  };
   double projected = 0.0;
   for (const PairRow& pair : pairs) {
-    projected += pair.direction.dot(solved_center(pair.j) - solved_center(pair.i));
+    projected += pair.direction.dot(center(pair.j) - center(pair.i));
   }
   if (!(projected > 0)) {
     throw std::runtime_error(
@@ -538,7 +533,7 @@ TranslationAveragingResult AverageTranslations(
   result.l1_cost = (B * x).lpNorm<1>();
   result.num_constraints = static_cast<int>(constraints.size() + pairs.size());
   const double scale = static_cast<double>(pairs.size()) / projected;
-  for (const uint32_t image_id : solved) result.centers[image_id] = scale * solved_center(image_id);
+  for (const uint32_t image_id : solved) result.centers[image_id] = scale * center(image_id);
   result.seconds = timer.ElapsedSeconds();
   return result;
 }

@@ -24,7 +24,11 @@ FeatureDatabase ExtractAndReport(const std::string& image_path, const std::strin
             << FeatureTypeName(options.extraction.type) << "), "
             << summary.num_keypoints / std::max(1, summary.num_images) << " keypoints each on "
             << "average, " << database.cameras.size() << " camera(s), " << std::fixed
-            << std::setprecision(2) << summary.seconds << " s\n";
+            << std::setprecision(2) << summary.seconds << " s";
+  if (summary.num_images_with_gps > 0) {
+    std::cout << ", EXIF GPS of " << summary.num_images_with_gps << " stored as prior positions";
+  }
+  std::cout << "\n";
   return database;
 }
 

@@ -4,6 +4,7 @@
 
 #include "mapper_options.h"
 #include "options.h"
+#include "pose_prior_options.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/point_colors.h"
 #include "ramap/pipeline/mapper.h"
@@ -25,6 +26,23 @@ void PrintSummaryTable(const MapperSummary& s, const std::string& output_path, s
         << std::setw(12) << std::setprecision(3) << c.mean_reprojection_error_px << std::setw(11)
         << c.num_rotation_edges << std::setw(8) << c.num_pruned_edges << std::setw(11)
         << (c.rotation_certified ? "yes" : "no") << "\n";
+  }
+  for (size_t k = 0; k < s.components.size(); ++k) {
+    const GeoregistrationSummary& geo = s.components[k].georegistration;
+    if (geo.georegistered) {
+      out << "  model " << k << " georegistered: " << geo.num_inliers << " of " << geo.num_priors
+          << " priors, RMSE " << std::setprecision(2) << geo.rmse_m << " m, "
+          << geo.outliers.size() << " outlier(s)\n";
+    } else if (!geo.problem.empty()) {
+      out << "  model " << k << " not georegistered: " << geo.problem << "\n";
+    }
+  }
+  if (!s.prior_outliers.empty()) {
+    out << "  position priors rejected as outliers (" << s.prior_outliers.size() << "):\n";
+    for (size_t k = 0; k < s.prior_outliers.size() && k < 10; ++k) {
+      out << "    " << s.prior_outliers[k].what << ": " << s.prior_outliers[k].reason << "\n";
+    }
+    if (s.prior_outliers.size() > 10) out << "    ... (all in summary.json)\n";
   }
   if (!s.dropped_images.empty()) {
     out << "  not registered (" << s.dropped_images.size() << "):\n";
@@ -54,6 +72,8 @@ int RunMapper(int argc, char** argv) {
   MapperOptions options;
   MapperOptionText text;
   AddMapperOptions(app, &options, &text);
+  PosePriorOptionText prior_text;
+  AddPosePriorOptions(app, &prior_text, &options.georegistration, /*with_uses=*/true);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   FinishMapperOptions(text, &options);
   if (output_type != "BIN" && output_type != "TXT") {
@@ -61,8 +81,9 @@ int RunMapper(int argc, char** argv) {
   }
 
   const FeatureDatabase database = ReadColmapDatabase(database_path);
-  MapperResult result =
-      ramap::RunMapper(database, options, database_path, log_level > 0 ? &std::cout : nullptr);
+  const LocalizedPriors priors = LoadPosePriors(prior_text, database, "ramap mapper", std::cerr);
+  MapperResult result = ramap::RunMapper(database, options, database_path,
+                                         log_level > 0 ? &std::cout : nullptr, priors.priors);
   if (!image_path.empty()) {
     Timer timer;
     int num_read = 0;
@@ -86,7 +107,8 @@ int RunMapper(int argc, char** argv) {
   const nlohmann::json run = {{"command", "mapper"},
                               {"database_path", database_path},
                               {"image_path", image_path},
-                              {"options", MapperOptionsToJson(options)}};
+                              {"options", MapperOptionsToJson(options)},
+                              {"pose_priors", PosePriorOptionsToJson(prior_text, options.georegistration)}};
   WriteMapperOutput(result, output_path,
                     output_type == "BIN" ? ModelFormat::kBinary : ModelFormat::kText, run);
   PrintSummaryTable(result.summary, output_path, std::cout);

@@ -7,6 +7,7 @@
 #include "feature_options.h"
 #include "mapper_options.h"
 #include "options.h"
+#include "pose_prior_options.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/point_colors.h"
 #include "ramap/pipeline/mapper.h"
@@ -28,6 +29,8 @@ int RunReconstruct(int argc, char** argv) {
   MapperOptions mapper;
   MapperOptionText text;
   AddMapperOptions(app, &mapper, &text);
+  PosePriorOptionText prior_text;
+  AddPosePriorOptions(app, &prior_text, &mapper.georegistration, /*with_uses=*/true);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   FinishFeatureOptions(&features);
   FinishMapperOptions(text, &mapper);
@@ -37,14 +40,18 @@ int RunReconstruct(int argc, char** argv) {
   std::filesystem::create_directories(output_path);
   const std::string database_path = output_path + "/database.db";
   WriteColmapDatabase(database, database_path);
-  MapperResult result = RunMapper(database, mapper, database_path, &std::cout);
+  // EXIF GPS went into the database's prior positions (as COLMAP's ImageReader does).
+  const LocalizedPriors priors =
+      LoadPosePriors(prior_text, database, "ramap reconstruct", std::cerr);
+  MapperResult result = RunMapper(database, mapper, database_path, &std::cout, priors.priors);
   for (Reconstruction& reconstruction : result.reconstructions) {
     ColorPointsFromImages(image_path, &reconstruction);
   }
   const nlohmann::json run = {
       {"command", "reconstruct"},       {"image_path", image_path},
       {"database_path", database_path}, {"feature_type", features.type},
-      {"matching_mode", features.mode}, {"options", MapperOptionsToJson(mapper)}};
+      {"matching_mode", features.mode}, {"options", MapperOptionsToJson(mapper)},
+      {"pose_priors", PosePriorOptionsToJson(prior_text, mapper.georegistration)}};
   WriteMapperOutput(result, output_path + "/sparse", ModelFormat::kBinary, run);
   std::cout << "ramap reconstruct: " << result.summary.num_registered_images << " of "
             << database.images.size() << " images registered in " << result.reconstructions.size()

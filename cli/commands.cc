@@ -10,6 +10,7 @@ int RunFeatureExtractor(int argc, char** argv);
 int RunMatcher(int argc, char** argv);
 int RunReconstruct(int argc, char** argv);
 int RunMapper(int argc, char** argv);
+int RunModelAligner(int argc, char** argv);
 int RunModelConverter(int argc, char** argv);
 int RunRelativePoses(int argc, char** argv);
 int RunRotationAverager(int argc, char** argv);
@@ -30,6 +31,8 @@ const std::vector<Command>& AllCommands() {
       {"compare", "COLMAP's BA mapper vs ramap on one database: accuracy, time, figures",
        RunCompare},
       {"database_info", "counts and checks what a COLMAP database holds", RunDatabaseInfo},
+      {"model_aligner", "georegister a COLMAP model to GPS / position priors (ENU, GeoJSON)",
+       RunModelAligner},
       {"model_converter", "convert a COLMAP sparse model between BIN and TXT", RunModelConverter},
       {"synthesize", "a synthetic scene with exact ground truth (database, model, TUM)",
        RunSynthesize},

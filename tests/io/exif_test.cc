@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <exiv2/exiv2.hpp>
+#include <cmath>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
@@ -50,6 +51,65 @@ TEST(Exif, ImageReaderTakesTheExifFocalLength) {
   ASSERT_EQ(database.cameras.size(), 1u);
   EXPECT_NEAR(database.cameras.at(1).params[0], 800.0, 1e-9);  // 72 / 36 * 400
   EXPECT_TRUE(database.cameras.at(1).has_prior_focal_length);
+}
+
+// Degrees as the three rationals EXIF stores (degrees, minutes, seconds to 1e-4 s).
+Exiv2::URationalValue DegreesMinutesSeconds(double degrees) {
+  degrees = std::abs(degrees);
+  const int whole = static_cast<int>(degrees);
+  const int minutes = static_cast<int>((degrees - whole) * 60);
+  const double seconds = (degrees - whole - minutes / 60.0) * 3600;
+  Exiv2::URationalValue value;
+  value.value_ = {{whole, 1}, {minutes, 1}, {static_cast<uint32_t>(std::lround(seconds * 1e4)), 10000}};
+  return value;
+}
+
+void WriteJpegWithGps(const std::string& path, double latitude, double longitude,
+                      double altitude) {
+  cv::imwrite(path, cv::Mat(300, 400, CV_8UC3, cv::Scalar(10, 200, 30)));
+  auto image = Exiv2::ImageFactory::open(path);
+  image->readMetadata();
+  Exiv2::ExifData exif;
+  exif["Exif.GPSInfo.GPSLatitudeRef"] = latitude < 0 ? "S" : "N";
+  exif["Exif.GPSInfo.GPSLatitude"] = DegreesMinutesSeconds(latitude);
+  exif["Exif.GPSInfo.GPSLongitudeRef"] = longitude < 0 ? "W" : "E";
+  exif["Exif.GPSInfo.GPSLongitude"] = DegreesMinutesSeconds(longitude);
+  exif["Exif.GPSInfo.GPSAltitudeRef"] = static_cast<uint8_t>(altitude < 0 ? 1 : 0);
+  exif["Exif.GPSInfo.GPSAltitude"] =
+      Exiv2::URational(static_cast<uint32_t>(std::lround(std::abs(altitude) * 100)), 100);
+  image->setExifData(exif);
+  image->writeMetadata();
+}
+
+TEST(Exif, GpsPositionFromTheTagsOfAJpegTheTestWrote) {
+  test::TempDir dir;
+  WriteJpegWithGps(dir / "karlsruhe.jpg", 49.0113456, 8.4165432, 115.25);
+  const std::optional<GeodeticPoint> north_east = ExifGpsPosition(dir / "karlsruhe.jpg");
+  ASSERT_TRUE(north_east.has_value());
+  // 1e-4 arc seconds is 3 mm.
+  EXPECT_NEAR(north_east->latitude_deg, 49.0113456, 1e-7);
+  EXPECT_NEAR(north_east->longitude_deg, 8.4165432, 1e-7);
+  EXPECT_NEAR(north_east->altitude_m, 115.25, 1e-9);
+  WriteJpegWithGps(dir / "dead_sea.jpg", -33.8688, -70.5, -420.5);  // south, west, below sea
+  const std::optional<GeodeticPoint> south_west = ExifGpsPosition(dir / "dead_sea.jpg");
+  ASSERT_TRUE(south_west.has_value());
+  EXPECT_NEAR(south_west->latitude_deg, -33.8688, 1e-7);
+  EXPECT_NEAR(south_west->longitude_deg, -70.5, 1e-7);
+  EXPECT_NEAR(south_west->altitude_m, -420.5, 1e-9);
+  cv::imwrite(dir / "plain.jpg", cv::Mat(30, 40, CV_8UC3, cv::Scalar(1, 2, 3)));
+  EXPECT_FALSE(ExifGpsPosition(dir / "plain.jpg").has_value());
+  std::ofstream(dir / "broken.jpg") << "no jpeg";
+  EXPECT_FALSE(ExifGpsPosition(dir / "broken.jpg").has_value());
+
+  // The image reader stores it as COLMAP does: latitude, longitude, altitude in prior_t.
+  ExtractionSummary summary;
+  const FeatureDatabase database =
+      ExtractImageFeatures(dir.path(), {"karlsruhe.jpg", "plain.jpg"}, ImageReaderOptions(),
+                           FeatureExtractionOptions(), &summary);
+  EXPECT_EQ(summary.num_images_with_gps, 1);
+  ASSERT_TRUE(database.images.at(1).prior_translation.has_value());
+  EXPECT_NEAR(database.images.at(1).prior_translation->x(), 49.0113456, 1e-7);
+  EXPECT_FALSE(database.images.at(2).prior_translation.has_value());
 }
 
 }  // namespace

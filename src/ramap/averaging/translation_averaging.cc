@@ -186,19 +186,37 @@ std::vector<Constraint> BuildConstraints(const std::map<uint32_t, Eigen::Quatern
   return constraints;
 }
 
+// The stacked system B v, v = (centres, pair scales, prior constants). Blocks: tracks, pairs,
+// priors. A pair scale is bounded below by `scale_bound`; a prior constant is held at 1 (it
+// multiplies the prior's position, moving it to the right-hand side).
+struct StackedSystem {
+  Eigen::SparseMatrix<double> B;
+  int num_position_cols = 0;
+  int num_pair_scales = 0;
+  int num_prior_columns = 0;
+  double scale_bound = 1.0;
+  double prior_min_residual = 1.0;  // IRLS residual floor of prior blocks (Huber at one sigma)
+
+  int num_extra_cols() const { return num_pair_scales + num_prior_columns; }
+  int first_prior_col() const { return num_position_cols + num_pair_scales; }
+};
+
 Eigen::VectorXd SoftThreshold(const Eigen::VectorXd& v, double kappa) {
   return (v.array() - kappa).max(0.0) - (-v.array() - kappa).max(0.0);
 }
 
-Eigen::VectorXd ProjectScales(Eigen::VectorXd v, int num_position_cols) {
-  v.tail(v.size() - num_position_cols) = v.tail(v.size() - num_position_cols).cwiseMax(1.0);
+Eigen::VectorXd ProjectScales(Eigen::VectorXd v, const StackedSystem& system) {
+  v.segment(system.num_position_cols, system.num_pair_scales) =
+      v.segment(system.num_position_cols, system.num_pair_scales).cwiseMax(system.scale_bound);
+  v.tail(system.num_prior_columns).setOnes();
   return v;
 }
 
-// min ||B v||_1 over v = (positions, scales >= 1) by ADMM, from `x` (feasible).
-Eigen::VectorXd SolveByAdmm(const Eigen::SparseMatrix<double>& B, int num_position_cols,
-                            Eigen::VectorXd x, const TranslationAveragingOptions& options,
-                            int* iterations) {
+// min ||B v||_1 over v = (positions, scales >= bound, prior constants = 1) by ADMM, from `x`
+// (feasible).
+Eigen::VectorXd SolveByAdmm(const StackedSystem& system, Eigen::VectorXd x,
+                            const TranslationAveragingOptions& options, int* iterations) {
+  const Eigen::SparseMatrix<double>& B = system.B;
   const int num_rows = static_cast<int>(B.rows());
   const int num_cols = static_cast<int>(B.cols());
   Eigen::SparseMatrix<double> ridge(num_cols, num_cols);
@@ -229,7 +247,7 @@ Eigen::VectorXd SolveByAdmm(const Eigen::SparseMatrix<double>& B, int num_positi
     const Eigen::VectorXd z_previous = z;
     const Eigen::VectorXd x_previous = x;
     z = SoftThreshold(By_relaxed + u, 1.0 / rho);
-    x = ProjectScales(y + w, num_position_cols);
+    x = ProjectScales(y + w, system);
     u += By_relaxed - z;
     w += y - x;
     const double primal = std::sqrt((By - z).squaredNorm() + (y - x).squaredNorm());
@@ -271,18 +289,23 @@ Eigen::VectorXd SolveByAdmm(const Eigen::SparseMatrix<double>& B, int num_positi
 // an approximation of the sum of block norms (the L1 objective of Ozyesil & Singer's LUD), and each
 // step is one direct sparse solve, so that scale travels the length of a long sequence in one step
 // rather than over thousands of ADMM iterations (block_normal_equations.h keeps each step to a
-// reweighting and a numeric refactorisation). Scales at their bound are held at 1 (their columns
+// reweighting and a numeric refactorisation). Scales at their bound are held there (their columns
 // move to the right-hand side); a held scale is released when its pair row alone would want it
-// above 1.
-Eigen::VectorXd SolveByIrls(const Eigen::SparseMatrix<double>& B, int num_position_cols,
-                            Eigen::VectorXd x, const TranslationAveragingOptions& options,
-                            int* iterations) {
-  const int num_cols = static_cast<int>(B.cols());
-  const int num_scales = num_cols - num_position_cols;
+// above the bound. Prior constants are always held at 1; prior blocks are weighted by
+// 1 / max(|r|, prior_min_residual), a Huber loss on residuals in standard deviations.
+Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
+                            const TranslationAveragingOptions& options, int* iterations) {
+  const Eigen::SparseMatrix<double>& B = system.B;
+  const int num_position_cols = system.num_position_cols;
+  const int num_scales = system.num_extra_cols();
   const int num_blocks = static_cast<int>(B.rows()) / 3;
   const int first_pair_block = num_blocks - num_scales;
+  const int first_prior_block = first_pair_block + system.num_pair_scales;
+  const auto is_prior = [&](int k) { return k >= system.num_pair_scales; };
   std::vector<bool> held(num_scales);
-  for (int k = 0; k < num_scales; ++k) held[k] = x(num_position_cols + k) <= 1.0;
+  for (int k = 0; k < num_scales; ++k) {
+    held[k] = is_prior(k) || x(num_position_cols + k) <= system.scale_bound;
+  }
   // The pair row of scale k is w (c_j - c_i - s d): its column holds -w d.
   std::vector<Eigen::Vector3d> scale_columns(num_scales, Eigen::Vector3d::Zero());
   for (int k = 0; k < num_scales; ++k) {
@@ -293,7 +316,8 @@ Eigen::VectorXd SolveByIrls(const Eigen::SparseMatrix<double>& B, int num_positi
   std::vector<int> scale_column_ids(num_scales);
   for (int k = 0; k < num_scales; ++k) scale_column_ids[k] = num_position_cols + k;
   const BlockNormalEquations equations(B, scale_column_ids);
-  const std::vector<double> ones(num_scales, 1.0);
+  std::vector<double> held_values(num_scales, system.scale_bound);
+  for (int k = system.num_pair_scales; k < num_scales; ++k) held_values[k] = 1.0;
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver;
   solver.analyzePattern(equations.pattern());
   Eigen::VectorXd block_weights(num_blocks);
@@ -303,10 +327,11 @@ Eigen::VectorXd SolveByIrls(const Eigen::SparseMatrix<double>& B, int num_positi
   for (; iteration < options.max_irls_iterations; ++iteration) {
     const Eigen::VectorXd residuals = B * x;
     for (int b = 0; b < num_blocks; ++b) {
-      block_weights(b) =
-          1.0 / std::max(residuals.segment<3>(3 * b).norm(), options.irls_min_residual);
+      const double floor =
+          b >= first_prior_block ? system.prior_min_residual : options.irls_min_residual;
+      block_weights(b) = 1.0 / std::max(residuals.segment<3>(3 * b).norm(), floor);
     }
-    equations.Assemble(block_weights, held, ones, &normal, &rhs);
+    equations.Assemble(block_weights, held, held_values, &normal, &rhs);
     // A tiny ridge keeps the factorisation defined where a camera is only weakly constrained.
     solver.setShift(1e-10);
     solver.factorize(normal);
@@ -314,14 +339,14 @@ Eigen::VectorXd SolveByIrls(const Eigen::SparseMatrix<double>& B, int num_positi
       throw std::runtime_error("translation averaging: factorisation failed");
     }
     Eigen::VectorXd next = solver.solve(rhs);
-    // Active set: a free scale below 1 is held; a held scale is released when its pair row alone
-    // (the only row it appears in) would put it above 1.
-    // Every row is homogeneous but for the held scales, so at least one must stay held: the one
-    // its pair would lengthen least.
+    // Active set: a free scale below the bound is held; a held scale is released when its pair
+    // row alone (the only row it appears in) would put it above the bound.
+    // Without priors every row is homogeneous but for the held scales, so at least one must stay
+    // held: the one its pair would lengthen least.
     const Eigen::VectorXd next_residuals = B * next;
     int tightest = -1;
     double tightest_preferred = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < num_scales; ++k) {
+    for (int k = 0; k < system.num_pair_scales; ++k) {
       double& scale = next(num_position_cols + k);
       if (held[k]) {
         const Eigen::Vector3d& column = scale_columns[k];
@@ -329,13 +354,14 @@ Eigen::VectorXd SolveByIrls(const Eigen::SparseMatrix<double>& B, int num_positi
             scale - column.dot(next_residuals.segment<3>(3 * (first_pair_block + k))) /
                         column.squaredNorm();
         if (preferred < tightest_preferred) tightest_preferred = preferred, tightest = k;
-        if (preferred > 1.0) held[k] = false;
-      } else if (scale < 1.0) {
-        scale = 1.0;
+        if (preferred > system.scale_bound) held[k] = false;
+      } else if (scale < system.scale_bound) {
+        scale = system.scale_bound;
         held[k] = true;
       }
     }
-    if (std::find(held.begin(), held.end(), true) == held.end() && tightest >= 0) {
+    if (system.num_prior_columns == 0 &&
+        std::find(held.begin(), held.end(), true) == held.end() && tightest >= 0) {
       held[tightest] = true;
     }
     const double change = (next.head(num_position_cols) - x.head(num_position_cols)).norm() /
@@ -359,6 +385,8 @@ void TranslationAveragingOptions::Check() const {
   if (max_observations_per_track < 2) throw std::invalid_argument("max_observations_per_track < 2");
   if (max_num_tracks < 1) throw std::invalid_argument("max_num_tracks must be >= 1");
   if (!(admm_rho > 0)) throw std::invalid_argument("admm_rho must be > 0");
+  if (!(prior_weight > 0)) throw std::invalid_argument("prior_weight must be > 0");
+  if (!(prior_huber_sigmas > 0)) throw std::invalid_argument("prior_huber_sigmas must be > 0");
   if (!(pair_constraint_weight > 0)) {
     throw std::invalid_argument("pair_constraint_weight must be > 0");
   }
@@ -378,7 +406,7 @@ void TranslationAveragingOptions::Check() const {
 TranslationAveragingResult AverageTranslations(
     const std::map<uint32_t, Eigen::Quaterniond>& rotations,
     const std::vector<PairDirection>& pair_directions, const std::vector<TranslationTrack>& tracks,
-    const TranslationAveragingOptions& options) {
+    const TranslationAveragingOptions& options, const std::vector<CenterPrior>& priors) {
   options.Check();
   Timer timer;
   TranslationAveragingResult result;
@@ -437,9 +465,23 @@ TranslationAveragingResult AverageTranslations(
   }
   if (solved.size() < 2)
     throw std::runtime_error("translation averaging: fewer than two cameras connected");
+  // Priors of positioned cameras; with any, they fix the gauge and no camera is held.
+  std::vector<CenterPrior> used_priors;
+  {
+    const std::set<uint32_t> solved_set(solved.begin(), solved.end());
+    for (const CenterPrior& prior : priors) {
+      if (solved_set.count(prior.image_id) && prior.center.allFinite() &&
+          prior.sqrt_information.allFinite()) {
+        used_priors.push_back(prior);
+      }
+    }
+  }
+  const bool has_priors = !used_priors.empty();
   std::map<uint32_t, int> column;  // image id -> camera index (the gauge camera: -1)
-  result.gauge_image_id = solved.front();
-  for (size_t i = 0; i < solved.size(); ++i) column[solved[i]] = static_cast<int>(i) - 1;
+  result.gauge_image_id = has_priors ? 0 : solved.front();
+  for (size_t i = 0; i < solved.size(); ++i) {
+    column[solved[i]] = static_cast<int>(i) - (has_priors ? 0 : 1);
+  }
   constraints.erase(std::remove_if(constraints.begin(), constraints.end(),
                                    [&](const Constraint& c) { return !column.count(c.a.from); }),
                     constraints.end());
@@ -448,11 +490,13 @@ TranslationAveragingResult AverageTranslations(
               pairs.end());
 
   // B v = 0 with v = (centres of all cameras but the gauge camera, fixed at the origin; one scale
-  // per pair). Track rows first, then pair rows.
-  const int num_cameras = static_cast<int>(solved.size()) - 1;
+  // per pair; with priors, every centre and one constant per prior). Track rows first, then pair
+  // rows, then prior rows.
+  const int num_cameras = static_cast<int>(solved.size()) - (has_priors ? 0 : 1);
   const int num_position_cols = 3 * num_cameras;
-  const int num_cols = num_position_cols + static_cast<int>(pairs.size());
-  const int num_rows = 3 * static_cast<int>(constraints.size() + pairs.size());
+  const int num_cols =
+      num_position_cols + static_cast<int>(pairs.size() + used_priors.size());
+  const int num_rows = 3 * static_cast<int>(constraints.size() + pairs.size() + used_priors.size());
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(constraints.size() * 36 + pairs.size() * 9);
   auto add_block = [&](int row, uint32_t image_id, const Eigen::Matrix3d& block) {
@@ -484,8 +528,28 @@ TranslationAveragingResult AverageTranslations(
                             -w_pair * pairs[k].direction(r));
     }
   }
-  Eigen::SparseMatrix<double> B(num_rows, num_cols);
-  B.setFromTriplets(triplets.begin(), triplets.end());
+  // Prior rows: W (c - p) = W c - (W p) * 1, the constant column held at 1.
+  for (size_t k = 0; k < used_priors.size(); ++k) {
+    const int row = 3 * static_cast<int>(constraints.size() + pairs.size() + k);
+    const Eigen::Matrix3d W = options.prior_weight * used_priors[k].sqrt_information;
+    add_block(row, used_priors[k].image_id, W);
+    const Eigen::Vector3d constant = -(W * used_priors[k].center);
+    for (int r = 0; r < 3; ++r) {
+      triplets.emplace_back(row + r, num_position_cols + static_cast<int>(pairs.size() + k),
+                            constant(r));
+    }
+  }
+  StackedSystem system;
+  system.B.resize(num_rows, num_cols);
+  system.B.setFromTriplets(triplets.begin(), triplets.end());
+  system.num_position_cols = num_position_cols;
+  system.num_pair_scales = static_cast<int>(pairs.size());
+  system.num_prior_columns = static_cast<int>(used_priors.size());
+  // The bound s >= 1 only excludes the collapsed solutions; priors already do, and in their units
+  // a baseline may be any length.
+  system.scale_bound = has_priors ? 0.0 : 1.0;
+  system.prior_min_residual = options.prior_huber_sigmas * options.prior_weight;
+  const Eigen::SparseMatrix<double>& B = system.B;
 
   // Start: least squares with every scale at 1, min ||B_c c + B_s 1||^2, then each scale set to
   // the projected baseline it implies (at least 1).
@@ -497,7 +561,7 @@ TranslationAveragingResult AverageTranslations(
   };
   {
     const Eigen::SparseMatrix<double> B_c = B.leftCols(num_position_cols);
-    const Eigen::SparseMatrix<double> B_s = B.rightCols(pairs.size());
+    const Eigen::SparseMatrix<double> B_s = B.rightCols(system.num_extra_cols());
     Eigen::SparseMatrix<double> normal_c = B_c.transpose() * B_c;
     Eigen::SparseMatrix<double> ridge_c(num_position_cols, num_position_cols);
     ridge_c.setIdentity();
@@ -508,17 +572,18 @@ TranslationAveragingResult AverageTranslations(
       throw std::runtime_error("translation averaging: factorisation failed");
     }
     x.head(num_position_cols) =
-        least_squares.solve(-(B_c.transpose() * (B_s * Eigen::VectorXd::Ones(pairs.size()))));
+        least_squares.solve(
+            -(B_c.transpose() * (B_s * Eigen::VectorXd::Ones(system.num_extra_cols()))));
     for (size_t k = 0; k < pairs.size(); ++k) {
       x(num_position_cols + k) = pairs[k].direction.dot(center(pairs[k].j) - center(pairs[k].i));
     }
-    x = ProjectScales(x, num_position_cols);
+    x = ProjectScales(x, system);
   }
 
   int iterations = 0;
   x = options.solver == TranslationSolver::kIrls
-          ? SolveByIrls(B, num_position_cols, x, options, &iterations)
-          : SolveByAdmm(B, num_position_cols, x, options, &iterations);
+          ? SolveByIrls(system, x, options, &iterations)
+          : SolveByAdmm(system, x, options, &iterations);
   result.num_solver_iterations = iterations;
 
   // The documented scale: mean projected pair baseline = 1.
@@ -532,7 +597,9 @@ TranslationAveragingResult AverageTranslations(
   }
   result.l1_cost = (B * x).lpNorm<1>();
   result.num_constraints = static_cast<int>(constraints.size() + pairs.size());
-  const double scale = static_cast<double>(pairs.size()) / projected;
+  result.num_priors_used = static_cast<int>(used_priors.size());
+  // With priors the solution is already in their frame and units.
+  const double scale = has_priors ? 1.0 : static_cast<double>(pairs.size()) / projected;
   for (const uint32_t image_id : solved) result.centers[image_id] = scale * center(image_id);
   result.seconds = timer.ElapsedSeconds();
   return result;

@@ -21,6 +21,11 @@
 // slower and, stopped by its tolerances, less accurate (KITTI 07: 7.1 s and ATE 2.7% of the path,
 // against IRLS's 1.1 s and 1.9%). The result is then scaled so that the mean projected baseline
 // of the pairs is one.
+//
+// Position priors (GPS, in a frame the rotations are already aligned to) add rows W (c_i - p_i)
+// with W the prior's square-root information, Huber-weighted in IRLS. They fix the gauge (no
+// camera is held, the result is not rescaled) and bound drift along a sequence the way a loop
+// would; the pair scales then only need s_ij >= 0.
 #pragma once
 
 #include <Eigen/Core>
@@ -46,6 +51,14 @@ struct PairDirection {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
 };
 
+// A camera centre measured in the world frame of the rotations: rows
+// prior_weight * sqrt_information * (c - center), residuals in standard deviations.
+struct CenterPrior {
+  uint32_t image_id = 0;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d sqrt_information = Eigen::Matrix3d::Identity();
+};
+
 enum class TranslationSolver {
   kIrls,  // iteratively reweighted least squares, one direct solve per step (default)
   kAdmm,  // ADMM (Boyd et al. 2011), the design's solver: cheap steps, a long tail on sequences
@@ -64,6 +77,12 @@ struct TranslationAveragingOptions {
   // Weight of a pair row (c_j - c_i = s_ij d_ij, residual in position units) against a track row
   // (residual in baselines).
   double pair_constraint_weight = 10.0;
+  // Prior rows' weight: 1 makes a one-sigma GPS error cost as much as a tenth of a baseline in a
+  // pair row, weak enough that the images decide the local shape and GPS the drift.
+  double prior_weight = 1.0;
+  // IRLS treats prior residuals up to this many standard deviations as squares, beyond as L1
+  // (Huber), so that noise averages out and a wrong fix pulls with bounded force.
+  double prior_huber_sigmas = 1.0;
   TranslationSolver solver = TranslationSolver::kIrls;
   // IRLS: steps at most; stop when the positions change by less than irls_tolerance (relative);
   // residual floor of the weights 1 / max(|r|, irls_min_residual) (scales are >= 1, so positions
@@ -98,7 +117,7 @@ struct TranslationAveragingOptions {
 
 struct TranslationAveragingResult {
   // Camera centres in world coordinates (the gauge: `gauge_image_id` at the origin, mean projected
-  // pair baseline = 1).
+  // pair baseline = 1; with priors, theirs).
   std::map<uint32_t, Eigen::Vector3d> centers;
   uint32_t gauge_image_id = 0;
   // Images with rotations but no usable constraint, not positioned.
@@ -106,16 +125,18 @@ struct TranslationAveragingResult {
   int num_tracks_used = 0;
   int num_constraints = 0;  // 3-row blocks: track constraints and pair rows
   int num_solver_iterations = 0;
+  int num_priors_used = 0;
   double l1_cost = 0.0;
   double seconds = 0.0;
 };
 
 // Positions for the cameras of `rotations` (cam_from_world). Cameras linked by no constraint are
-// listed in `unconstrained_images`. Throws std::runtime_error when fewer than two cameras can be
-// positioned.
+// listed in `unconstrained_images`. `priors` of cameras that get positioned are used (see above).
+// Throws std::runtime_error when fewer than two cameras can be positioned.
 TranslationAveragingResult AverageTranslations(
     const std::map<uint32_t, Eigen::Quaterniond>& rotations,
     const std::vector<PairDirection>& pair_directions, const std::vector<TranslationTrack>& tracks,
-    const TranslationAveragingOptions& options = TranslationAveragingOptions());
+    const TranslationAveragingOptions& options = TranslationAveragingOptions(),
+    const std::vector<CenterPrior>& priors = {});
 
 }  // namespace ramap

@@ -123,6 +123,7 @@ FeatureDatabase ExtractImageFeatures(const std::string& image_path,
     std::string problem;  // empty when read
     int width = 0, height = 0;
     std::optional<double> exif_focal_px;
+    std::optional<GeodeticPoint> exif_gps;
     ImageFeatures features;
   };
   std::vector<Result> results(names.size());
@@ -150,6 +151,7 @@ FeatureDatabase ExtractImageFeatures(const std::string& image_path,
         if (reader.camera_params.empty()) {
           results[k].exif_focal_px = ExifFocalLengthPx(path, grey.cols, grey.rows);
         }
+        results[k].exif_gps = ExifGpsPosition(path);
       },
       progress, "feature extraction", "images");
 
@@ -179,6 +181,11 @@ FeatureDatabase ExtractImageFeatures(const std::string& image_path,
     image.image_id = next_image_id++;
     image.name = names[k];
     image.camera_id = camera_id;
+    // As COLMAP's ImageReader: GPS in the prior position columns as latitude, longitude, altitude.
+    if (const auto& gps = result.exif_gps) {
+      image.prior_translation = Eigen::Vector3d(gps->latitude_deg, gps->longitude_deg, gps->altitude_m);
+      ++summary->num_images_with_gps;
+    }
     database.images[image.image_id] = image;
     summary->num_keypoints += static_cast<int>(result.features.keypoints.size());
     database.keypoints[image.image_id] = std::move(result.features.keypoints);

@@ -37,6 +37,7 @@ struct ExtractionSummary {
   int num_images = 0;                       // read and with features
   std::vector<std::string> skipped_images;  // "NAME: reason" for each image that was not
   int num_keypoints = 0;
+  int num_images_with_gps = 0;  // EXIF GPS stored as the image's prior position
   double seconds = 0.0;
 };
 

@@ -84,7 +84,39 @@ struct MapperContext {
   StageLog& log;
   MapperSummary& summary;
   std::map<uint32_t, std::string>& image_reasons;
+  const PositionPriors& priors;
 };
+
+std::string Metres(double value) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(2) << value << " m";
+  return out.str();
+}
+
+// Fits the averaged model to the priors; with the fit and use_in_translation_averaging, solves
+// translation averaging again with the inlier priors as rows (in the model frame) and fits once
+// more, so that the outliers and the residuals reported are those of the final positions.
+PriorAlignment GeoregisterPositions(const MapperContext& context,
+                                    const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+                                    const std::vector<PairDirection>& directions,
+                                    const std::vector<TranslationTrack>& tracks,
+                                    TranslationAveragingResult* positions) {
+  const GeoregistrationOptions& options = context.options.georegistration;
+  PriorAlignment alignment = AlignCentersToPriors(positions->centers, context.priors, options);
+  if (!alignment.summary.georegistered || !options.use_in_translation_averaging) return alignment;
+  try {
+    TranslationAveragingResult constrained =
+        AverageTranslations(rotations, directions, tracks, context.options.translation_averaging,
+                            PriorsInModelFrame(alignment));
+    PriorAlignment refit = AlignCentersToPriors(constrained.centers, context.priors, options);
+    if (!refit.summary.georegistered) return alignment;
+    refit.summary.used_in_translation_averaging = true;
+    *positions = std::move(constrained);
+    return refit;
+  } catch (const std::runtime_error&) {
+    return alignment;  // the positions without priors stand
+  }
+}
 
 // Stages 2-6 for one connected component of the view graph. Returns false (with reasons recorded)
 // when the component cannot be reconstructed.
@@ -180,6 +212,7 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
     context.image_reasons[id] =
         "no translation constraint links it to the rest (too little parallax?)";
   }
+
   component.num_translation_constraints = positions.num_constraints;
   component.num_solver_iterations = positions.num_solver_iterations;
   context.log.Record("translation averaging", timer.ElapsedSeconds(),
@@ -188,11 +221,36 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
                          std::to_string(positions.num_tracks_used) + " tracks, " +
                          std::to_string(positions.num_solver_iterations) + " solver iterations");
 
+  // Georegistration with the position priors.
+  PriorAlignment georegistration;
+  if (!context.priors.by_image.empty() && options.georegistration.align) {
+    Timer georegistration_timer;
+    georegistration = GeoregisterPositions(context, world_rotations, directions,
+                                           translation_tracks, &positions);
+    const GeoregistrationSummary& geo = georegistration.summary;
+    context.log.Record(
+        "georegistration", georegistration_timer.ElapsedSeconds(),
+        geo.georegistered
+            ? std::to_string(geo.num_inliers) + " of " + std::to_string(geo.num_priors) +
+                  " priors within " + Metres(geo.threshold_m) + ", RMSE " + Metres(geo.rmse_m) +
+                  ", " + std::to_string(geo.outliers.size()) + " outliers" +
+                  (geo.used_in_translation_averaging ? ", used in translation averaging" : "")
+            : "not georegistered: " + geo.problem);
+    for (const PriorOutlier& outlier : geo.outliers) {
+      context.summary.prior_outliers.push_back(
+          {database.images.at(outlier.image_id).name,
+           "prior " + Metres(outlier.error_m) + " from the aligned camera centre (> " +
+               Metres(geo.threshold_m) + "): not used"});
+    }
+  }
+  const bool georegistered = georegistration.summary.georegistered;
+
   // Structure: triangulate every track with the poses fixed.
   std::map<uint32_t, Rigid3d> poses;
   for (const auto& [id, center] : positions.centers) {
     const Eigen::Quaterniond& R = world_rotations.at(id);
     poses[id] = Rigid3d(R, -(R * center));
+    if (georegistered) poses[id] = TransformPose(georegistration.prior_from_model, poses[id]);
   }
   auto triangulate = [&](const std::map<uint32_t, Rigid3d>& fixed_poses,
                          const std::string& what) {
@@ -215,9 +273,12 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
     // Bundle adjustment on the best-connected points, then every track triangulated again with
     // the refined poses.
     Reconstruction adjusted = PointsForBundleAdjustment(*reconstruction, options.bundle_adjustment);
+    const bool use_priors = georegistered && options.georegistration.use_in_bundle_adjustment;
     component.bundle_adjustment =
         BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, &adjusted,
-                     options.bundle_adjustment);
+                     options.bundle_adjustment,
+                     use_priors ? georegistration.inliers : std::map<uint32_t, PositionPrior>());
+    georegistration.summary.used_in_bundle_adjustment = use_priors;
     const BundleAdjustmentSummary& ba = component.bundle_adjustment;
     context.log.Record("bundle adjustment", ba.seconds,
                        std::to_string(ba.num_points) + " points, RMSE " +
@@ -228,6 +289,11 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
     for (const auto& [id, image] : adjusted.images) refined[id] = image.cam_from_world;
     triangulate(refined, "again with the refined poses: ");
   }
+  if (georegistered) {
+    MeasurePriorErrors(*reconstruction, context.priors, georegistration.inliers,
+                       &georegistration.summary);
+  }
+  component.georegistration = georegistration.summary;
   component.num_images = static_cast<int>(reconstruction->images.size());
   context.summary.components.push_back(component);
   return true;
@@ -249,7 +315,8 @@ void MapperOptions::Check() const {
 }
 
 MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& options,
-                       const std::string& source, std::ostream* progress) {
+                       const std::string& source, std::ostream* progress,
+                       const PositionPriors& priors) {
   options.Check();
   Timer total;
   MapperResult result;
@@ -313,8 +380,8 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
   const std::vector<int> labels = ConnectedComponents(graph);
   const int num_components =
       labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
-  MapperContext context{database,           options, bearings, view_edges,   order,
-                        summary.sequential, log,     summary,  image_reasons};
+  MapperContext context{database, options, bearings,      view_edges,    order,
+                        summary.sequential, log, summary, image_reasons, priors};
   for (int label = 0; label < num_components; ++label) {
     std::vector<bool> keep(graph.edges.size());
     const std::unordered_map<uint32_t, int> index = NodeIndex(graph);
@@ -340,10 +407,25 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
       result.reconstructions.push_back(std::move(reconstruction));
     }
   }
-  std::stable_sort(result.reconstructions.begin(), result.reconstructions.end(),
-                   [](const Reconstruction& a, const Reconstruction& b) {
-                     return a.images.size() > b.images.size();
-                   });
+  // Largest first, the component summaries in the same order.
+  std::vector<size_t> by_size(result.reconstructions.size());
+  for (size_t k = 0; k < by_size.size(); ++k) by_size[k] = k;
+  std::stable_sort(by_size.begin(), by_size.end(), [&](size_t a, size_t b) {
+    return result.reconstructions[a].images.size() > result.reconstructions[b].images.size();
+  });
+  {
+    std::vector<Reconstruction> reconstructions;
+    std::vector<MapperComponentSummary> components;
+    for (const size_t k : by_size) {
+      reconstructions.push_back(std::move(result.reconstructions[k]));
+      components.push_back(summary.components[k]);
+    }
+    result.reconstructions = std::move(reconstructions);
+    summary.components = std::move(components);
+  }
+  for (const MapperComponentSummary& component : summary.components) {
+    if (component.georegistration.georegistered) result.geodetic_origin = priors.origin;
+  }
 
   for (const Reconstruction& reconstruction : result.reconstructions) {
     summary.num_registered_images += static_cast<int>(reconstruction.images.size());

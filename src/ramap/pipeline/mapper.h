@@ -8,10 +8,14 @@
 //   4. pair directions with the averaged rotations, then translation averaging on feature tracks;
 //   5. triangulation with the poses fixed;
 //   6. optionally, bundle adjustment.
+// With position priors (GPS), each component is georegistered after translation averaging
+// (pipeline/georegistration.h), translation averaging is solved again with the priors as weak
+// rows, and the model is triangulated, refined and written in the priors' metric frame.
 #pragma once
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +24,7 @@
 #include "ramap/averaging/translation_averaging.h"
 #include "ramap/geometry/relative_pose.h"
 #include "ramap/graph/keyframes.h"
+#include "ramap/pipeline/georegistration.h"
 #include "ramap/pipeline/structure.h"
 #include "ramap/refine/bundle_adjustment.h"
 #include "ramap/scene/features.h"
@@ -41,6 +46,8 @@ struct MapperOptions {
   PairDirectionOptions pair_direction;
   TranslationAveragingOptions translation_averaging;
   StructureOptions structure;
+  // What to do with position priors, when RunMapper is given any.
+  GeoregistrationOptions georegistration;
   // Final bundle adjustment ("averaging + BA").
   bool refine = false;
   BundleAdjustmentOptions bundle_adjustment;
@@ -77,6 +84,7 @@ struct MapperComponentSummary {
   int num_translation_constraints = 0;
   int num_solver_iterations = 0;
   BundleAdjustmentSummary bundle_adjustment;  // zeros when not refined
+  GeoregistrationSummary georegistration;     // num_priors 0 when run without priors
 };
 
 struct MapperSummary {
@@ -90,20 +98,27 @@ struct MapperSummary {
   std::vector<MapperComponentSummary> components;
   std::vector<DroppedItem> dropped_images;
   std::vector<DroppedItem> dropped_edges;
+  std::vector<DroppedItem> prior_outliers;  // position priors the georegistration rejected
   std::vector<MapperStageTiming> timings;
   double total_seconds = 0.0;
 };
 
 struct MapperResult {
-  // Largest component first.
+  // Largest component first; each georegistered one in the priors' frame (summary.components[k]
+  // says which).
   std::vector<Reconstruction> reconstructions;
   MapperSummary summary;
+  // The geodetic origin of that frame (east-north-up), when the priors had one.
+  std::optional<GeodeticPoint> geodetic_origin;
 };
 
 // Runs every stage on `database`. Throws InputError (naming `source`, e.g. the database path) when
 // nothing can be reconstructed: no verified pairs, no relative pose, no component of
-// min_component_size images. `progress` receives one line per stage.
+// min_component_size images. `progress` receives one line per stage. `priors` (keyed by image id)
+// georegister the components that have enough of them; the others are written as without priors,
+// with the reason in their summary.
 MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& options,
-                       const std::string& source, std::ostream* progress = nullptr);
+                       const std::string& source, std::ostream* progress = nullptr,
+                       const PositionPriors& priors = PositionPriors());
 
 }  // namespace ramap

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "ramap/io/geo_export.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/util/error.h"
 #include "ramap/util/staged_output.h"
@@ -22,7 +23,9 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
   json["total_seconds"] = summary.total_seconds;
   json["gauge"] =
       "translation averaging: the first registered image of each component at the origin, mean "
-      "projected pair baseline 1; bundle adjustment (when run) holds the first image fixed";
+      "projected pair baseline 1; bundle adjustment (when run) holds the first image fixed; "
+      "a georegistered component is in the priors' metric frame instead (east-north-up about "
+      "geo_origin.txt when the priors are geodetic)";
   for (const MapperStageTiming& timing : summary.timings)
     json["stage_seconds"][timing.stage] = timing.seconds;
   for (size_t k = 0; k < summary.components.size(); ++k) {
@@ -51,11 +54,33 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
                                         {"converged", ba.converged},
                                         {"seconds", ba.seconds}};
     }
+    const GeoregistrationSummary& geo = c.georegistration;
+    if (geo.num_priors > 0 || !geo.problem.empty()) {
+      nlohmann::json outliers = nlohmann::json::array();
+      for (const PriorOutlier& o : geo.outliers) {
+        outliers.push_back({{"image_id", o.image_id}, {"error_m", o.error_m}});
+      }
+      component["georegistration"] = {
+          {"georegistered", geo.georegistered},
+          {"problem", geo.problem},
+          {"num_priors", geo.num_priors},
+          {"num_inliers", geo.num_inliers},
+          {"rmse_m", geo.rmse_m},
+          {"threshold_m", geo.threshold_m},
+          {"metres_per_model_unit", geo.scale},
+          {"used_in_translation_averaging", geo.used_in_translation_averaging},
+          {"used_in_bundle_adjustment", geo.used_in_bundle_adjustment},
+          {"outliers", outliers}};
+    }
     json["components"].push_back(component);
   }
   json["dropped_images"] = nlohmann::json::array();
   for (const DroppedItem& item : summary.dropped_images) {
     json["dropped_images"].push_back({{"image", item.what}, {"reason", item.reason}});
+  }
+  json["prior_outliers"] = nlohmann::json::array();
+  for (const DroppedItem& item : summary.prior_outliers) {
+    json["prior_outliers"].push_back({{"image", item.what}, {"reason", item.reason}});
   }
   json["dropped_edges"] = nlohmann::json::array();
   for (const DroppedItem& item : summary.dropped_edges) {
@@ -73,6 +98,11 @@ void WriteContents(const MapperResult& result, const std::string& folder, ModelF
     const std::string model_path = folder + "/" + std::to_string(k);
     WriteColmapModel(result.reconstructions[k], model_path, format);
     WriteTumTrajectory(result.reconstructions[k], model_path + "/trajectory_tum.txt");
+    const bool georegistered = k < result.summary.components.size() &&
+                               result.summary.components[k].georegistration.georegistered;
+    if (georegistered && result.geodetic_origin) {
+      WriteGeoreference(result.reconstructions[k], *result.geodetic_origin, model_path);
+    }
   }
   nlohmann::json summary = MapperSummaryToJson(result.summary);
   summary["run"] = run_info;

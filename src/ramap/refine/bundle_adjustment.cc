@@ -36,6 +36,24 @@ struct NormalizedPlaneError {
   double focal;
 };
 
+// A camera centre prior, in standard deviations per axis: (c - p) / sigma with c = -R^T t.
+struct CenterPriorError {
+  CenterPriorError(const Eigen::Vector3d& prior_center, const Eigen::Vector3d& std_dev_m)
+      : center(prior_center), inverse_std(std_dev_m.cwiseInverse()) {}
+
+  template <typename T>
+  bool operator()(const T* const rotation, const T* const translation, T* residual) const {
+    const Eigen::Map<const Eigen::Quaternion<T>> q(rotation);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t(translation);
+    const Eigen::Matrix<T, 3, 1> c = -(q.conjugate() * t);
+    for (int k = 0; k < 3; ++k) residual[k] = T(inverse_std[k]) * (c[k] - T(center[k]));
+    return true;
+  }
+
+  Eigen::Vector3d center;
+  Eigen::Vector3d inverse_std;
+};
+
 struct Observation {
   uint32_t image_id;
   uint32_t point2D_idx;
@@ -81,8 +99,10 @@ double RmsePx(const std::vector<Observation>& observations, const Reconstruction
   return std::sqrt(sum / observations.size());
 }
 
-// One Ceres solve over `observations`; the first image observed is held fixed (gauge).
+// One Ceres solve over `observations`; the first image observed is held fixed (gauge) unless
+// three or more centre priors fix it.
 ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
+                             const std::map<uint32_t, PositionPrior>& priors,
                              const BundleAdjustmentOptions& options,
                              Reconstruction* reconstruction) {
   ceres::Problem::Options problem_options;
@@ -98,7 +118,19 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
                              &loss, pose.rotation.coeffs().data(), pose.translation.data(),
                              reconstruction->points3D.at(o.point3D_id).xyz.data());
   }
-  bool gauge_fixed = false;
+  ceres::HuberLoss prior_loss(1.0);
+  int num_priors = 0;
+  for (const auto& [image_id, prior] : priors) {
+    const auto image = reconstruction->images.find(image_id);
+    if (image == reconstruction->images.end()) continue;
+    Rigid3d& pose = image->second.cam_from_world;
+    if (!problem.HasParameterBlock(pose.rotation.coeffs().data())) continue;
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<CenterPriorError, 3, 4, 3>(
+                                 new CenterPriorError(prior.center, prior.std_dev_m)),
+                             &prior_loss, pose.rotation.coeffs().data(), pose.translation.data());
+    ++num_priors;
+  }
+  bool gauge_fixed = num_priors >= 3;
   for (auto& [image_id, image] : reconstruction->images) {
     double* rotation = image.cam_from_world.rotation.coeffs().data();
     if (!problem.HasParameterBlock(rotation)) continue;
@@ -217,10 +249,11 @@ Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
 BundleAdjustmentSummary BundleAdjust(
     const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
     const std::map<uint32_t, double>& focal_lengths_px, Reconstruction* reconstruction,
-    const BundleAdjustmentOptions& options) {
+    const BundleAdjustmentOptions& options, const std::map<uint32_t, PositionPrior>& priors) {
   options.Check();
   Timer timer;
   BundleAdjustmentSummary summary;
+  for (const auto& [image_id, prior] : priors) summary.num_priors += reconstruction->images.count(image_id);
   summary.num_images = static_cast<int>(reconstruction->images.size());
   std::vector<Observation> observations =
       UsableObservations(bearings, focal_lengths_px, *reconstruction, options.min_bearing_z);
@@ -228,7 +261,7 @@ BundleAdjustmentSummary BundleAdjust(
   summary.initial_rmse_px = RmsePx(observations, *reconstruction);
   // Solve, detach what still disagrees, and solve once more without it (as COLMAP's global BA).
   for (int round = 0; round < 2 && !observations.empty(); ++round) {
-    const ceres::Solver::Summary solve = Solve(observations, options, reconstruction);
+    const ceres::Solver::Summary solve = Solve(observations, priors, options, reconstruction);
     summary.num_iterations += static_cast<int>(solve.iterations.size());
     summary.converged = solve.termination_type == ceres::CONVERGENCE;
     const int filtered =

@@ -5,6 +5,10 @@
 // Residuals are taken on the normalised image plane of each observation's undistorted bearing and
 // multiplied by the camera's focal length, so they are in pixels (exactly for pinhole cameras, to
 // first order for distorted ones) while the camera model stays out of the cost function.
+//
+// Camera centre priors (GPS in the model's frame, after georegistration) add residuals
+// (c - p) / sigma per axis: a weak constraint beside thousands of pixel residuals per camera, which
+// keeps the model in the priors' frame and scale instead of holding one camera fixed.
 #pragma once
 
 #include <Eigen/Core>
@@ -12,6 +16,7 @@
 #include <map>
 #include <vector>
 
+#include "ramap/scene/position_prior.h"
 #include "ramap/scene/reconstruction.h"
 
 namespace ramap {
@@ -51,6 +56,7 @@ struct BundleAdjustmentSummary {
   double final_rmse_px = 0.0;  // over the observations kept after filtering
   int num_iterations = 0;
   int num_filtered_observations = 0;
+  int num_priors = 0;  // centre priors of registered images
   bool converged = false;
   double seconds = 0.0;
 };
@@ -63,10 +69,12 @@ Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
 
 // Refines `reconstruction` in place. `bearings` holds, per image id, the undistorted unit bearing
 // of each of its points2D (same order). `focal_lengths_px` holds each camera's mean focal length.
-// The first registered image's pose is held fixed (gauge).
+// The first registered image's pose is held fixed (gauge), unless `priors` (keyed by image id, in
+// the reconstruction's frame) cover three or more registered images.
 BundleAdjustmentSummary BundleAdjust(
     const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
     const std::map<uint32_t, double>& focal_lengths_px, Reconstruction* reconstruction,
-    const BundleAdjustmentOptions& options = BundleAdjustmentOptions());
+    const BundleAdjustmentOptions& options = BundleAdjustmentOptions(),
+    const std::map<uint32_t, PositionPrior>& priors = {});
 
 }  // namespace ramap

@@ -1,0 +1,128 @@
+#include "ramap/pipeline/georegistration.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ramap/util/error.h"
+
+namespace ramap {
+
+void GeoregistrationOptions::Check() const {
+  if (!(max_alignment_error_m >= 0)) {
+    throw InputError("PosePrior.max_alignment_error_m", "must be >= 0");
+  }
+  if (min_num_inliers < 3) throw InputError("PosePrior.min_num_inliers", "must be >= 3");
+}
+
+PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& centers,
+                                    const PositionPriors& priors,
+                                    const GeoregistrationOptions& options) {
+  options.Check();
+  PriorAlignment result;
+  GeoregistrationSummary& summary = result.summary;
+  std::vector<uint32_t> ids;
+  std::vector<Eigen::Vector3d> source, target;
+  std::vector<double> sigmas;
+  for (const auto& [id, center] : centers) {
+    const auto prior = priors.by_image.find(id);
+    if (prior == priors.by_image.end()) continue;
+    ids.push_back(id);
+    source.push_back(center);
+    target.push_back(prior->second.center);
+    sigmas.push_back(prior->second.std_dev_m.norm());
+  }
+  summary.num_priors = static_cast<int>(ids.size());
+  if (summary.num_priors < options.min_num_inliers) {
+    summary.problem = std::to_string(summary.num_priors) + " registered images have a prior (" +
+                      std::to_string(options.min_num_inliers) + " needed)";
+    return result;
+  }
+  std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
+  summary.threshold_m = options.max_alignment_error_m > 0 ? options.max_alignment_error_m
+                                                          : 3.0 * sigmas[sigmas.size() / 2];
+  AlignmentOptions alignment_options;
+  alignment_options.estimate_scale = true;
+  alignment_options.robust = true;
+  alignment_options.robust_max_error = summary.threshold_m;
+  const AlignmentResult alignment = AlignPoints(source, target, alignment_options);
+  if (!alignment.ok()) {
+    const AlignmentStatus status = alignment.status;
+    summary.problem =
+        status == AlignmentStatus::kCoincidentPoints
+            ? "the priors (or the model's centres) all coincide: no rotation or scale follows"
+        : status == AlignmentStatus::kCollinearPoints
+            ? "the priors (or the model's centres) lie on one line: the rotation about it is free"
+            : std::string("no similarity fits ") + std::to_string(options.min_num_inliers) +
+                  " or more priors within " + std::to_string(summary.threshold_m) + " m (" +
+                  AlignmentStatusName(status) + ")";
+    return result;
+  }
+  if (alignment.num_inliers < options.min_num_inliers) {
+    summary.problem = "only " + std::to_string(alignment.num_inliers) + " of " +
+                      std::to_string(summary.num_priors) + " priors agree within " +
+                      std::to_string(summary.threshold_m) + " m (" +
+                      std::to_string(options.min_num_inliers) + " needed)";
+    return result;
+  }
+  result.prior_from_model = alignment.target_from_source;
+  double sum_squares = 0.0;
+  for (size_t k = 0; k < ids.size(); ++k) {
+    const double error = (result.prior_from_model * source[k] - target[k]).norm();
+    if (alignment.inliers[k]) {
+      sum_squares += error * error;
+      result.inliers[ids[k]] = priors.by_image.at(ids[k]);
+    } else {
+      summary.outliers.push_back({ids[k], error});
+    }
+  }
+  std::sort(summary.outliers.begin(), summary.outliers.end(),
+            [](const PriorOutlier& a, const PriorOutlier& b) { return a.error_m > b.error_m; });
+  summary.num_inliers = alignment.num_inliers;
+  summary.rmse_m = std::sqrt(sum_squares / alignment.num_inliers);
+  summary.scale = result.prior_from_model.scale;
+  summary.georegistered = true;
+  return result;
+}
+
+std::vector<CenterPrior> PriorsInModelFrame(const PriorAlignment& alignment) {
+  const Sim3d model_from_prior = alignment.prior_from_model.Inverse();
+  // r = diag(1/sigma) (s R c + t - p) = diag(1/sigma) s R (c - model_from_prior * p).
+  const Eigen::Matrix3d scaled_rotation =
+      alignment.prior_from_model.scale * alignment.prior_from_model.rotation.toRotationMatrix();
+  std::vector<CenterPrior> priors;
+  for (const auto& [id, prior] : alignment.inliers) {
+    priors.push_back({id, model_from_prior * prior.center,
+                      prior.std_dev_m.cwiseInverse().asDiagonal() * scaled_rotation});
+  }
+  return priors;
+}
+
+void MeasurePriorErrors(const Reconstruction& reconstruction, const PositionPriors& priors,
+                        const std::map<uint32_t, PositionPrior>& inliers,
+                        GeoregistrationSummary* summary) {
+  auto error = [&](uint32_t id) {
+    const Rigid3d& pose = reconstruction.images.at(id).cam_from_world;
+    const Eigen::Vector3d center = -(pose.rotation.conjugate() * pose.translation);
+    return (center - priors.by_image.at(id).center).norm();
+  };
+  double sum_squares = 0.0;
+  int count = 0;
+  for (const auto& [id, prior] : inliers) {
+    if (!reconstruction.images.count(id)) continue;
+    sum_squares += std::pow(error(id), 2);
+    ++count;
+  }
+  if (count > 0) summary->rmse_m = std::sqrt(sum_squares / count);
+  for (PriorOutlier& outlier : summary->outliers) {
+    if (reconstruction.images.count(outlier.image_id)) outlier.error_m = error(outlier.image_id);
+  }
+}
+
+void TransformReconstruction(const Sim3d& new_from_old, Reconstruction* reconstruction) {
+  for (auto& [id, image] : reconstruction->images) {
+    image.cam_from_world = TransformPose(new_from_old, image.cam_from_world);
+  }
+  for (auto& [id, point] : reconstruction->points3D) point.xyz = new_from_old * point.xyz;
+}
+
+}  // namespace ramap

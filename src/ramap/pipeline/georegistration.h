@@ -1,0 +1,80 @@
+// Georegistration: the averaged model, known up to a similarity, mapped onto the position priors
+// (GPS) of its images by a robust similarity fit over camera centres (RANSAC over triples, then a
+// least-squares refit on the inliers: eval/alignment.h). Fixes whose aligned error exceeds the
+// threshold are reported as outliers by image, and left out of every later use of the priors.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "ramap/averaging/translation_averaging.h"
+#include "ramap/eval/alignment.h"
+#include "ramap/scene/position_prior.h"
+#include "ramap/scene/reconstruction.h"
+
+namespace ramap {
+
+struct GeoregistrationOptions {
+  // Fit the model to the priors and write it in their frame. The two uses below need the fit:
+  // without it they are ignored.
+  bool align = true;
+  // Priors as rows of translation averaging (after a first fit), so GPS bounds scale drift.
+  bool use_in_translation_averaging = true;
+  // Priors as residuals of the optional bundle adjustment.
+  bool use_in_bundle_adjustment = true;
+  // RANSAC inlier threshold on the aligned centre distance (m); 0: three times the median 3D
+  // standard deviation of the priors (3 sigma; with the default 3, 3, 6 m: 22 m).
+  double max_alignment_error_m = 0.0;
+  // Inliers needed to accept a fit (three non-collinear centres fix a similarity; more make a
+  // wrong fix unlikely).
+  int min_num_inliers = 4;
+
+  void Check() const;
+};
+
+struct PriorOutlier {
+  uint32_t image_id = 0;
+  double error_m = 0.0;  // distance of the aligned centre from its prior
+};
+
+struct GeoregistrationSummary {
+  bool georegistered = false;
+  std::string problem;     // why not, when not georegistered
+  int num_priors = 0;      // registered images with a prior
+  int num_inliers = 0;
+  double rmse_m = 0.0;     // aligned centre vs prior, over the inliers
+  double threshold_m = 0.0;
+  double scale = 0.0;      // metres per unit of the model before georegistration
+  bool used_in_translation_averaging = false;
+  bool used_in_bundle_adjustment = false;
+  std::vector<PriorOutlier> outliers;  // largest error first
+};
+
+struct PriorAlignment {
+  GeoregistrationSummary summary;
+  Sim3d prior_from_model;
+  std::map<uint32_t, PositionPrior> inliers;  // the priors the fit accepted
+};
+
+// Robustly fits prior_from_model to the priors of the images in `centers` (model frame). On
+// failure (too few priors, all identical or on one line, no consensus) summary.problem says why.
+PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& centers,
+                                    const PositionPriors& priors,
+                                    const GeoregistrationOptions& options);
+
+// The inlier priors of `alignment` as translation averaging rows in the model frame: the prior
+// mapped back through the fit, its information scaled and rotated with it.
+std::vector<CenterPrior> PriorsInModelFrame(const PriorAlignment& alignment);
+
+// Recomputes summary.rmse_m and the outliers' errors from the final camera centres of a
+// georegistered `reconstruction` (after bundle adjustment moved them).
+void MeasurePriorErrors(const Reconstruction& reconstruction, const PositionPriors& priors,
+                        const std::map<uint32_t, PositionPrior>& inliers,
+                        GeoregistrationSummary* summary);
+
+// Every pose and point mapped by `new_from_old`.
+void TransformReconstruction(const Sim3d& new_from_old, Reconstruction* reconstruction);
+
+}  // namespace ramap

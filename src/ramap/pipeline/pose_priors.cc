@@ -1,0 +1,152 @@
+#include "ramap/pipeline/pose_priors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "ramap/util/error.h"
+
+namespace ramap {
+namespace {
+
+double Median(std::vector<double> values) {
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+std::string Vector(const Eigen::Vector3d& v) {
+  std::ostringstream out;
+  out << std::setprecision(10) << v.x() << " " << v.y() << " " << v.z();
+  return out.str();
+}
+
+// Why a record's value cannot be used, or "" when it can.
+std::string ValueProblem(const PriorRecord& record, PriorCoordinates coordinates) {
+  if (!record.value.allFinite()) return "not a finite value (" + Vector(record.value) + ")";
+  if (coordinates == PriorCoordinates::kWgs84 &&
+      !IsValidGeodeticPoint({record.value.x(), record.value.y(), record.value.z()})) {
+    return "not a latitude, longitude, altitude (" + Vector(record.value) + ")";
+  }
+  if (coordinates == PriorCoordinates::kEcef) {
+    const double radius = record.value.norm();  // the Earth's radius is 6357 - 6378 km
+    if (radius < 6.25e6 || radius > 6.48e6) {
+      return "not an earth-centred position (" + std::to_string(radius / 1e3) +
+             " km from the centre of the Earth)";
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+void PosePriorOptions::Check() const {
+  if (!(std_dev_m.allFinite() && std_dev_m.minCoeff() > 0)) {
+    throw InputError("PosePrior", "standard deviations must be finite and > 0");
+  }
+  if (origin && !IsValidGeodeticPoint(*origin)) {
+    throw InputError("PosePrior.origin", "out of range");
+  }
+  if (!(max_distance_from_origin_m > 0)) {
+    throw InputError("PosePrior.max_distance_from_origin_m", "must be > 0");
+  }
+}
+
+std::vector<PriorRecord> PriorRecordsFromDatabase(const FeatureDatabase& database) {
+  std::vector<PriorRecord> records;
+  for (const auto& [id, image] : database.images) {
+    if (!image.prior_translation) continue;
+    PriorRecord record;
+    record.image_name = image.name;
+    record.value = *image.prior_translation;
+    record.where = "database, image " + std::to_string(id);
+    records.push_back(record);
+  }
+  return records;
+}
+
+LocalizedPriors LocalizePriors(const std::vector<PriorRecord>& records,
+                               const FeatureDatabase& database, const PosePriorOptions& options) {
+  options.Check();
+  LocalizedPriors result;
+  result.num_records = static_cast<int>(records.size());
+  std::map<std::string, uint32_t> ids;
+  for (const auto& [id, image] : database.images) ids[image.name] = id;
+  auto warn = [&](const PriorRecord& record, const std::string& problem) {
+    result.warnings.push_back(record.where + ": prior of " + record.image_name + " not used: " +
+                              problem);
+  };
+
+  // Usable records, one per image.
+  std::map<uint32_t, const PriorRecord*> usable;
+  for (const PriorRecord& record : records) {
+    const auto id = ids.find(record.image_name);
+    if (id == ids.end()) {
+      warn(record, "no image of that name in the database");
+      continue;
+    }
+    if (const std::string problem = ValueProblem(record, options.coordinates); !problem.empty()) {
+      warn(record, problem);
+      continue;
+    }
+    if (record.std_dev_m && !(record.std_dev_m->allFinite() && record.std_dev_m->minCoeff() > 0)) {
+      warn(record, "standard deviations must be finite and > 0");
+      continue;
+    }
+    if (!usable.emplace(id->second, &record).second) warn(record, "a second prior for the image");
+  }
+  if (usable.empty()) return result;
+
+  // The local frame.
+  std::optional<LocalEnuFrame> frame;
+  if (options.origin) {
+    frame.emplace(*options.origin);
+  } else if (options.coordinates == PriorCoordinates::kWgs84 ||
+             options.coordinates == PriorCoordinates::kEcef) {
+    std::vector<double> a, b, c;
+    for (const auto& [id, record] : usable) {
+      a.push_back(record->value.x()), b.push_back(record->value.y()), c.push_back(record->value.z());
+    }
+    const Eigen::Vector3d median(Median(a), Median(b), Median(c));
+    frame.emplace(options.coordinates == PriorCoordinates::kWgs84
+                      ? GeodeticPoint{median.x(), median.y(), median.z()}
+                      : EcefToGeodetic(median));
+  }
+  if (frame && options.coordinates != PriorCoordinates::kXyz) {
+    result.priors.origin = frame->origin();
+  }
+
+  std::map<uint32_t, Eigen::Vector3d> local;
+  for (const auto& [id, record] : usable) {
+    const Eigen::Vector3d& v = record->value;
+    switch (options.coordinates) {
+      case PriorCoordinates::kWgs84: local[id] = frame->FromGeodetic({v.x(), v.y(), v.z()}); break;
+      case PriorCoordinates::kEcef: local[id] = frame->FromEcef(v); break;
+      case PriorCoordinates::kEnu:
+      case PriorCoordinates::kXyz: local[id] = v; break;
+    }
+  }
+  // Gross errors: too far from the origin (for local frames without one, the median position).
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  if (!result.priors.origin) {
+    std::vector<double> a, b, c;
+    for (const auto& [id, p] : local) a.push_back(p.x()), b.push_back(p.y()), c.push_back(p.z());
+    centre = Eigen::Vector3d(Median(a), Median(b), Median(c));
+  }
+  for (const auto& [id, position] : local) {
+    const double distance = (position - centre).norm();
+    if (distance > options.max_distance_from_origin_m) {
+      std::ostringstream problem;
+      problem << std::fixed << std::setprecision(1) << distance / 1e3
+              << " km from the origin of the local frame (PosePrior.max_distance_from_origin_m "
+              << options.max_distance_from_origin_m / 1e3 << " km)";
+      warn(*usable.at(id), problem.str());
+      continue;
+    }
+    const PriorRecord& record = *usable.at(id);
+    result.priors.by_image[id] = {position, record.std_dev_m.value_or(options.std_dev_m)};
+  }
+  return result;
+}
+
+}  // namespace ramap

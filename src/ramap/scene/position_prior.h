@@ -1,0 +1,26 @@
+// Measured camera centres (GPS, a survey) in one local metric frame, the frame a georegistered
+// model is written in.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <optional>
+
+#include "ramap/geometry/geodetic.h"
+
+namespace ramap {
+
+struct PositionPrior {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();       // metres, local frame
+  Eigen::Vector3d std_dev_m = Eigen::Vector3d::Ones();    // per axis of the local frame
+};
+
+struct PositionPriors {
+  // When set, the local frame is east-north-up about this origin (GeoJSON can be written);
+  // otherwise it is the metric frame the priors were given in (PriorCoordinates::kXyz).
+  std::optional<GeodeticPoint> origin;
+  std::map<uint32_t, PositionPrior> by_image;
+};
+
+}  // namespace ramap

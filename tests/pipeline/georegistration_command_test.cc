@@ -1,0 +1,139 @@
+// Georegistration as a user runs it: `ramap mapper --PosePrior.path` and `ramap model_aligner`
+// write the model in ENU metres with its origin and a GeoJSON of the cameras; priors that cannot
+// georegister end in a message (model_aligner: non-zero, nothing written; mapper: the model as
+// without priors).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "ramap/geometry/geodetic.h"
+#include "ramap/io/colmap_model.h"
+#include "ramap/io/geo_export.h"
+#include "ramap/io/pose_prior_file.h"
+#include "test_support.h"
+
+namespace ramap {
+namespace {
+
+namespace fs = std::filesystem;
+
+const GeodeticPoint kOrigin{46.5197, 6.5663, 400.0};  // Lausanne
+
+std::string Ramap() { return "'" + test::RamapBinary() + "' "; }
+
+Eigen::Vector3d Center(const Image& image) {
+  return -(image.cam_from_world.rotation.conjugate() * image.cam_from_world.translation);
+}
+
+// A synthetic loop and WGS84 priors at its true centres (world units taken as metres, z up).
+Reconstruction SynthesizeWithPriors(const test::TempDir& dir, bool identical = false) {
+  const test::CommandResult result = test::RunCommand(
+      Ramap() + "synthesize --output_path '" + (dir / "scene") +
+      "' --Synthetic.path loop --Synthetic.num_images 30 --Synthetic.num_points 800"
+      " --Synthetic.seed 5");
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  const Reconstruction truth = ReadColmapModel(dir / "scene/ground_truth");
+  const LocalEnuFrame frame(kOrigin);
+  std::vector<PriorRecord> records;
+  for (const auto& [id, image] : truth.images) {
+    const GeodeticPoint fix = frame.ToGeodetic(identical ? Eigen::Vector3d(1, 1, 1) : Center(image));
+    records.push_back({image.name, Eigen::Vector3d(fix.latitude_deg, fix.longitude_deg, fix.altitude_m),
+                       Eigen::Vector3d(0.1, 0.1, 0.1), ""});
+  }
+  WritePriorFile(records, dir / "priors.txt");
+  return truth;
+}
+
+// The model's centres, mapped to WGS84 through its origin file, against the truth.
+double GeodeticError(const std::string& model_path, const Reconstruction& truth) {
+  const Reconstruction model = ReadColmapModel(model_path);
+  const LocalEnuFrame model_frame(ReadGeoOrigin(model_path + "/geo_origin.txt"));
+  const LocalEnuFrame truth_frame(kOrigin);
+  double worst = 0.0;
+  for (const auto& [id, image] : model.images) {
+    const Eigen::Vector3d in_truth =
+        truth_frame.FromGeodetic(model_frame.ToGeodetic(Center(image)));
+    worst = std::max(worst, (in_truth - Center(truth.images.at(id))).norm());
+  }
+  return worst;
+}
+
+TEST(GeoregistrationCommand, MapperWritesTheModelInEnuWithOriginAndGeoJson) {
+  test::TempDir dir;
+  const Reconstruction truth = SynthesizeWithPriors(dir);
+  const test::CommandResult mapper = test::RunCommand(
+      Ramap() + "mapper --database_path '" + (dir / "scene/database.db") + "' --output_path '" +
+      (dir / "sparse") + "' --PosePrior.path '" + (dir / "priors.txt") + "' --Mapper.refine 1");
+  ASSERT_EQ(mapper.exit_code, 0) << mapper.output;
+  EXPECT_NE(mapper.output.find("model 0 georegistered: 30 of 30 priors"), std::string::npos)
+      << mapper.output;
+  EXPECT_LT(GeodeticError(dir / "sparse/0", truth), 0.1);
+  std::ifstream geojson_file(dir / "sparse/0/cameras.geojson");
+  const nlohmann::json geojson = nlohmann::json::parse(geojson_file);
+  EXPECT_EQ(geojson["type"], "FeatureCollection");
+  ASSERT_EQ(geojson["features"].size(), 30u);
+  const nlohmann::json& first = geojson["features"][0];
+  EXPECT_EQ(first["geometry"]["type"], "Point");
+  EXPECT_NEAR(first["geometry"]["coordinates"][0].get<double>(), kOrigin.longitude_deg, 1e-3);
+  EXPECT_NEAR(first["geometry"]["coordinates"][1].get<double>(), kOrigin.latitude_deg, 1e-3);
+  EXPECT_EQ(first["properties"]["name"], truth.images.begin()->second.name);
+  std::ifstream summary_file(dir / "sparse/summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(summary_file);
+  EXPECT_EQ(summary["components"][0]["georegistration"]["georegistered"], true);
+  EXPECT_EQ(summary["components"][0]["georegistration"]["used_in_bundle_adjustment"], true);
+}
+
+TEST(GeoregistrationCommand, ModelAlignerGeoregistersAModelMadeWithoutPriors) {
+  test::TempDir dir;
+  const Reconstruction truth = SynthesizeWithPriors(dir);
+  ASSERT_EQ(test::RunCommand(Ramap() + "mapper --database_path '" + (dir / "scene/database.db") +
+                             "' --output_path '" + (dir / "sparse") + "'")
+                .exit_code,
+            0);
+  EXPECT_FALSE(fs::exists(dir / "sparse/0/geo_origin.txt"));
+  const test::CommandResult aligner = test::RunCommand(
+      Ramap() + "model_aligner --input_path '" + (dir / "sparse/0") + "' --output_path '" +
+      (dir / "aligned") + "' --PosePrior.path '" + (dir / "priors.txt") +
+      "' --output_type TXT");
+  ASSERT_EQ(aligner.exit_code, 0) << aligner.output;
+  EXPECT_NE(aligner.output.find("30 of 30 priors"), std::string::npos) << aligner.output;
+  EXPECT_TRUE(fs::exists(dir / "aligned/images.txt"));
+  EXPECT_TRUE(fs::exists(dir / "aligned/cameras.geojson"));
+  EXPECT_LT(GeodeticError(dir / "aligned", truth), 0.1);
+}
+
+TEST(GeoregistrationCommand, PriorsThatCannotGeoregisterAreReported) {
+  test::TempDir dir;
+  SynthesizeWithPriors(dir, /*identical=*/true);
+  const test::CommandResult mapper = test::RunCommand(
+      Ramap() + "mapper --database_path '" + (dir / "scene/database.db") + "' --output_path '" +
+      (dir / "sparse") + "' --PosePrior.path '" + (dir / "priors.txt") + "'");
+  ASSERT_EQ(mapper.exit_code, 0) << mapper.output;
+  EXPECT_NE(mapper.output.find("model 0 not georegistered: the priors (or the model's centres) all "
+                               "coincide"),
+            std::string::npos)
+      << mapper.output;
+  EXPECT_TRUE(fs::exists(dir / "sparse/0/images.bin"));
+  EXPECT_FALSE(fs::exists(dir / "sparse/0/geo_origin.txt"));
+
+  const test::CommandResult aligner = test::RunCommand(
+      Ramap() + "model_aligner --input_path '" + (dir / "sparse/0") + "' --output_path '" +
+      (dir / "aligned") + "' --PosePrior.path '" + (dir / "priors.txt") + "'");
+  EXPECT_NE(aligner.exit_code, 0);
+  EXPECT_NE(aligner.output.find("cannot georegister the model"), std::string::npos)
+      << aligner.output;
+  EXPECT_FALSE(fs::exists(dir / "aligned"));
+
+  std::ofstream(dir / "broken.txt") << "frame_000001.png 46.5 6.5\n";
+  const test::CommandResult broken = test::RunCommand(
+      Ramap() + "mapper --database_path '" + (dir / "scene/database.db") + "' --output_path '" +
+      (dir / "sparse2") + "' --PosePrior.path '" + (dir / "broken.txt") + "'");
+  EXPECT_NE(broken.exit_code, 0);
+  EXPECT_NE(broken.output.find("broken.txt:1"), std::string::npos) << broken.output;
+  EXPECT_FALSE(fs::exists(dir / "sparse2"));
+}
+
+}  // namespace
+}  // namespace ramap

@@ -39,11 +39,31 @@ void BenchDataset(const std::string& name, const std::string& database_path,
   const std::map<std::string, Rigid3d> truth = GroundTruthByImageName(
       ReadGroundTruth(ground_truth_path, GroundTruthFormatFromName(format)), names);
 
-  for (const CorrespondenceSampler sampler :
-       {CorrespondenceSampler::kGrid, CorrespondenceSampler::kRandom, CorrespondenceSampler::kRoi,
-        CorrespondenceSampler::kRansac5}) {
+  // A database from ramap's matcher also gets the grid ranked by the descriptor ratio it stores
+  // instead of the Sampson error, to measure what the ratio is worth.
+  const bool has_ratios =
+      std::any_of(database.two_view_geometries.begin(), database.two_view_geometries.end(),
+                  [](const auto& entry) { return !entry.second.inlier_ratios.empty(); });
+  struct Variant {
+    CorrespondenceSampler sampler;
+    bool use_ratios;
+  };
+  std::vector<Variant> variants = {{CorrespondenceSampler::kGrid, false}};
+  if (has_ratios) variants.push_back({CorrespondenceSampler::kGrid, true});
+  for (const CorrespondenceSampler sampler : {CorrespondenceSampler::kRandom,
+                                              CorrespondenceSampler::kRoi,
+                                              CorrespondenceSampler::kRansac5}) {
+    variants.push_back({sampler, false});
+  }
+  for (const Variant& variant : variants) {
+    const CorrespondenceSampler sampler = variant.sampler;
     RelativePoseOptions options;
     options.sampler = sampler;
+    options.use_descriptor_ratios = variant.use_ratios;
+    const std::string label = CorrespondenceSamplerName(sampler) +
+                              (has_ratios && sampler == CorrespondenceSampler::kGrid
+                                   ? (variant.use_ratios ? " (ratio)" : " (Sampson)")
+                                   : "");
     Timer timer;
     const std::vector<ViewGraphEdge> edges =
         EstimateRelativePoses(database, bearings, options, /*num_threads=*/1);
@@ -67,7 +87,7 @@ void BenchDataset(const std::string& name, const std::string& database_path,
       }
     }
     std::printf("| %s | %s | %zu | %d | %.3f | %.3f | %.2f | %.2f | %.2f |\n", name.c_str(),
-                CorrespondenceSamplerName(sampler).c_str(), edges.size(), rejected,
+                label.c_str(), edges.size(), rejected,
                 Percentile(rotation_errors, 0.5), Percentile(rotation_errors, 0.9),
                 Percentile(translation_errors, 0.5), Percentile(translation_errors, 0.9),
                 edges.empty() ? 0.0 : 1000.0 * seconds / edges.size());

@@ -1,7 +1,10 @@
 // `ramap reconstruct --image_path DIR --output_path DIR`: features, matching and the mapper in one
 // command, like `colmap automatic_reconstructor`. Writes DIR/database.db (which COLMAP reads too)
-// and DIR/sparse/0, 1, ... with summary.json.
+// and DIR/sparse/0, 1, ... with summary.json. After sequential matching, the loop candidates of a
+// first solve are matched and verified and the mapper solves again with the loops
+// (pipeline/loop_closure.h).
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 
 #include "feature_options.h"
@@ -10,6 +13,7 @@
 #include "pose_prior_options.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/point_colors.h"
+#include "ramap/pipeline/loop_closure.h"
 #include "ramap/pipeline/mapper.h"
 #include "ramap/pipeline/mapper_output.h"
 #include "ramap/util/error.h"
@@ -31,6 +35,22 @@ int RunReconstruct(int argc, char** argv) {
   AddMapperOptions(app, &mapper, &text);
   PosePriorOptionText prior_text;
   AddPosePriorOptions(app, &prior_text, &mapper.georegistration, /*with_uses=*/true);
+  bool close_loops = true;
+  LoopCandidateOptions loops;
+  app.add_option("--LoopClosure.enable", close_loops,
+                 "1: after sequential matching, match the pairs a first solve puts close, solve "
+                 "again")
+      ->capture_default_str();
+  app.add_option("--LoopClosure.max_distance_baselines", loops.max_distance_baselines,
+                 "candidate centres within this many median frame-to-frame baselines")
+      ->capture_default_str();
+  app.add_option("--LoopClosure.max_view_angle_deg", loops.max_view_angle_deg)
+      ->capture_default_str();
+  app.add_option("--LoopClosure.min_frame_gap", loops.min_frame_gap,
+                 "candidates are at least this many frames apart")
+      ->capture_default_str();
+  app.add_option("--LoopClosure.max_candidates_per_image", loops.max_candidates_per_image)
+      ->capture_default_str();
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   FinishFeatureOptions(&features);
   FinishMapperOptions(text, &mapper);
@@ -44,6 +64,18 @@ int RunReconstruct(int argc, char** argv) {
   const LocalizedPriors priors =
       LoadPosePriors(prior_text, database, "ramap reconstruct", std::cerr);
   MapperResult result = RunMapper(database, mapper, database_path, &std::cout, priors.priors);
+  LoopClosureSummary closure;
+  if (close_loops && features.matching.mode == MatchingMode::kSequential) {
+    loops.Check();
+    closure = MatchLoopCandidates(result, loops, features.matching, &database, &std::cout);
+    std::cout << "[ramap] loop closure: " << closure.num_verified << " of "
+              << closure.num_candidates << " candidate pairs verified, " << std::fixed
+              << std::setprecision(2) << closure.seconds << " s\n";
+    if (closure.num_verified > 0) {
+      WriteColmapDatabase(database, database_path);  // COLMAP gets the loop pairs too
+      result = RunMapper(database, mapper, database_path, &std::cout, priors.priors);
+    }
+  }
   for (Reconstruction& reconstruction : result.reconstructions) {
     ColorPointsFromImages(image_path, &reconstruction);
   }
@@ -51,7 +83,15 @@ int RunReconstruct(int argc, char** argv) {
       {"command", "reconstruct"},       {"image_path", image_path},
       {"database_path", database_path}, {"feature_type", features.type},
       {"matching_mode", features.mode}, {"options", MapperOptionsToJson(mapper)},
-      {"pose_priors", PosePriorOptionsToJson(prior_text, mapper.georegistration)}};
+      {"pose_priors", PosePriorOptionsToJson(prior_text, mapper.georegistration)},
+      {"loop_closure",
+       {{"enable", close_loops},
+        {"max_distance_baselines", loops.max_distance_baselines},
+        {"max_view_angle_deg", loops.max_view_angle_deg},
+        {"min_frame_gap", loops.min_frame_gap},
+        {"num_candidates", closure.num_candidates},
+        {"num_verified", closure.num_verified},
+        {"loops", closure.loops}}}};
   WriteMapperOutput(result, output_path + "/sparse", ModelFormat::kBinary, run);
   std::cout << "ramap reconstruct: " << result.summary.num_registered_images << " of "
             << database.images.size() << " images registered in " << result.reconstructions.size()

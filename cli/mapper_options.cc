@@ -12,6 +12,10 @@ void AddRelativePoseOptions(CLI::App& app, MapperOptions* o, MapperOptionText* t
   app.add_option("--RelativePose.grid_rows", o->relative_pose.grid_rows)->capture_default_str();
   app.add_option("--RelativePose.sampler", text->sampler, "grid|random|roi|ransac5")
       ->capture_default_str();
+  app.add_option("--RelativePose.use_descriptor_ratios", o->relative_pose.use_descriptor_ratios,
+                 "1: grid selection ranks matches by ramap's stored descriptor ratio, not Sampson "
+                 "error")
+      ->capture_default_str();
   app.add_option("--RelativePose.max_epipolar_error_px", o->relative_pose.max_epipolar_error_px,
                  "pixels")
       ->capture_default_str();
@@ -140,6 +144,7 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"grid_rows", o.relative_pose.grid_rows},
         {"sampler", CorrespondenceSamplerName(o.relative_pose.sampler)},
         {"max_epipolar_error_px", o.relative_pose.max_epipolar_error_px},
+        {"use_descriptor_ratios", o.relative_pose.use_descriptor_ratios},
         {"pure_rotation_parallax_px", o.relative_pose.pure_rotation_parallax_px}}},
       {"PoseGraph",
        {{"sequential", o.order == InputOrder::kAuto         ? "auto"

@@ -139,6 +139,13 @@ TEST(ImageFeatures, TempleRingDatabaseIsRightAndColmapMapsIt) {
     errors.push_back(expected.rotation.angularDistance(geometry.cam2_from_cam1.rotation) * 180 /
                      M_PI);
   }
+  // Every inlier keeps the descriptor ratio that let it through the ratio test.
+  for (const auto& [pair_id, geometry] : database.two_view_geometries) {
+    ASSERT_EQ(geometry.inlier_ratios.size(), geometry.inlier_matches.size());
+    for (const float ratio : geometry.inlier_ratios) {
+      ASSERT_TRUE(ratio >= 0 && ratio < matching.max_ratio) << ratio;
+    }
+  }
   std::sort(errors.begin(), errors.end());
   std::printf("verified pairs: %zu, median rotation error of their poses: %.3f deg\n",
               errors.size(), errors[errors.size() / 2]);
@@ -155,6 +162,10 @@ TEST(ImageFeatures, TempleRingDatabaseIsRightAndColmapMapsIt) {
                        " --Mapper.ba_refine_extra_params 0 --Mapper.num_threads 2");
   ASSERT_EQ(mapper.exit_code, 0) << mapper.output;
   EXPECT_EQ(ReadColmapModel(dir / "sparse/0").images.size(), 10u);
+  // COLMAP read a database carrying ramap's ratio table, which also reads back.
+  EXPECT_FALSE(ReadColmapDatabase(dir / "database.db")
+                   .two_view_geometries.begin()
+                   ->second.inlier_ratios.empty());
 }
 
 }  // namespace

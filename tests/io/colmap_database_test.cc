@@ -349,6 +349,39 @@ TEST(ColmapDatabase, RoundTripPreservesEverything) {
   ExpectSameDatabase(smaller, ReadColmapDatabase(path, ReadEverything()));
 }
 
+// ramap's descriptor ratios live in an extra table, written only when there are some, read back
+// bit for bit, and kept in match order when a reversed geometry is inverted before storing.
+TEST(ColmapDatabase, DescriptorRatiosRoundTripInTheirOwnTable) {
+  FeatureDatabase database = MakeSmallDatabase();
+  TwoViewGeometry& geometry = database.two_view_geometries.at(ImagePairToPairId(1, 2));
+  for (size_t k = 0; k < geometry.inlier_matches.size(); ++k) {
+    geometry.inlier_ratios.push_back(0.3f + 0.01f * k);
+  }
+  TempDir dir;
+  WriteColmapDatabase(database, dir / "ratios.db");
+  const FeatureDatabase read = ReadColmapDatabase(dir / "ratios.db");
+  EXPECT_EQ(read.two_view_geometries.at(ImagePairToPairId(1, 2)).inlier_ratios,
+            geometry.inlier_ratios);
+  EXPECT_TRUE(read.two_view_geometries.at(ImagePairToPairId(2, 3)).inlier_ratios.empty());
+  const test::CommandResult tables = test::RunCommand(
+      "sqlite3 '" + dir / "ratios.db" + "' \"SELECT count(*) FROM ramap_match_confidence\"");
+  EXPECT_EQ(tables.output, "1\n");
+
+  // Ratios that do not match the inliers are refused by the writer and the reader.
+  FeatureDatabase short_ratios = database;
+  short_ratios.two_view_geometries.at(ImagePairToPairId(1, 2)).inlier_ratios.pop_back();
+  EXPECT_THROW(WriteColmapDatabase(short_ratios, dir / "bad.db"), InputError);
+  EXPECT_FALSE(fs::exists(dir / "bad.db"));
+  ExecuteSql(dir / "ratios.db", "UPDATE ramap_match_confidence SET rows = 3");
+  try {
+    ReadColmapDatabase(dir / "ratios.db");
+    FAIL() << "a ratio table of the wrong length was read";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("ramap_match_confidence"), std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(ColmapDatabase, ReadOptionsSkipDescriptorsAndMatches) {
   const FeatureDatabase database = MakeFullDatabase();
   TempDir dir;

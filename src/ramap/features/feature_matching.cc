@@ -40,7 +40,8 @@ std::vector<std::vector<cv::DMatch>> KnnMatch(const cv::Mat& query, const cv::Ma
 // (cross check) at once. About 4x faster than two OpenCV knnMatch calls on ORB's 32 bytes.
 std::vector<FeatureMatch> MatchBinaryDescriptors(const Descriptors& descriptors1,
                                                  const Descriptors& descriptors2,
-                                                 const FeatureMatchingOptions& options) {
+                                                 const FeatureMatchingOptions& options,
+                                                 std::vector<float>* ratios) {
   const size_t n1 = descriptors1.size(), n2 = descriptors2.size();
   std::vector<FeatureMatch> matches;
   if (n1 == 0 || n2 < 2) return matches;
@@ -72,6 +73,7 @@ std::vector<FeatureMatch> MatchBinaryDescriptors(const Descriptors& descriptors1
     if (!(first2[i] < options.max_ratio * second2[i])) continue;
     if (options.cross_check && best1[best2[i]] != static_cast<int>(i)) continue;
     matches.push_back({static_cast<uint32_t>(i), static_cast<uint32_t>(best2[i])});
+    if (ratios != nullptr) ratios->push_back(static_cast<float>(first2[i]) / second2[i]);
   }
   return matches;
 }
@@ -119,11 +121,13 @@ void FeatureMatchingOptions::Check() const {
 
 std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,
                                            const Descriptors& descriptors2,
-                                           const FeatureMatchingOptions& options) {
+                                           const FeatureMatchingOptions& options,
+                                           std::vector<float>* ratios) {
   std::vector<FeatureMatch> matches;
+  if (ratios != nullptr) ratios->clear();
   if (descriptors1.num_cols != descriptors2.num_cols) return matches;
   if (descriptors1.num_cols == 32)
-    return MatchBinaryDescriptors(descriptors1, descriptors2, options);
+    return MatchBinaryDescriptors(descriptors1, descriptors2, options, ratios);
   const cv::Mat d1 = AsMat(descriptors1), d2 = AsMat(descriptors2);
   const std::vector<std::vector<cv::DMatch>> forward = KnnMatch(d1, d2, false);
   std::vector<int> backward_best;
@@ -139,6 +143,9 @@ std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,
     if (options.cross_check && backward_best[knn[0].trainIdx] != knn[0].queryIdx) continue;
     matches.push_back(
         {static_cast<uint32_t>(knn[0].queryIdx), static_cast<uint32_t>(knn[0].trainIdx)});
+    if (ratios != nullptr) {
+      ratios->push_back(knn[1].distance > 0 ? knn[0].distance / knn[1].distance : 1.0f);
+    }
   }
   return matches;
 }
@@ -146,7 +153,9 @@ std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,
 TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Camera& camera1,
                               const Camera& camera2, const Keypoints& keypoints1,
                               const Keypoints& keypoints2, const std::vector<FeatureMatch>& matches,
-                              const FeatureMatchingOptions& options) {
+                              const FeatureMatchingOptions& options,
+                              const std::vector<float>& ratios) {
+  const bool has_ratios = !ratios.empty() && ratios.size() == matches.size();
   TwoViewGeometry geometry;
   geometry.image_id1 = image_id1;
   geometry.image_id2 = image_id2;
@@ -155,13 +164,16 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
   // Undistorted normalised coordinates, so that E is estimated with the intrinsics known.
   std::vector<cv::Point2d> points1, points2;
   std::vector<FeatureMatch> usable;
-  for (const FeatureMatch& match : matches) {
+  std::vector<float> usable_ratios;
+  for (size_t k = 0; k < matches.size(); ++k) {
+    const FeatureMatch& match = matches[k];
     const Eigen::Vector3d b1 = PixelToBearing(camera1, keypoints1.xy(match.point2D_idx1));
     const Eigen::Vector3d b2 = PixelToBearing(camera2, keypoints2.xy(match.point2D_idx2));
     if (!b1.allFinite() || !b2.allFinite() || b1.z() <= 0 || b2.z() <= 0) continue;
     points1.emplace_back(b1.x() / b1.z(), b1.y() / b1.z());
     points2.emplace_back(b2.x() / b2.z(), b2.y() / b2.z());
     usable.push_back(match);
+    if (has_ratios) usable_ratios.push_back(ratios[k]);
   }
   if (static_cast<int>(usable.size()) < options.min_num_inliers) return geometry;
   const double focal = 0.5 * (MeanFocalLength(camera1) + MeanFocalLength(camera2));
@@ -173,10 +185,13 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
   cv::Mat pose_mask = mask.clone();
   cv::recoverPose(E, points1, points2, R, t, 1.0, cv::Point2d(0, 0), pose_mask);
   for (size_t k = 0; k < usable.size(); ++k) {
-    if (mask.at<uchar>(static_cast<int>(k))) geometry.inlier_matches.push_back(usable[k]);
+    if (!mask.at<uchar>(static_cast<int>(k))) continue;
+    geometry.inlier_matches.push_back(usable[k]);
+    if (has_ratios) geometry.inlier_ratios.push_back(usable_ratios[k]);
   }
   if (static_cast<int>(geometry.inlier_matches.size()) < options.min_num_inliers) {
     geometry.inlier_matches.clear();
+    geometry.inlier_ratios.clear();
     return geometry;
   }
   geometry.config = TwoViewConfig::kCalibrated;
@@ -200,6 +215,7 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
     correspondences.bearings1.push_back(PixelToBearing(camera1, xy1));
     correspondences.bearings2.push_back(PixelToBearing(camera2, xy2));
   }
+  correspondences.confidence.assign(geometry.inlier_ratios.begin(), geometry.inlier_ratios.end());
   const RelativePoseEstimate estimate =
       EstimateRelativePose(correspondences, RelativePoseOptions());
   if (estimate.success) {
@@ -235,34 +251,52 @@ MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOp
       pairs.emplace_back(std::min(ordered[a], ordered[b]), std::max(ordered[a], ordered[b]));
     }
   }
-  for (const uint32_t id : ids) {
-    if (!database->descriptors.count(id) || !database->keypoints.count(id)) {
-      throw InputError("database", "image " + database->images.at(id).name +
-                                       " has no keypoints or descriptors: run feature_extractor");
+  database->matches.clear();
+  database->two_view_geometries.clear();
+  MatchingSummary summary = MatchImagePairs(database, pairs, options, progress);
+  summary.seconds = timer.ElapsedSeconds();
+  return summary;
+}
+
+MatchingSummary MatchImagePairs(FeatureDatabase* database,
+                                const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
+                                const FeatureMatchingOptions& options, std::ostream* progress) {
+  options.Check();
+  Timer timer;
+  for (const auto& [id1, id2] : pairs) {
+    for (const uint32_t id : {id1, id2}) {
+      if (!database->images.count(id)) {
+        throw InputError("database", "no image " + std::to_string(id) + " to match");
+      }
+      if (!database->descriptors.count(id) || !database->keypoints.count(id)) {
+        throw InputError("database", "image " + database->images.at(id).name +
+                                         " has no keypoints or descriptors: run feature_extractor");
+      }
     }
   }
   std::vector<std::vector<FeatureMatch>> matches(pairs.size());
+  std::vector<std::vector<float>> ratios(pairs.size());
   std::vector<TwoViewGeometry> geometries(pairs.size());
   ParallelFor(
       pairs.size(), options.num_threads,
       [&](size_t k) {
         const auto [id1, id2] = pairs[k];
-        matches[k] =
-            MatchDescriptors(database->descriptors.at(id1), database->descriptors.at(id2), options);
+        matches[k] = MatchDescriptors(database->descriptors.at(id1),
+                                      database->descriptors.at(id2), options, &ratios[k]);
         const Image& image1 = database->images.at(id1);
         const Image& image2 = database->images.at(id2);
         geometries[k] =
             VerifyMatches(id1, id2, database->cameras.at(image1.camera_id),
                           database->cameras.at(image2.camera_id), database->keypoints.at(id1),
-                          database->keypoints.at(id2), matches[k], options);
+                          database->keypoints.at(id2), matches[k], options, ratios[k]);
       },
       progress, "matching", "pairs");
-  database->matches.clear();
-  database->two_view_geometries.clear();
   MatchingSummary summary;
   summary.num_pairs = static_cast<int>(pairs.size());
   for (size_t k = 0; k < pairs.size(); ++k) {
     const uint64_t pair_id = ImagePairToPairId(pairs[k].first, pairs[k].second);
+    database->matches.erase(pair_id);
+    database->two_view_geometries.erase(pair_id);
     if (!matches[k].empty()) database->matches[pair_id] = std::move(matches[k]);
     if (!geometries[k].inlier_matches.empty()) {
       database->two_view_geometries[pair_id] = std::move(geometries[k]);

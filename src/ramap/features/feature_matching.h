@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ramap/scene/features.h"
@@ -37,20 +38,24 @@ struct FeatureMatchingOptions {
 };
 
 // Putative matches of two descriptor sets (Hamming distance for 32-byte binary descriptors, L2
-// otherwise), after the ratio test and, if asked, the cross check.
+// otherwise), after the ratio test and, if asked, the cross check. With `ratios`, also each
+// match's nearest / second-nearest distance ratio (its confidence; lower is better).
 std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,
                                            const Descriptors& descriptors2,
-                                           const FeatureMatchingOptions& options);
+                                           const FeatureMatchingOptions& options,
+                                           std::vector<float>* ratios = nullptr);
 
 // The verified geometry of a pair from its putative matches: essential-matrix RANSAC on undistorted
 // keypoints (OpenCV), F from E and the intrinsics, cam2_from_cam1 by EstimateRelativePose on the
 // inliers (from E when that rejects the pair; unit translation).
 // Config kCalibrated with the inliers, or kDegenerate with none when fewer than min_num_inliers
-// survive.
+// survive. `ratios` (one per match, or empty) are kept for the inliers (inlier_ratios) and rank
+// the matches of the grid selection.
 TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Camera& camera1,
                               const Camera& camera2, const Keypoints& keypoints1,
                               const Keypoints& keypoints2, const std::vector<FeatureMatch>& matches,
-                              const FeatureMatchingOptions& options);
+                              const FeatureMatchingOptions& options,
+                              const std::vector<float>& ratios = {});
 
 struct MatchingSummary {
   int num_pairs = 0;           // pairs matched
@@ -63,5 +68,12 @@ struct MatchingSummary {
 // `progress`, one line counts the pairs done in tens of percent.
 MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOptions& options,
                               std::ostream* progress = nullptr);
+
+// Matches and verifies the given pairs (image_id1 < image_id2) only, replacing their earlier
+// matches and geometries and leaving every other pair as it is (loop candidates, for one).
+MatchingSummary MatchImagePairs(FeatureDatabase* database,
+                                const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
+                                const FeatureMatchingOptions& options,
+                                std::ostream* progress = nullptr);
 
 }  // namespace ramap

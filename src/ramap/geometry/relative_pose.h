@@ -66,6 +66,12 @@ struct RelativePoseOptions {
   // thousands of matches, and the refinement's cost grows with them while its accuracy stops
   // improving long before.
   int max_refinement_matches = 500;
+  // Rank a pair's matches for the grid selection by their descriptor ratio when the database has
+  // it (ramap's matcher stores it) instead of their Sampson error under F. Off: measured on
+  // ramap-matched databases (scripts/bench_relative_poses.sh), the ratio ties on KITTI 07 (SIFT
+  // rotation p90 0.225 vs 0.226 deg, ORB 0.329 vs 0.338) and loses on templeRing (SIFT p90 16.4
+  // vs 13.1 deg, ORB median 2.75 vs 2.69): geometric agreement beats descriptor distinctiveness.
+  bool use_descriptor_ratios = false;
   // RANSAC (sampler = ransac5): iterations cap and success probability.
   int ransac_max_iterations = 1000;
   double ransac_probability = 0.999;

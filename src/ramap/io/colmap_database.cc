@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <memory>
@@ -55,6 +56,8 @@ constexpr const char* kSchema[] = {
 
 // COLMAP 3.8 stamps its databases with user_version = 3800.
 constexpr int kColmapUserVersion = 3800;
+// ramap's own table beside COLMAP's (see the header).
+constexpr const char* kMatchConfidenceTable = "ramap_match_confidence";
 
 // Parameter names per model id, in COLMAP's order (for messages).
 constexpr const char* kParamNames[] = {
@@ -165,6 +168,7 @@ class Reader {
     if (options_.read_descriptors) ReadDescriptors();
     if (options_.read_matches) ReadMatches();
     ReadTwoViewGeometries();
+    ReadMatchConfidence();
     return std::move(database_);
   }
 
@@ -446,6 +450,39 @@ class Reader {
     }
   }
 
+  // ramap's table of descriptor ratios, when the database has it (see the header).
+  void ReadMatchConfidence() {
+    Statement exists(db_, "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = ?");
+    exists.BindText(1, kMatchConfidenceTable);
+    if (!exists.Step() || exists.ColumnInt64(0) == 0) return;
+    CheckColumns(kMatchConfidenceTable, {"pair_id", "rows", "data"});
+    Statement row(db_, std::string("SELECT pair_id, rows, data FROM ") + kMatchConfidenceTable);
+    while (row.Step()) {
+      const int64_t pair_id = row.ColumnInt64(0);
+      const auto [id1, id2] = CheckedPair(pair_id, kMatchConfidenceTable);
+      const std::string what =
+          std::string(kMatchConfidenceTable) + " of " + PairLabel(database_, id1, id2);
+      const auto geometry = database_.two_view_geometries.find(static_cast<uint64_t>(pair_id));
+      if (geometry == database_.two_view_geometries.end()) {
+        Fail(what + ": the pair has no two_view_geometries row");
+      }
+      const int64_t rows = row.ColumnInt64(1);
+      const BlobView blob = row.ColumnBlob(2);
+      if (rows != static_cast<int64_t>(geometry->second.inlier_matches.size()) ||
+          blob.size != static_cast<size_t>(rows) * sizeof(float)) {
+        Fail(what + ": " + std::to_string(rows) + " rows in " + std::to_string(blob.size) +
+             " bytes for " + std::to_string(geometry->second.inlier_matches.size()) +
+             " inlier matches");
+      }
+      std::vector<float>& ratios = geometry->second.inlier_ratios;
+      ratios.resize(rows);
+      std::memcpy(ratios.data(), blob.data, blob.size);
+      for (const float ratio : ratios) {
+        if (!(ratio >= 0 && ratio <= 1)) Fail(what + ": a ratio outside [0, 1]");
+      }
+    }
+  }
+
   const std::string path_;
   const DatabaseReadOptions options_;
   Connection db_;
@@ -532,6 +569,12 @@ void CheckWritable(const FeatureDatabase& database, const std::string& path) {
     }
     CheckMatchIndices(database, "two-view geometry", geometry.image_id1, geometry.image_id2,
                       geometry.inlier_matches, Fail);
+    if (!geometry.inlier_ratios.empty() &&
+        geometry.inlier_ratios.size() != geometry.inlier_matches.size()) {
+      Fail("two-view geometry of " + PairLabel(database, geometry.image_id1, geometry.image_id2) +
+           ": " + std::to_string(geometry.inlier_ratios.size()) + " descriptor ratios for " +
+           std::to_string(geometry.inlier_matches.size()) + " inlier matches");
+    }
   }
 }
 
@@ -629,6 +672,24 @@ void WriteContents(const FeatureDatabase& database, Connection& db) {
     geometry_row.BindBlob(9, qvec.data(), 4 * sizeof(double));
     geometry_row.BindBlob(10, geometry.cam2_from_cam1.translation.data(), 3 * sizeof(double));
     geometry_row.Run();
+  }
+
+  const bool any_ratios = std::any_of(
+      database.two_view_geometries.begin(), database.two_view_geometries.end(),
+      [](const auto& entry) { return !entry.second.inlier_ratios.empty(); });
+  if (!any_ratios) return;
+  db.Execute(std::string("CREATE TABLE ") + kMatchConfidenceTable +
+             " (pair_id INTEGER PRIMARY KEY NOT NULL, rows INTEGER NOT NULL, data BLOB)");
+  Statement ratio_row(db, std::string("INSERT INTO ") + kMatchConfidenceTable +
+                              "(pair_id, rows, data) VALUES(?, ?, ?)");
+  for (const auto& [pair_id, geometry] : database.two_view_geometries) {
+    if (geometry.inlier_ratios.empty()) continue;
+    // Inverting a geometry keeps the order of its matches, so the ratios need no reordering.
+    ratio_row.BindInt64(1, static_cast<int64_t>(pair_id));
+    ratio_row.BindInt64(2, static_cast<int64_t>(geometry.inlier_ratios.size()));
+    ratio_row.BindBlob(3, geometry.inlier_ratios.data(),
+                       geometry.inlier_ratios.size() * sizeof(float));
+    ratio_row.Run();
   }
 }
 

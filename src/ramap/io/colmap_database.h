@@ -10,6 +10,11 @@
 // descriptors uint8 rows x cols; matches uint32 rows x 2 with pair_id = i * 2147483647 + j, i < j,
 // and the first column indexing image i; two-view F, E, H float64 3x3 ROW-major; qvec (w, x, y, z)
 // and tvec float64, the pose cam2_from_cam1 of the pair (camera 2 being image j).
+//
+// One table is ramap's own: ramap_match_confidence(pair_id, rows, data), the float32 descriptor
+// ratio of each inlier match of a pair's two-view geometry (TwoViewGeometry::inlier_ratios). It is
+// written only when some geometry has ratios, so a database without them has exactly COLMAP's
+// schema; COLMAP's reader and mapper ignore tables they do not know.
 #pragma once
 
 #include <string>

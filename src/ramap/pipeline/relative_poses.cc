@@ -35,19 +35,24 @@ std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database
     c.height2 = static_cast<int>(camera2.height);
     c.focal_length_px = 0.5 * (bearings.focal_lengths_px.at(camera1.camera_id) +
                                bearings.focal_lengths_px.at(camera2.camera_id));
-    for (const FeatureMatch& match : geometry.inlier_matches) {
+    const bool use_ratios = options.use_descriptor_ratios && !geometry.inlier_ratios.empty();
+    for (size_t k = 0; k < geometry.inlier_matches.size(); ++k) {
+      const FeatureMatch& match = geometry.inlier_matches[k];
       // Keypoints past a strong distortion's fold have no bearing (NaN): leave them out.
       if (!b1->second[match.point2D_idx1].allFinite() ||
           !b2->second[match.point2D_idx2].allFinite())
         continue;
+      if (use_ratios) c.confidence.push_back(geometry.inlier_ratios[k]);
       c.bearings1.push_back(b1->second[match.point2D_idx1]);
       c.bearings2.push_back(b2->second[match.point2D_idx2]);
       c.pixels1.push_back(keypoints1.xy(match.point2D_idx1));
       c.pixels2.push_back(keypoints2.xy(match.point2D_idx2));
     }
-    // COLMAP 3.8 stores F for every verified pair but no pair pose (qvec is zero), so the match
-    // confidence for the grid selection is the Sampson error under F.
-    if (!geometry.F.isZero()) c.confidence = SampsonErrors(geometry.F, c.pixels1, c.pixels2);
+    // Without ramap's descriptor ratios (a COLMAP-matched database), the match confidence for
+    // the grid selection is the Sampson error under the F COLMAP stored for every verified pair.
+    if (!use_ratios && !geometry.F.isZero()) {
+      c.confidence = SampsonErrors(geometry.F, c.pixels1, c.pixels2);
+    }
     edges.push_back(std::move(edge));
   }
 

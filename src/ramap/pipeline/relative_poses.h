@@ -29,7 +29,8 @@ bool IsUsableTwoViewConfig(TwoViewConfig config);
 // Every pair of `database.two_view_geometries` with a usable config and at least
 // options.min_num_inliers verified matches, estimated on `num_threads` threads. Pairs that fail
 // stay in the result with estimate.success == false and the reason. The confidence of a match (for
-// the grid selection) is its Sampson error under the fundamental matrix COLMAP stored. With
+// the grid selection) is its descriptor ratio when ramap's matcher stored one (and
+// options.use_descriptor_ratios), else its Sampson error under the fundamental matrix. With
 // `progress`, one line there counts the pairs done in tens of percent.
 std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database,
                                                  const ImageBearings& bearings,

@@ -76,6 +76,11 @@ struct TwoViewGeometry {
   Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
   Rigid3d cam2_from_cam1;
+  // ramap's, not COLMAP's: the descriptor distance ratio (nearest / second nearest, in (0, 1];
+  // lower is more distinctive) of each inlier match, in the order of inlier_matches, for the grid
+  // selection of the relative-pose stage. Empty when unknown (COLMAP's matcher keeps none). Stored
+  // in the extra table ramap_match_confidence, which COLMAP ignores.
+  std::vector<float> inlier_ratios;
 };
 
 // The same geometry seen from the other image: ids, match columns, F, E, H and pose inverted.

@@ -13,8 +13,12 @@ namespace ramap::cli {
 void MatchAndReport(FeatureDatabase* database, const FeatureOptions& options) {
   const MatchingSummary summary = MatchDatabase(database, options.matching, &std::cout);
   std::cout << "[ramap] matching: " << summary.num_verified_pairs << " of " << summary.num_pairs
-            << " pairs verified (" << options.mode << "), " << std::fixed << std::setprecision(2)
-            << summary.seconds << " s\n";
+            << " pairs verified (" << options.mode;
+  if (summary.num_preemptive_pairs > 0) {
+    std::cout << ", " << summary.num_pairs << " of " << summary.num_preemptive_pairs
+              << " kept by preemptive matching";
+  }
+  std::cout << "), " << std::fixed << std::setprecision(2) << summary.seconds << " s\n";
 }
 
 int RunMatcher(int argc, char** argv) {

@@ -30,6 +30,12 @@ void AddMatchingOptions(CLI::App& app, FeatureOptions* o) {
   app.add_option("--Matching.cross_check", o->matching.cross_check)->capture_default_str();
   app.add_option("--Matching.max_error_px", o->matching.max_error_px)->capture_default_str();
   app.add_option("--Matching.min_num_inliers", o->matching.min_num_inliers)->capture_default_str();
+  app.add_option("--Matching.preemptive_num_features", o->matching.preemptive_num_features,
+                 "exhaustive: match the N largest-scale features first, full matching only for "
+                 "pairs with enough matches among them (0: off)")
+      ->capture_default_str();
+  app.add_option("--Matching.preemptive_min_matches", o->matching.preemptive_min_matches)
+      ->capture_default_str();
   app.add_option("--Matching.num_threads", o->matching.num_threads)->capture_default_str();
 }
 

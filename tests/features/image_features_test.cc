@@ -62,11 +62,16 @@ TEST(ImageFeatures, DownscaledDetectionKeepsFullResolutionCoordinates) {
 TEST(ImageFeatures, ShiftedCopyMatchesAtTheShift) {
   const cv::Mat image = Texture(640, 480, 3);
   const cv::Mat shifted = image(cv::Rect(20, 10, 600, 460)).clone();
+  for (const FeatureType type : {FeatureType::kOrb, FeatureType::kSift}) {
+  SCOPED_TRACE(FeatureTypeName(type));
   FeatureExtractionOptions options;
+  options.type = type;
   const ImageFeatures a = ExtractFeatures(image, options), b = ExtractFeatures(shifted, options);
+  std::vector<float> ratios;
   const std::vector<FeatureMatch> matches =
-      MatchDescriptors(a.descriptors, b.descriptors, FeatureMatchingOptions());
+      MatchDescriptors(a.descriptors, b.descriptors, FeatureMatchingOptions(), &ratios);
   ASSERT_GT(matches.size(), 100u);
+  ASSERT_EQ(ratios.size(), matches.size());
   int at_shift = 0;
   for (const FeatureMatch& m : matches) {
     const Eigen::Vector2d d = a.keypoints.xy(m.point2D_idx1) - b.keypoints.xy(m.point2D_idx2);
@@ -74,6 +79,43 @@ TEST(ImageFeatures, ShiftedCopyMatchesAtTheShift) {
   }
   // Random texture repeats itself at small scales: most, not all, matches are right.
   EXPECT_GT(at_shift, 0.8 * matches.size());
+  }
+}
+
+// Preemptive matching (exhaustive mode) matches in full only the pairs whose largest-scale
+// features already agree: the image and its shifted copy, not the unrelated texture.
+TEST(ImageFeatures, PreemptiveMatchingSkipsPairsThatShareNothing) {
+  const cv::Mat image = Texture(640, 480, 3);
+  FeatureDatabase database;
+  Camera camera;
+  camera.camera_id = 1;
+  camera.model = CameraModel::kPinhole;
+  camera.width = 640;
+  camera.height = 480;
+  camera.params = {500, 500, 320, 240};
+  database.cameras[1] = camera;
+  const cv::Mat views[] = {image, image(cv::Rect(20, 10, 600, 460)).clone(), Texture(640, 480, 9)};
+  for (uint32_t id = 1; id <= 3; ++id) {
+    Image entry;
+    entry.image_id = id;
+    entry.name = "view" + std::to_string(id) + ".png";
+    entry.camera_id = 1;
+    database.images[id] = entry;
+    ImageFeatures features = ExtractFeatures(views[id - 1], FeatureExtractionOptions());
+    database.keypoints[id] = std::move(features.keypoints);
+    database.descriptors[id] = std::move(features.descriptors);
+  }
+  FeatureMatchingOptions matching;
+  matching.mode = MatchingMode::kExhaustive;
+  FeatureDatabase screened = database;
+  const MatchingSummary with = MatchDatabase(&screened, matching);
+  EXPECT_EQ(with.num_preemptive_pairs, 3);
+  EXPECT_EQ(with.num_pairs, 1);
+  EXPECT_TRUE(screened.matches.count(ImagePairToPairId(1, 2)));
+  matching.preemptive_num_features = 0;
+  const MatchingSummary without = MatchDatabase(&database, matching);
+  EXPECT_EQ(without.num_pairs, 3);
+  EXPECT_EQ(without.num_preemptive_pairs, 0);
 }
 
 TEST(ImageFeatures, AwkwardFolderIsReportedNotFatal) {
@@ -127,7 +169,8 @@ TEST(ImageFeatures, TempleRingDatabaseIsRightAndColmapMapsIt) {
   FeatureMatchingOptions matching;
   matching.mode = MatchingMode::kExhaustive;
   const MatchingSummary matched = MatchDatabase(&database, matching);
-  EXPECT_EQ(matched.num_pairs, 45);
+  EXPECT_EQ(matched.num_preemptive_pairs, 45);
+  EXPECT_LE(matched.num_pairs, 45);  // those preemptive matching kept
   EXPECT_GE(matched.num_verified_pairs, 15);
   const std::map<std::string, Rigid3d> truth = GroundTruthByImageName(
       ReadGroundTruth(folder + "/templeR_par.txt", GroundTruthFormat::kMiddlebury), names);

@@ -1,7 +1,9 @@
 #include "ramap/features/feature_matching.h"
 
 #include <Eigen/Core>
+#include <cfloat>
 #include <cstring>
+#include <map>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/features2d.hpp>
@@ -23,16 +25,6 @@ cv::Mat AsMat(const Descriptors& descriptors) {
   cv::Mat floats;
   bytes.convertTo(floats, CV_32F);
   return floats;
-}
-
-// Best and second-best neighbours of every row of `query` in `train`.
-std::vector<std::vector<cv::DMatch>> KnnMatch(const cv::Mat& query, const cv::Mat& train,
-                                              bool binary) {
-  std::vector<std::vector<cv::DMatch>> knn;
-  if (query.empty() || train.rows < 2) return knn;
-  cv::BFMatcher matcher(binary ? cv::NORM_HAMMING : cv::NORM_L2);
-  matcher.knnMatch(query, train, knn, 2);
-  return knn;
 }
 
 // Brute-force Hamming matching of 256-bit descriptors in one pass over the distance matrix: the two
@@ -78,6 +70,99 @@ std::vector<FeatureMatch> MatchBinaryDescriptors(const Descriptors& descriptors1
   return matches;
 }
 
+// The descriptors of an image's `count` largest-scale keypoints (keypoint column 3 is the scale;
+// all of them when there is no scale column or fewer keypoints).
+Descriptors LargestScaleDescriptors(const Keypoints& keypoints, const Descriptors& descriptors,
+                                    int count) {
+  const size_t n = std::min(keypoints.size(), descriptors.size());
+  if (keypoints.num_cols < 3 || static_cast<int>(n) <= count) return descriptors;
+  std::vector<size_t> order(n);
+  for (size_t k = 0; k < n; ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return keypoints.data[a * keypoints.num_cols + 2] > keypoints.data[b * keypoints.num_cols + 2];
+  });
+  Descriptors subset;
+  subset.num_cols = descriptors.num_cols;
+  for (int k = 0; k < count; ++k) {
+    const auto row = descriptors.data.begin() + order[k] * descriptors.num_cols;
+    subset.data.insert(subset.data.end(), row, row + descriptors.num_cols);
+  }
+  return subset;
+}
+
+// Exhaustive pairs worth matching in full (see FeatureMatchingOptions::preemptive_num_features).
+std::vector<std::pair<uint32_t, uint32_t>> PreemptivePairs(
+    const FeatureDatabase& database, const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
+    const FeatureMatchingOptions& options, std::ostream* progress) {
+  std::map<uint32_t, Descriptors> top;
+  for (const auto& [id, image] : database.images) {
+    const auto keypoints = database.keypoints.find(id);
+    const auto descriptors = database.descriptors.find(id);
+    if (keypoints == database.keypoints.end() || descriptors == database.descriptors.end()) continue;
+    top[id] = LargestScaleDescriptors(keypoints->second, descriptors->second,
+                                      options.preemptive_num_features);
+  }
+  std::vector<char> keep(pairs.size(), 0);
+  ParallelFor(
+      pairs.size(), options.num_threads,
+      [&](size_t k) {
+        const auto one = top.find(pairs[k].first), two = top.find(pairs[k].second);
+        // An image without descriptors is reported by the full matching.
+        keep[k] = one == top.end() || two == top.end() ||
+                  static_cast<int>(MatchDescriptors(one->second, two->second, options).size()) >=
+                      options.preemptive_min_matches;
+      },
+      progress, "preemptive matching", "pairs");
+  std::vector<std::pair<uint32_t, uint32_t>> kept;
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    if (keep[k]) kept.push_back(pairs[k]);
+  }
+  return kept;
+}
+
+// The same single pass for float descriptors (SIFT): squared L2 distances of a block of rows of 1
+// against every row of 2 by OpenCV's vectorised batchDistance, the two nearest per row and the
+// nearest per column taken from it. Half the work of two knnMatch calls (each direction would
+// compute the whole distance matrix again).
+std::vector<FeatureMatch> MatchFloatDescriptors(const cv::Mat& d1, const cv::Mat& d2,
+                                                const FeatureMatchingOptions& options,
+                                                std::vector<float>* ratios) {
+  std::vector<FeatureMatch> matches;
+  const int n1 = d1.rows, n2 = d2.rows;
+  if (n1 == 0 || n2 < 2) return matches;
+  constexpr int kBlockRows = 256;  // a 256 x 4000 float block (4 MB) stays in cache
+  std::vector<int> best2(n1), best1(n2, -1);
+  std::vector<float> first2(n1), second2(n1), best1_distance(n2, FLT_MAX);
+  cv::Mat distances;
+  for (int begin = 0; begin < n1; begin += kBlockRows) {
+    const int end = std::min(n1, begin + kBlockRows);
+    cv::batchDistance(d1.rowRange(begin, end), d2, distances, CV_32F, cv::noArray(),
+                      cv::NORM_L2SQR);
+    for (int i = begin; i < end; ++i) {
+      const float* row = distances.ptr<float>(i - begin);
+      float first = FLT_MAX, second = FLT_MAX;
+      int first_j = -1;
+      for (int j = 0; j < n2; ++j) {
+        const float d = row[j];
+        if (d < first) {
+          second = first, first = d, first_j = j;
+        } else if (d < second) {
+          second = d;
+        }
+        if (d < best1_distance[j]) best1_distance[j] = d, best1[j] = i;
+      }
+      best2[i] = first_j, first2[i] = std::sqrt(first), second2[i] = std::sqrt(second);
+    }
+  }
+  for (int i = 0; i < n1; ++i) {
+    if (!(first2[i] < options.max_ratio * second2[i])) continue;
+    if (options.cross_check && best1[best2[i]] != i) continue;
+    matches.push_back({static_cast<uint32_t>(i), static_cast<uint32_t>(best2[i])});
+    if (ratios != nullptr) ratios->push_back(second2[i] > 0 ? first2[i] / second2[i] : 1.0f);
+  }
+  return matches;
+}
+
 Eigen::Matrix3d CalibrationMatrix(const Camera& camera) {
   Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
   const std::vector<double>& p = camera.params;
@@ -116,6 +201,12 @@ void FeatureMatchingOptions::Check() const {
     throw InputError("--Matching.confidence", "not in (0, 1)");
   }
   if (min_num_inliers < 5) throw InputError("--Matching.min_num_inliers", "must be >= 5");
+  if (preemptive_num_features < 0) {
+    throw InputError("--Matching.preemptive_num_features", "must be >= 0");
+  }
+  if (preemptive_min_matches < 1) {
+    throw InputError("--Matching.preemptive_min_matches", "must be >= 1");
+  }
   if (num_threads < 1) throw InputError("--Matching.num_threads", "must be >= 1");
 }
 
@@ -128,26 +219,7 @@ std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,
   if (descriptors1.num_cols != descriptors2.num_cols) return matches;
   if (descriptors1.num_cols == 32)
     return MatchBinaryDescriptors(descriptors1, descriptors2, options, ratios);
-  const cv::Mat d1 = AsMat(descriptors1), d2 = AsMat(descriptors2);
-  const std::vector<std::vector<cv::DMatch>> forward = KnnMatch(d1, d2, false);
-  std::vector<int> backward_best;
-  if (options.cross_check) {
-    backward_best.assign(d2.rows, -1);
-    for (const std::vector<cv::DMatch>& knn : KnnMatch(d2, d1, false)) {
-      if (!knn.empty()) backward_best[knn[0].queryIdx] = knn[0].trainIdx;
-    }
-  }
-  for (const std::vector<cv::DMatch>& knn : forward) {
-    if (knn.size() < 2) continue;
-    if (!(knn[0].distance < options.max_ratio * knn[1].distance)) continue;
-    if (options.cross_check && backward_best[knn[0].trainIdx] != knn[0].queryIdx) continue;
-    matches.push_back(
-        {static_cast<uint32_t>(knn[0].queryIdx), static_cast<uint32_t>(knn[0].trainIdx)});
-    if (ratios != nullptr) {
-      ratios->push_back(knn[1].distance > 0 ? knn[0].distance / knn[1].distance : 1.0f);
-    }
-  }
-  return matches;
+  return MatchFloatDescriptors(AsMat(descriptors1), AsMat(descriptors2), options, ratios);
 }
 
 TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Camera& camera1,
@@ -178,8 +250,16 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
   if (static_cast<int>(usable.size()) < options.min_num_inliers) return geometry;
   const double focal = 0.5 * (MeanFocalLength(camera1) + MeanFocalLength(camera2));
   cv::Mat mask;
-  const cv::Mat E = cv::findEssentialMat(points1, points2, 1.0, cv::Point2d(0, 0), cv::RANSAC,
-                                         options.confidence, options.max_error_px / focal, mask);
+  // OpenCV's USAC (Ivashechkin, Barath, Matas, "USAC: a universal framework for random sample
+  // consensus", 2021) rather than its plain RANSAC: the pairs of an exhaustive match that do not
+  // overlap ran plain RANSAC to its iteration cap and took 54% of the matching time. Measured
+  // (templeRing, 1081 pairs): SIFT 43.7 -> 14.1 s, ORB 62.5 -> 18.9 s, with fewer but cleaner
+  // verified pairs (the mapper's AUC@1 after BA 70.9 -> 73.7%, ORB 19.8 -> 29.9%); KITTI 07's
+  // sequential pairs equal in time and accuracy (ATE after BA: ORB 0.38 -> 0.44%, SIFT 0.51 ->
+  // 0.50% of the path).
+  const cv::Mat E =
+      cv::findEssentialMat(points1, points2, 1.0, cv::Point2d(0, 0), cv::USAC_DEFAULT,
+                           options.confidence, options.max_error_px / focal, mask);
   if (E.rows != 3 || E.cols != 3) return geometry;  // none, or several stacked solutions
   cv::Mat R, t;
   cv::Mat pose_mask = mask.clone();
@@ -251,9 +331,16 @@ MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOp
       pairs.emplace_back(std::min(ordered[a], ordered[b]), std::max(ordered[a], ordered[b]));
     }
   }
+  const int num_screened = static_cast<int>(pairs.size());
+  if (options.mode == MatchingMode::kExhaustive && options.preemptive_num_features > 0) {
+    pairs = PreemptivePairs(*database, pairs, options, progress);
+  }
   database->matches.clear();
   database->two_view_geometries.clear();
   MatchingSummary summary = MatchImagePairs(database, pairs, options, progress);
+  if (options.mode == MatchingMode::kExhaustive && options.preemptive_num_features > 0) {
+    summary.num_preemptive_pairs = num_screened;
+  }
   summary.seconds = timer.ElapsedSeconds();
   return summary;
 }

@@ -32,6 +32,12 @@ struct FeatureMatchingOptions {
   double confidence = 0.999;
   // Pairs with fewer inliers get no two-view geometry (COLMAP's min_num_inliers, 15).
   int min_num_inliers = 15;
+  // Exhaustive mode: preemptive matching (Wu, "Towards Linear-time Incremental Structure from
+  // Motion", 3DV 2013): the preemptive_num_features largest-scale features of two images are
+  // matched first, and only pairs with at least preemptive_min_matches among them are matched in
+  // full. Wu's values, 100 and 4. 0 features: every pair in full.
+  int preemptive_num_features = 100;
+  int preemptive_min_matches = 4;
   int num_threads = 2;
 
   void Check() const;  // throws InputError naming the option
@@ -58,13 +64,15 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
                               const std::vector<float>& ratios = {});
 
 struct MatchingSummary {
-  int num_pairs = 0;           // pairs matched
+  int num_pairs = 0;           // pairs matched in full
+  int num_preemptive_pairs = 0;  // exhaustive: pairs screened by preemptive matching
   int num_verified_pairs = 0;  // pairs with a two-view geometry
   double seconds = 0.0;
 };
 
-// Matches the pairs `options.mode` chooses among database.images (descriptors must be present)
-// and stores their matches and verified geometries in `database`, replacing earlier ones. With
+// Matches the pairs `options.mode` chooses among database.images (descriptors must be present;
+// exhaustive mode screens every pair preemptively first) and stores their matches and verified
+// geometries in `database`, replacing earlier ones. With
 // `progress`, one line counts the pairs done in tens of percent.
 MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOptions& options,
                               std::ostream* progress = nullptr);

@@ -50,9 +50,9 @@ void BenchDataset(const std::string& name, const std::string& database_path,
   };
   std::vector<Variant> variants = {{CorrespondenceSampler::kGrid, false}};
   if (has_ratios) variants.push_back({CorrespondenceSampler::kGrid, true});
-  for (const CorrespondenceSampler sampler : {CorrespondenceSampler::kRandom,
-                                              CorrespondenceSampler::kRoi,
-                                              CorrespondenceSampler::kRansac5}) {
+  for (const CorrespondenceSampler sampler :
+       {CorrespondenceSampler::kRandom, CorrespondenceSampler::kRoi,
+        CorrespondenceSampler::kRansac5}) {
     variants.push_back({sampler, false});
   }
   for (const Variant& variant : variants) {
@@ -60,10 +60,10 @@ void BenchDataset(const std::string& name, const std::string& database_path,
     RelativePoseOptions options;
     options.sampler = sampler;
     options.use_descriptor_ratios = variant.use_ratios;
-    const std::string label = CorrespondenceSamplerName(sampler) +
-                              (has_ratios && sampler == CorrespondenceSampler::kGrid
-                                   ? (variant.use_ratios ? " (ratio)" : " (Sampson)")
-                                   : "");
+    const std::string label =
+        CorrespondenceSamplerName(sampler) + (has_ratios && sampler == CorrespondenceSampler::kGrid
+                                                  ? (variant.use_ratios ? " (ratio)" : " (Sampson)")
+                                                  : "");
     Timer timer;
     const std::vector<ViewGraphEdge> edges =
         EstimateRelativePoses(database, bearings, options, /*num_threads=*/1);
@@ -87,9 +87,9 @@ void BenchDataset(const std::string& name, const std::string& database_path,
       }
     }
     std::printf("| %s | %s | %zu | %d | %.3f | %.3f | %.2f | %.2f | %.2f |\n", name.c_str(),
-                label.c_str(), edges.size(), rejected,
-                Percentile(rotation_errors, 0.5), Percentile(rotation_errors, 0.9),
-                Percentile(translation_errors, 0.5), Percentile(translation_errors, 0.9),
+                label.c_str(), edges.size(), rejected, Percentile(rotation_errors, 0.5),
+                Percentile(rotation_errors, 0.9), Percentile(translation_errors, 0.5),
+                Percentile(translation_errors, 0.9),
                 edges.empty() ? 0.0 : 1000.0 * seconds / edges.size());
     std::fflush(stdout);
   }

@@ -31,8 +31,8 @@ void PrintSummaryTable(const MapperSummary& s, const std::string& output_path, s
     const GeoregistrationSummary& geo = s.components[k].georegistration;
     if (geo.georegistered) {
       out << "  model " << k << " georegistered: " << geo.num_inliers << " of " << geo.num_priors
-          << " priors, RMSE " << std::setprecision(2) << geo.rmse_m << " m, "
-          << geo.outliers.size() << " outlier(s)\n";
+          << " priors, RMSE " << std::setprecision(2) << geo.rmse_m << " m, " << geo.outliers.size()
+          << " outlier(s)\n";
     } else if (!geo.problem.empty()) {
       out << "  model " << k << " not georegistered: " << geo.problem << "\n";
     }
@@ -104,11 +104,12 @@ int RunMapper(int argc, char** argv) {
                 << ": its points keep no colour from it\n";
     }
   }
-  const nlohmann::json run = {{"command", "mapper"},
-                              {"database_path", database_path},
-                              {"image_path", image_path},
-                              {"options", MapperOptionsToJson(options)},
-                              {"pose_priors", PosePriorOptionsToJson(prior_text, options.georegistration)}};
+  const nlohmann::json run = {
+      {"command", "mapper"},
+      {"database_path", database_path},
+      {"image_path", image_path},
+      {"options", MapperOptionsToJson(options)},
+      {"pose_priors", PosePriorOptionsToJson(prior_text, options.georegistration)}};
   WriteMapperOutput(result, output_path,
                     output_type == "BIN" ? ModelFormat::kBinary : ModelFormat::kText, run);
   PrintSummaryTable(result.summary, output_path, std::cout);

@@ -80,9 +80,12 @@ int RunReconstruct(int argc, char** argv) {
     ColorPointsFromImages(image_path, &reconstruction);
   }
   const nlohmann::json run = {
-      {"command", "reconstruct"},       {"image_path", image_path},
-      {"database_path", database_path}, {"feature_type", features.type},
-      {"matching_mode", features.mode}, {"options", MapperOptionsToJson(mapper)},
+      {"command", "reconstruct"},
+      {"image_path", image_path},
+      {"database_path", database_path},
+      {"feature_type", features.type},
+      {"matching_mode", features.mode},
+      {"options", MapperOptionsToJson(mapper)},
       {"pose_priors", PosePriorOptionsToJson(prior_text, mapper.georegistration)},
       {"loop_closure",
        {{"enable", close_loops},

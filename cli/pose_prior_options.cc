@@ -41,8 +41,7 @@ void AddPosePriorOptions(CLI::App& app, PosePriorOptionText* text,
                  georegistration->use_in_translation_averaging,
                  "1: priors as weak rows of translation averaging (fixes scale drift)")
       ->capture_default_str();
-  app.add_option("--PosePrior.use_in_bundle_adjustment",
-                 georegistration->use_in_bundle_adjustment,
+  app.add_option("--PosePrior.use_in_bundle_adjustment", georegistration->use_in_bundle_adjustment,
                  "1: priors as residuals of the bundle adjustment (--Mapper.refine 1)")
       ->capture_default_str();
 }
@@ -70,10 +69,9 @@ LocalizedPriors LoadPosePriors(const PosePriorOptionText& text, const FeatureDat
         << " more priors not used\n";
   }
   if (!records.empty()) {
-    log << "[ramap] position priors: " << priors.priors.by_image.size() << " of "
-        << records.size() << " usable ("
-        << (text.path.empty() ? std::string("database") : text.path) << ", " << text.type
-        << ")\n";
+    log << "[ramap] position priors: " << priors.priors.by_image.size() << " of " << records.size()
+        << " usable (" << (text.path.empty() ? std::string("database") : text.path) << ", "
+        << text.type << ")\n";
   }
   return priors;
 }

@@ -63,22 +63,22 @@ TEST(ImageFeatures, ShiftedCopyMatchesAtTheShift) {
   const cv::Mat image = Texture(640, 480, 3);
   const cv::Mat shifted = image(cv::Rect(20, 10, 600, 460)).clone();
   for (const FeatureType type : {FeatureType::kOrb, FeatureType::kSift}) {
-  SCOPED_TRACE(FeatureTypeName(type));
-  FeatureExtractionOptions options;
-  options.type = type;
-  const ImageFeatures a = ExtractFeatures(image, options), b = ExtractFeatures(shifted, options);
-  std::vector<float> ratios;
-  const std::vector<FeatureMatch> matches =
-      MatchDescriptors(a.descriptors, b.descriptors, FeatureMatchingOptions(), &ratios);
-  ASSERT_GT(matches.size(), 100u);
-  ASSERT_EQ(ratios.size(), matches.size());
-  int at_shift = 0;
-  for (const FeatureMatch& m : matches) {
-    const Eigen::Vector2d d = a.keypoints.xy(m.point2D_idx1) - b.keypoints.xy(m.point2D_idx2);
-    at_shift += (d - Eigen::Vector2d(20, 10)).norm() < 1.5;
-  }
-  // Random texture repeats itself at small scales: most, not all, matches are right.
-  EXPECT_GT(at_shift, 0.8 * matches.size());
+    SCOPED_TRACE(FeatureTypeName(type));
+    FeatureExtractionOptions options;
+    options.type = type;
+    const ImageFeatures a = ExtractFeatures(image, options), b = ExtractFeatures(shifted, options);
+    std::vector<float> ratios;
+    const std::vector<FeatureMatch> matches =
+        MatchDescriptors(a.descriptors, b.descriptors, FeatureMatchingOptions(), &ratios);
+    ASSERT_GT(matches.size(), 100u);
+    ASSERT_EQ(ratios.size(), matches.size());
+    int at_shift = 0;
+    for (const FeatureMatch& m : matches) {
+      const Eigen::Vector2d d = a.keypoints.xy(m.point2D_idx1) - b.keypoints.xy(m.point2D_idx2);
+      at_shift += (d - Eigen::Vector2d(20, 10)).norm() < 1.5;
+    }
+    // Random texture repeats itself at small scales: most, not all, matches are right.
+    EXPECT_GT(at_shift, 0.8 * matches.size());
   }
 }
 

@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include <exiv2/exiv2.hpp>
 #include <cmath>
+#include <exiv2/exiv2.hpp>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
@@ -60,12 +60,12 @@ Exiv2::URationalValue DegreesMinutesSeconds(double degrees) {
   const int minutes = static_cast<int>((degrees - whole) * 60);
   const double seconds = (degrees - whole - minutes / 60.0) * 3600;
   Exiv2::URationalValue value;
-  value.value_ = {{whole, 1}, {minutes, 1}, {static_cast<uint32_t>(std::lround(seconds * 1e4)), 10000}};
+  value.value_ = {
+      {whole, 1}, {minutes, 1}, {static_cast<uint32_t>(std::lround(seconds * 1e4)), 10000}};
   return value;
 }
 
-void WriteJpegWithGps(const std::string& path, double latitude, double longitude,
-                      double altitude) {
+void WriteJpegWithGps(const std::string& path, double latitude, double longitude, double altitude) {
   cv::imwrite(path, cv::Mat(300, 400, CV_8UC3, cv::Scalar(10, 200, 30)));
   auto image = Exiv2::ImageFactory::open(path);
   image->readMetadata();

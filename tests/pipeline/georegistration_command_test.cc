@@ -38,8 +38,10 @@ Reconstruction SynthesizeWithPriors(const test::TempDir& dir, bool identical = f
   const LocalEnuFrame frame(kOrigin);
   std::vector<PriorRecord> records;
   for (const auto& [id, image] : truth.images) {
-    const GeodeticPoint fix = frame.ToGeodetic(identical ? Eigen::Vector3d(1, 1, 1) : Center(image));
-    records.push_back({image.name, Eigen::Vector3d(fix.latitude_deg, fix.longitude_deg, fix.altitude_m),
+    const GeodeticPoint fix =
+        frame.ToGeodetic(identical ? Eigen::Vector3d(1, 1, 1) : Center(image));
+    records.push_back({image.name,
+                       Eigen::Vector3d(fix.latitude_deg, fix.longitude_deg, fix.altitude_m),
                        Eigen::Vector3d(0.1, 0.1, 0.1), ""});
   }
   WritePriorFile(records, dir / "priors.txt");
@@ -95,8 +97,7 @@ TEST(GeoregistrationCommand, ModelAlignerGeoregistersAModelMadeWithoutPriors) {
   EXPECT_FALSE(fs::exists(dir / "sparse/0/geo_origin.txt"));
   const test::CommandResult aligner = test::RunCommand(
       Ramap() + "model_aligner --input_path '" + (dir / "sparse/0") + "' --output_path '" +
-      (dir / "aligned") + "' --PosePrior.path '" + (dir / "priors.txt") +
-      "' --output_type TXT");
+      (dir / "aligned") + "' --PosePrior.path '" + (dir / "priors.txt") + "' --output_type TXT");
   ASSERT_EQ(aligner.exit_code, 0) << aligner.output;
   EXPECT_NE(aligner.output.find("30 of 30 priors"), std::string::npos) << aligner.output;
   EXPECT_TRUE(fs::exists(dir / "aligned/images.txt"));

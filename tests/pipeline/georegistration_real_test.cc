@@ -61,8 +61,8 @@ TEST(GeoregistrationRealData, Kitti07FromNoisyGpsToMetricModel) {
   for (auto& [id, image] : database.images) {
     const int frame = std::stoi(image.name.substr(0, 6));
     if (frame >= 60 && frame < 70) continue;  // no fix
-    Eigen::Vector3d enu = true_enu.at(image.name) +
-                          Eigen::Vector3d(noise(random), noise(random), noise(random));
+    Eigen::Vector3d enu =
+        true_enu.at(image.name) + Eigen::Vector3d(noise(random), noise(random), noise(random));
     if (gross.count(frame)) {
       enu += Eigen::Vector3d(60, -40, 10);
       gross_names.insert(image.name);
@@ -85,7 +85,8 @@ TEST(GeoregistrationRealData, Kitti07FromNoisyGpsToMetricModel) {
   EXPECT_NE(priors.warnings[0].find("prior of 000100.png not used"), std::string::npos)
       << priors.warnings[0];
 
-  const MapperResult result = RunMapper(database, MapperOptions(), "kitti07", nullptr, priors.priors);
+  const MapperResult result =
+      RunMapper(database, MapperOptions(), "kitti07", nullptr, priors.priors);
   ASSERT_FALSE(result.reconstructions.empty());
   const Reconstruction& model = result.reconstructions.front();
   EXPECT_EQ(model.images.size(), 160u);
@@ -115,9 +116,10 @@ TEST(GeoregistrationRealData, Kitti07FromNoisyGpsToMetricModel) {
     ate += (alignment.target_from_source * estimated[k] - expected[k]).squaredNorm();
   }
   ate = std::sqrt(ate / estimated.size());
-  std::printf("KITTI 07 georegistered: %d of %d priors, %zu outliers; centre RMSE %.2f m as "
-              "written, metric ATE (rigid, no scale) %.2f m, GPS noise 3.46 m (3D)\n",
-              geo.num_inliers, geo.num_priors, geo.outliers.size(), absolute_rmse, ate);
+  std::printf(
+      "KITTI 07 georegistered: %d of %d priors, %zu outliers; centre RMSE %.2f m as "
+      "written, metric ATE (rigid, no scale) %.2f m, GPS noise 3.46 m (3D)\n",
+      geo.num_inliers, geo.num_priors, geo.outliers.size(), absolute_rmse, ate);
   EXPECT_LT(absolute_rmse, 2.0);
   EXPECT_LT(ate, 1.0);
 }

@@ -52,8 +52,8 @@ SyntheticScene LoopScene() {
 double CenterRmse(const Reconstruction& estimate, const Reconstruction& truth) {
   double sum = 0.0;
   for (const auto& [id, image] : estimate.images) {
-    sum += (Center(image.cam_from_world) - Center(truth.images.at(id).cam_from_world))
-               .squaredNorm();
+    sum +=
+        (Center(image.cam_from_world) - Center(truth.images.at(id).cam_from_world)).squaredNorm();
   }
   return std::sqrt(sum / estimate.images.size());
 }
@@ -61,17 +61,20 @@ double CenterRmse(const Reconstruction& estimate, const Reconstruction& truth) {
 TEST(Georegistration, RobustFitFindsTheSimilarityAndReportsTheOutliers) {
   const SyntheticScene scene = LoopScene();
   // The "model": the truth under an unknown similarity.
-  const Sim3d model_from_truth(0.2, Eigen::Quaterniond(Eigen::AngleAxisd(1.0, Eigen::Vector3d(1, 2, 3).normalized())),
-                               Eigen::Vector3d(5, -1, 2));
+  const Sim3d model_from_truth(
+      0.2, Eigen::Quaterniond(Eigen::AngleAxisd(1.0, Eigen::Vector3d(1, 2, 3).normalized())),
+      Eigen::Vector3d(5, -1, 2));
   std::map<uint32_t, Eigen::Vector3d> centers;
-  for (const auto& [id, center] : Centers(scene.ground_truth)) centers[id] = model_from_truth * center;
+  for (const auto& [id, center] : Centers(scene.ground_truth))
+    centers[id] = model_from_truth * center;
   const PositionPriors priors = NoisyPriors(scene.ground_truth, 0.0, {7, 31});
   const PriorAlignment alignment = AlignCentersToPriors(centers, priors, GeoregistrationOptions());
   ASSERT_TRUE(alignment.summary.georegistered) << alignment.summary.problem;
   EXPECT_EQ(alignment.summary.num_priors, 60);
   EXPECT_EQ(alignment.summary.num_inliers, 58);
   ASSERT_EQ(alignment.summary.outliers.size(), 2u);
-  EXPECT_EQ(std::min(alignment.summary.outliers[0].image_id, alignment.summary.outliers[1].image_id), 7u);
+  EXPECT_EQ(
+      std::min(alignment.summary.outliers[0].image_id, alignment.summary.outliers[1].image_id), 7u);
   EXPECT_NEAR(alignment.summary.outliers[0].error_m, std::sqrt(30 * 30 + 20 * 20 + 5 * 5), 1e-6);
   EXPECT_NEAR(alignment.summary.scale, 5.0, 1e-9);
   EXPECT_LT(alignment.summary.rmse_m, 1e-9);
@@ -88,20 +91,23 @@ TEST(Georegistration, PriorsThatCannotFixAFrameSayWhy) {
   const SyntheticScene scene = LoopScene();
   const std::map<uint32_t, Eigen::Vector3d> centers = Centers(scene.ground_truth);
   PositionPriors identical;
-  for (const auto& [id, center] : centers) identical.by_image[id] = {Eigen::Vector3d(1, 2, 3), Eigen::Vector3d::Ones()};
+  for (const auto& [id, center] : centers)
+    identical.by_image[id] = {Eigen::Vector3d(1, 2, 3), Eigen::Vector3d::Ones()};
   const PriorAlignment same = AlignCentersToPriors(centers, identical, GeoregistrationOptions());
   EXPECT_FALSE(same.summary.georegistered);
   EXPECT_NE(same.summary.problem.find("coincide"), std::string::npos) << same.summary.problem;
 
   PositionPriors on_a_line;
-  for (const auto& [id, center] : centers) on_a_line.by_image[id] = {Eigen::Vector3d(id, 0, 0), Eigen::Vector3d::Ones()};
+  for (const auto& [id, center] : centers)
+    on_a_line.by_image[id] = {Eigen::Vector3d(id, 0, 0), Eigen::Vector3d::Ones()};
   const PriorAlignment line = AlignCentersToPriors(centers, on_a_line, GeoregistrationOptions());
   EXPECT_FALSE(line.summary.georegistered);
   EXPECT_FALSE(line.summary.problem.empty());
 
   PositionPriors few;
   for (uint32_t id = 1; id <= 3; ++id) few.by_image[id] = {centers.at(id), Eigen::Vector3d::Ones()};
-  few.by_image[999] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()};  // an image not in the model
+  few.by_image[999] = {Eigen::Vector3d::Zero(),
+                       Eigen::Vector3d::Ones()};  // an image not in the model
   const PriorAlignment too_few = AlignCentersToPriors(centers, few, GeoregistrationOptions());
   EXPECT_FALSE(too_few.summary.georegistered);
   EXPECT_EQ(too_few.summary.num_priors, 3);
@@ -112,12 +118,14 @@ TEST(Georegistration, PriorsThatCannotFixAFrameSayWhy) {
 TEST(Georegistration, TranslationAveragingWithExactPriorsLandsOnThem) {
   const SyntheticScene scene = LoopScene();
   std::map<uint32_t, Eigen::Quaterniond> rotations;
-  for (const auto& [id, image] : scene.ground_truth.images) rotations[id] = image.cam_from_world.rotation;
+  for (const auto& [id, image] : scene.ground_truth.images)
+    rotations[id] = image.cam_from_world.rotation;
   std::vector<PairDirection> directions;
   const std::map<uint32_t, Eigen::Vector3d> centers = Centers(scene.ground_truth);
   for (const auto& [pair_id, geometry] : scene.database.two_view_geometries) {
-    directions.push_back({geometry.image_id1, geometry.image_id2,
-                          (centers.at(geometry.image_id2) - centers.at(geometry.image_id1)).normalized()});
+    directions.push_back(
+        {geometry.image_id1, geometry.image_id2,
+         (centers.at(geometry.image_id2) - centers.at(geometry.image_id1)).normalized()});
   }
   std::vector<CenterPrior> priors;
   for (const auto& [id, center] : centers) {
@@ -127,7 +135,8 @@ TEST(Georegistration, TranslationAveragingWithExactPriorsLandsOnThem) {
       AverageTranslations(rotations, directions, {}, TranslationAveragingOptions(), priors);
   EXPECT_EQ(result.num_priors_used, 20);
   ASSERT_EQ(result.centers.size(), 60u);
-  for (const auto& [id, center] : result.centers) EXPECT_LT((center - centers.at(id)).norm(), 1e-4) << id;
+  for (const auto& [id, center] : result.centers)
+    EXPECT_LT((center - centers.at(id)).norm(), 1e-4) << id;
 }
 
 struct MapperCase {
@@ -177,12 +186,15 @@ INSTANTIATE_TEST_SUITE_P(Uses, GeoregisteredMapper,
 TEST(GeoregisteredMapper, PriorsThatCannotGeoregisterLeaveTheModelAsWithout) {
   const SyntheticScene scene = LoopScene();
   PositionPriors identical;
-  for (const auto& [id, image] : scene.ground_truth.images) identical.by_image[id] = {Eigen::Vector3d(4, 4, 4), Eigen::Vector3d::Ones()};
-  const MapperResult with = RunMapper(scene.database, MapperOptions(), "synthetic", nullptr, identical);
+  for (const auto& [id, image] : scene.ground_truth.images)
+    identical.by_image[id] = {Eigen::Vector3d(4, 4, 4), Eigen::Vector3d::Ones()};
+  const MapperResult with =
+      RunMapper(scene.database, MapperOptions(), "synthetic", nullptr, identical);
   const MapperResult without = RunMapper(scene.database, MapperOptions(), "synthetic");
   ASSERT_EQ(with.reconstructions.size(), 1u);
   EXPECT_FALSE(with.summary.components.front().georegistration.georegistered);
-  EXPECT_NE(with.summary.components.front().georegistration.problem.find("coincide"), std::string::npos);
+  EXPECT_NE(with.summary.components.front().georegistration.problem.find("coincide"),
+            std::string::npos);
   EXPECT_FALSE(with.geodetic_origin.has_value());
   EXPECT_LT(CenterRmse(with.reconstructions.front(), without.reconstructions.front()), 1e-12);
 }

@@ -30,9 +30,8 @@ void AddDescriptors(SyntheticScene* scene, uint64_t seed) {
     Descriptors descriptors;
     descriptors.num_cols = 32;
     for (const Point2D& point : image.points2D) {
-      std::array<uint8_t, 32> pattern = point.point3D_id == kInvalidPoint3DId
-                                            ? random_pattern()
-                                            : patterns.at(point.point3D_id);
+      std::array<uint8_t, 32> pattern =
+          point.point3D_id == kInvalidPoint3DId ? random_pattern() : patterns.at(point.point3D_id);
       for (int flip = 0; flip < 8; ++flip) {
         const int b = bit(random);
         pattern[b / 8] ^= static_cast<uint8_t>(1u << (b % 8));
@@ -71,9 +70,9 @@ std::vector<uint32_t> Order(const Reconstruction& reconstruction) {
 
 TEST(LoopCandidates, RevisitsAreFoundAndNeighboursAreNot) {
   const SyntheticScene scene = SequentialLoop();
-  const std::vector<LoopCandidate> candidates = FindLoopCandidates(
-      scene.ground_truth, Order(scene.ground_truth), MatchedPairs(scene.database),
-      LoopCandidateOptions());
+  const std::vector<LoopCandidate> candidates =
+      FindLoopCandidates(scene.ground_truth, Order(scene.ground_truth),
+                         MatchedPairs(scene.database), LoopCandidateOptions());
   ASSERT_FALSE(candidates.empty());
   for (const LoopCandidate& candidate : candidates) {
     // The loop's end meets its start: one image among the first frames, one among the last.
@@ -113,10 +112,11 @@ TEST(LoopClosure, VerifiedLoopsEnterTheSecondSolve) {
   // The pose graph's loop edges (between keyframe windows) gain the revisits.
   EXPECT_GE(second.summary.num_loop_edges, first.summary.num_loop_edges + closure.num_verified);
   const PoseEvaluation before = evaluate(first), after = evaluate(second);
-  std::printf("loop closure: %d of %d candidates verified; ATE %.4f -> %.4f, rotation error "
-              "max %.3f -> %.3f deg\n",
-              closure.num_verified, closure.num_candidates, before.ate_rmse, after.ate_rmse,
-              before.rotation_error_max_deg, after.rotation_error_max_deg);
+  std::printf(
+      "loop closure: %d of %d candidates verified; ATE %.4f -> %.4f, rotation error "
+      "max %.3f -> %.3f deg\n",
+      closure.num_verified, closure.num_candidates, before.ate_rmse, after.ate_rmse,
+      before.rotation_error_max_deg, after.rotation_error_max_deg);
   EXPECT_EQ(after.num_registered, 80);
   EXPECT_LT(after.ate_rmse, before.ate_rmse);
 }

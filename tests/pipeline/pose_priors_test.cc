@@ -43,8 +43,8 @@ TEST(PosePriors, Wgs84AboutTheMedianOriginWithBadRecordsSkipped) {
   for (int k = 1; k <= 5; ++k) records.push_back(Geodetic(k, {10.0 * k, -5.0 * k, 1.0}, frame));
   // Image 6: NaN; image 7: on the other side of the planet; image 8: a latitude of 95 degrees.
   records.push_back({"image6.jpg", Eigen::Vector3d(NAN, 8.4, 115), std::nullopt, "test:6"});
-  records.push_back({"image7.jpg", Eigen::Vector3d(-49.011, 8.4165 - 180, 115), std::nullopt,
-                     "test:7"});
+  records.push_back(
+      {"image7.jpg", Eigen::Vector3d(-49.011, 8.4165 - 180, 115), std::nullopt, "test:7"});
   records.push_back({"image8.jpg", Eigen::Vector3d(95, 8.4, 115), std::nullopt, "test:8"});
   records.push_back({"unknown.jpg", Eigen::Vector3d(49, 8, 100), std::nullopt, "test:9"});
   records.push_back(Geodetic(1, {0, 0, 0}, frame));  // a second prior for image 1

@@ -360,8 +360,8 @@ Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
         held[k] = true;
       }
     }
-    if (system.num_prior_columns == 0 &&
-        std::find(held.begin(), held.end(), true) == held.end() && tightest >= 0) {
+    if (system.num_prior_columns == 0 && std::find(held.begin(), held.end(), true) == held.end() &&
+        tightest >= 0) {
       held[tightest] = true;
     }
     const double change = (next.head(num_position_cols) - x.head(num_position_cols)).norm() /
@@ -494,8 +494,7 @@ TranslationAveragingResult AverageTranslations(
   // rows, then prior rows.
   const int num_cameras = static_cast<int>(solved.size()) - (has_priors ? 0 : 1);
   const int num_position_cols = 3 * num_cameras;
-  const int num_cols =
-      num_position_cols + static_cast<int>(pairs.size() + used_priors.size());
+  const int num_cols = num_position_cols + static_cast<int>(pairs.size() + used_priors.size());
   const int num_rows = 3 * static_cast<int>(constraints.size() + pairs.size() + used_priors.size());
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(constraints.size() * 36 + pairs.size() * 9);
@@ -571,9 +570,8 @@ TranslationAveragingResult AverageTranslations(
     if (least_squares.info() != Eigen::Success) {
       throw std::runtime_error("translation averaging: factorisation failed");
     }
-    x.head(num_position_cols) =
-        least_squares.solve(
-            -(B_c.transpose() * (B_s * Eigen::VectorXd::Ones(system.num_extra_cols()))));
+    x.head(num_position_cols) = least_squares.solve(
+        -(B_c.transpose() * (B_s * Eigen::VectorXd::Ones(system.num_extra_cols()))));
     for (size_t k = 0; k < pairs.size(); ++k) {
       x(num_position_cols + k) = pairs[k].direction.dot(center(pairs[k].j) - center(pairs[k].i));
     }
@@ -581,9 +579,8 @@ TranslationAveragingResult AverageTranslations(
   }
 
   int iterations = 0;
-  x = options.solver == TranslationSolver::kIrls
-          ? SolveByIrls(system, x, options, &iterations)
-          : SolveByAdmm(system, x, options, &iterations);
+  x = options.solver == TranslationSolver::kIrls ? SolveByIrls(system, x, options, &iterations)
+                                                 : SolveByAdmm(system, x, options, &iterations);
   result.num_solver_iterations = iterations;
 
   // The documented scale: mean projected pair baseline = 1.

@@ -98,7 +98,8 @@ std::vector<std::pair<uint32_t, uint32_t>> PreemptivePairs(
   for (const auto& [id, image] : database.images) {
     const auto keypoints = database.keypoints.find(id);
     const auto descriptors = database.descriptors.find(id);
-    if (keypoints == database.keypoints.end() || descriptors == database.descriptors.end()) continue;
+    if (keypoints == database.keypoints.end() || descriptors == database.descriptors.end())
+      continue;
     top[id] = LargestScaleDescriptors(keypoints->second, descriptors->second,
                                       options.preemptive_num_features);
   }
@@ -257,9 +258,8 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
   // verified pairs (the mapper's AUC@1 after BA 70.9 -> 73.7%, ORB 19.8 -> 29.9%); KITTI 07's
   // sequential pairs equal in time and accuracy (ATE after BA: ORB 0.38 -> 0.44%, SIFT 0.51 ->
   // 0.50% of the path).
-  const cv::Mat E =
-      cv::findEssentialMat(points1, points2, 1.0, cv::Point2d(0, 0), cv::USAC_DEFAULT,
-                           options.confidence, options.max_error_px / focal, mask);
+  const cv::Mat E = cv::findEssentialMat(points1, points2, 1.0, cv::Point2d(0, 0), cv::USAC_DEFAULT,
+                                         options.confidence, options.max_error_px / focal, mask);
   if (E.rows != 3 || E.cols != 3) return geometry;  // none, or several stacked solutions
   cv::Mat R, t;
   cv::Mat pose_mask = mask.clone();
@@ -368,8 +368,8 @@ MatchingSummary MatchImagePairs(FeatureDatabase* database,
       pairs.size(), options.num_threads,
       [&](size_t k) {
         const auto [id1, id2] = pairs[k];
-        matches[k] = MatchDescriptors(database->descriptors.at(id1),
-                                      database->descriptors.at(id2), options, &ratios[k]);
+        matches[k] = MatchDescriptors(database->descriptors.at(id1), database->descriptors.at(id2),
+                                      options, &ratios[k]);
         const Image& image1 = database->images.at(id1);
         const Image& image2 = database->images.at(id2);
         geometries[k] =

@@ -183,7 +183,8 @@ FeatureDatabase ExtractImageFeatures(const std::string& image_path,
     image.camera_id = camera_id;
     // As COLMAP's ImageReader: GPS in the prior position columns as latitude, longitude, altitude.
     if (const auto& gps = result.exif_gps) {
-      image.prior_translation = Eigen::Vector3d(gps->latitude_deg, gps->longitude_deg, gps->altitude_m);
+      image.prior_translation =
+          Eigen::Vector3d(gps->latitude_deg, gps->longitude_deg, gps->altitude_m);
       ++summary->num_images_with_gps;
     }
     database.images[image.image_id] = image;

@@ -13,8 +13,8 @@ namespace {
 // The local frame's conversions, built on each call: GeographicLib::LocalCartesian is cheap to
 // construct (a rotation matrix) and keeping one per frame would make the class non-copyable.
 GeographicLib::LocalCartesian Cartesian(const GeodeticPoint& origin) {
-  return GeographicLib::LocalCartesian(origin.latitude_deg, origin.longitude_deg,
-                                       origin.altitude_m, GeographicLib::Geocentric::WGS84());
+  return GeographicLib::LocalCartesian(origin.latitude_deg, origin.longitude_deg, origin.altitude_m,
+                                       GeographicLib::Geocentric::WGS84());
 }
 
 }  // namespace

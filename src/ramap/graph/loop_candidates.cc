@@ -66,9 +66,10 @@ std::vector<LoopCandidate> FindLoopCandidates(const Reconstruction& reconstructi
                             std::acos(std::clamp(cos_angle, -1.0, 1.0)) * 180.0 / M_PI});
     }
   }
-  std::sort(candidates.begin(), candidates.end(), [](const LoopCandidate& x, const LoopCandidate& y) {
-    return x.distance_baselines < y.distance_baselines;
-  });
+  std::sort(candidates.begin(), candidates.end(),
+            [](const LoopCandidate& x, const LoopCandidate& y) {
+              return x.distance_baselines < y.distance_baselines;
+            });
   std::map<uint32_t, int> per_image;
   std::vector<LoopCandidate> kept;
   for (const LoopCandidate& candidate : candidates) {

@@ -1,8 +1,8 @@
 #include "ramap/io/colmap_database.h"
 
 #include <Eigen/Core>
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <memory>
@@ -674,9 +674,9 @@ void WriteContents(const FeatureDatabase& database, Connection& db) {
     geometry_row.Run();
   }
 
-  const bool any_ratios = std::any_of(
-      database.two_view_geometries.begin(), database.two_view_geometries.end(),
-      [](const auto& entry) { return !entry.second.inlier_ratios.empty(); });
+  const bool any_ratios =
+      std::any_of(database.two_view_geometries.begin(), database.two_view_geometries.end(),
+                  [](const auto& entry) { return !entry.second.inlier_ratios.empty(); });
   if (!any_ratios) return;
   db.Execute(std::string("CREATE TABLE ") + kMatchConfidenceTable +
              " (pair_id INTEGER PRIMARY KEY NOT NULL, rows INTEGER NOT NULL, data BLOB)");

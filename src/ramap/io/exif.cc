@@ -18,15 +18,16 @@ std::optional<double> Number(const Exiv2::ExifData& exif, const char* key) {
 
 // Degrees from the three rationals (degrees, minutes, seconds) of a GPS coordinate, signed by its
 // reference tag ("S" and "W" are negative).
-std::optional<double> GpsDegrees(const Exiv2::ExifData& exif, const char* key,
-                                 const char* ref_key, char negative_ref) {
+std::optional<double> GpsDegrees(const Exiv2::ExifData& exif, const char* key, const char* ref_key,
+                                 char negative_ref) {
   const auto it = exif.findKey(Exiv2::ExifKey(key));
   if (it == exif.end() || it->count() != 3) return std::nullopt;
   const double degrees = it->toFloat(0) + it->toFloat(1) / 60.0 + it->toFloat(2) / 3600.0;
   if (!std::isfinite(degrees)) return std::nullopt;
   const auto ref = exif.findKey(Exiv2::ExifKey(ref_key));
-  const bool negative = ref != exif.end() && !ref->toString().empty() &&
-                        std::toupper(static_cast<unsigned char>(ref->toString()[0])) == negative_ref;
+  const bool negative =
+      ref != exif.end() && !ref->toString().empty() &&
+      std::toupper(static_cast<unsigned char>(ref->toString()[0])) == negative_ref;
   return negative ? -degrees : degrees;
 }
 

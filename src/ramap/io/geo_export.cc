@@ -28,8 +28,8 @@ GeodeticPoint ReadGeoOrigin(const std::string& path) {
     std::istringstream in(line);
     GeodeticPoint origin;
     std::string rest;
-    if (!(in >> origin.latitude_deg >> origin.longitude_deg >> origin.altitude_m) ||
-        (in >> rest) || !IsValidGeodeticPoint(origin)) {
+    if (!(in >> origin.latitude_deg >> origin.longitude_deg >> origin.altitude_m) || (in >> rest) ||
+        !IsValidGeodeticPoint(origin)) {
       throw InputError(path, "expected 'LATITUDE LONGITUDE ALTITUDE', found '" + line + "'");
     }
     return origin;
@@ -42,8 +42,7 @@ void WriteCamerasGeoJson(const Reconstruction& reconstruction, const LocalEnuFra
   nlohmann::json features = nlohmann::json::array();
   for (const auto& [id, image] : reconstruction.images) {
     const Rigid3d& pose = image.cam_from_world;
-    const GeodeticPoint point =
-        frame.ToGeodetic(-(pose.rotation.conjugate() * pose.translation));
+    const GeodeticPoint point = frame.ToGeodetic(-(pose.rotation.conjugate() * pose.translation));
     features.push_back(
         {{"type", "Feature"},
          {"geometry",

@@ -33,10 +33,14 @@ PriorCoordinates PriorCoordinatesFromName(const std::string& name, const std::st
 
 const char* PriorCoordinatesName(PriorCoordinates coordinates) {
   switch (coordinates) {
-    case PriorCoordinates::kWgs84: return "wgs84";
-    case PriorCoordinates::kEnu: return "enu";
-    case PriorCoordinates::kEcef: return "ecef";
-    case PriorCoordinates::kXyz: return "xyz";
+    case PriorCoordinates::kWgs84:
+      return "wgs84";
+    case PriorCoordinates::kEnu:
+      return "enu";
+    case PriorCoordinates::kEcef:
+      return "ecef";
+    case PriorCoordinates::kXyz:
+      return "xyz";
   }
   return "?";
 }
@@ -62,8 +66,8 @@ std::vector<PriorRecord> ReadPriorFile(const std::string& path) {
     double numbers[6];
     for (size_t k = 1; k < fields.size(); ++k) {
       if (!ParseNumber(fields[k], &numbers[k - 1])) {
-        throw InputError(where, "field " + std::to_string(k + 1) + " '" + fields[k] +
-                                    "' is not a number");
+        throw InputError(where,
+                         "field " + std::to_string(k + 1) + " '" + fields[k] + "' is not a number");
       }
     }
     record.value = Eigen::Vector3d(numbers[0], numbers[1], numbers[2]);

@@ -2,7 +2,8 @@
 //
 //   # comment
 //   NAME  V1 V2 V3            (the coordinates, see PriorCoordinates)
-//   NAME  V1 V2 V3  S1 S2 S3  (and that prior's standard deviations in metres, east north up or x y z)
+//   NAME  V1 V2 V3  S1 S2 S3  (and that prior's standard deviations in metres, east north up or x y
+//   z)
 //
 // NAME is the image name as in the database (no spaces). The reader only parses: a malformed line
 // (wrong number of fields, text where a number belongs) throws InputError naming the file and line;

@@ -41,12 +41,12 @@ struct PriorOutlier {
 
 struct GeoregistrationSummary {
   bool georegistered = false;
-  std::string problem;     // why not, when not georegistered
-  int num_priors = 0;      // registered images with a prior
+  std::string problem;  // why not, when not georegistered
+  int num_priors = 0;   // registered images with a prior
   int num_inliers = 0;
-  double rmse_m = 0.0;     // aligned centre vs prior, over the inliers
+  double rmse_m = 0.0;  // aligned centre vs prior, over the inliers
   double threshold_m = 0.0;
-  double scale = 0.0;      // metres per unit of the model before georegistration
+  double scale = 0.0;  // metres per unit of the model before georegistration
   bool used_in_translation_averaging = false;
   bool used_in_bundle_adjustment = false;
   std::vector<PriorOutlier> outliers;  // largest error first

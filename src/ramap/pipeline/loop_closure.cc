@@ -7,7 +7,8 @@
 
 namespace ramap {
 
-LoopClosureSummary MatchLoopCandidates(const MapperResult& first, const LoopCandidateOptions& options,
+LoopClosureSummary MatchLoopCandidates(const MapperResult& first,
+                                       const LoopCandidateOptions& options,
                                        const FeatureMatchingOptions& matching,
                                        FeatureDatabase* database, std::ostream* progress) {
   Timer timer;
@@ -36,9 +37,9 @@ LoopClosureSummary MatchLoopCandidates(const MapperResult& first, const LoopCand
     for (const auto& [id1, id2] : pairs) {
       const auto geometry = database->two_view_geometries.find(ImagePairToPairId(id1, id2));
       if (geometry == database->two_view_geometries.end()) continue;
-      summary.loops.push_back(database->images.at(id1).name + " " +
-                              database->images.at(id2).name + ": " +
-                              std::to_string(geometry->second.inlier_matches.size()) + " inliers");
+      summary.loops.push_back(database->images.at(id1).name + " " + database->images.at(id2).name +
+                              ": " + std::to_string(geometry->second.inlier_matches.size()) +
+                              " inliers");
     }
   }
   summary.seconds = timer.ElapsedSeconds();

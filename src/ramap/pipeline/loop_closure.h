@@ -15,13 +15,14 @@ namespace ramap {
 
 struct LoopClosureSummary {
   int num_candidates = 0;
-  int num_verified = 0;  // candidates that got a two-view geometry: the loop edges
+  int num_verified = 0;            // candidates that got a two-view geometry: the loop edges
   std::vector<std::string> loops;  // "NAME1 NAME2: N inliers"
   double seconds = 0.0;
 };
 
 // Candidates in every model of `first`, matched and verified into `database` (descriptors needed).
-LoopClosureSummary MatchLoopCandidates(const MapperResult& first, const LoopCandidateOptions& options,
+LoopClosureSummary MatchLoopCandidates(const MapperResult& first,
+                                       const LoopCandidateOptions& options,
                                        const FeatureMatchingOptions& matching,
                                        FeatureDatabase* database, std::ostream* progress = nullptr);
 

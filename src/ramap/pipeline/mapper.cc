@@ -225,8 +225,8 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
   PriorAlignment georegistration;
   if (!context.priors.by_image.empty() && options.georegistration.align) {
     Timer georegistration_timer;
-    georegistration = GeoregisterPositions(context, world_rotations, directions,
-                                           translation_tracks, &positions);
+    georegistration =
+        GeoregisterPositions(context, world_rotations, directions, translation_tracks, &positions);
     const GeoregistrationSummary& geo = georegistration.summary;
     context.log.Record(
         "georegistration", georegistration_timer.ElapsedSeconds(),
@@ -238,9 +238,9 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
             : "not georegistered: " + geo.problem);
     for (const PriorOutlier& outlier : geo.outliers) {
       context.summary.prior_outliers.push_back(
-          {database.images.at(outlier.image_id).name,
-           "prior " + Metres(outlier.error_m) + " from the aligned camera centre (> " +
-               Metres(geo.threshold_m) + "): not used"});
+          {database.images.at(outlier.image_id).name, "prior " + Metres(outlier.error_m) +
+                                                          " from the aligned camera centre (> " +
+                                                          Metres(geo.threshold_m) + "): not used"});
     }
   }
   const bool georegistered = georegistration.summary.georegistered;
@@ -252,8 +252,7 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
     poses[id] = Rigid3d(R, -(R * center));
     if (georegistered) poses[id] = TransformPose(georegistration.prior_from_model, poses[id]);
   }
-  auto triangulate = [&](const std::map<uint32_t, Rigid3d>& fixed_poses,
-                         const std::string& what) {
+  auto triangulate = [&](const std::map<uint32_t, Rigid3d>& fixed_poses, const std::string& what) {
     Timer structure_timer;
     StructureSummary structure;
     *reconstruction =
@@ -380,8 +379,8 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
   const std::vector<int> labels = ConnectedComponents(graph);
   const int num_components =
       labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
-  MapperContext context{database, options, bearings,      view_edges,    order,
-                        summary.sequential, log, summary, image_reasons, priors};
+  MapperContext context{database,           options, bearings, view_edges,    order,
+                        summary.sequential, log,     summary,  image_reasons, priors};
   for (int label = 0; label < num_components; ++label) {
     std::vector<bool> keep(graph.edges.size());
     const std::unordered_map<uint32_t, int> index = NodeIndex(graph);

@@ -73,8 +73,8 @@ LocalizedPriors LocalizePriors(const std::vector<PriorRecord>& records,
   std::map<std::string, uint32_t> ids;
   for (const auto& [id, image] : database.images) ids[image.name] = id;
   auto warn = [&](const PriorRecord& record, const std::string& problem) {
-    result.warnings.push_back(record.where + ": prior of " + record.image_name + " not used: " +
-                              problem);
+    result.warnings.push_back(record.where + ": prior of " + record.image_name +
+                              " not used: " + problem);
   };
 
   // Usable records, one per image.
@@ -105,7 +105,8 @@ LocalizedPriors LocalizePriors(const std::vector<PriorRecord>& records,
              options.coordinates == PriorCoordinates::kEcef) {
     std::vector<double> a, b, c;
     for (const auto& [id, record] : usable) {
-      a.push_back(record->value.x()), b.push_back(record->value.y()), c.push_back(record->value.z());
+      a.push_back(record->value.x()), b.push_back(record->value.y()),
+          c.push_back(record->value.z());
     }
     const Eigen::Vector3d median(Median(a), Median(b), Median(c));
     frame.emplace(options.coordinates == PriorCoordinates::kWgs84
@@ -120,10 +121,16 @@ LocalizedPriors LocalizePriors(const std::vector<PriorRecord>& records,
   for (const auto& [id, record] : usable) {
     const Eigen::Vector3d& v = record->value;
     switch (options.coordinates) {
-      case PriorCoordinates::kWgs84: local[id] = frame->FromGeodetic({v.x(), v.y(), v.z()}); break;
-      case PriorCoordinates::kEcef: local[id] = frame->FromEcef(v); break;
+      case PriorCoordinates::kWgs84:
+        local[id] = frame->FromGeodetic({v.x(), v.y(), v.z()});
+        break;
+      case PriorCoordinates::kEcef:
+        local[id] = frame->FromEcef(v);
+        break;
       case PriorCoordinates::kEnu:
-      case PriorCoordinates::kXyz: local[id] = v; break;
+      case PriorCoordinates::kXyz:
+        local[id] = v;
+        break;
     }
   }
   // Gross errors: too far from the origin (for local frames without one, the median position).

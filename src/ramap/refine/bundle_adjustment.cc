@@ -253,7 +253,8 @@ BundleAdjustmentSummary BundleAdjust(
   options.Check();
   Timer timer;
   BundleAdjustmentSummary summary;
-  for (const auto& [image_id, prior] : priors) summary.num_priors += reconstruction->images.count(image_id);
+  for (const auto& [image_id, prior] : priors)
+    summary.num_priors += reconstruction->images.count(image_id);
   summary.num_images = static_cast<int>(reconstruction->images.size());
   std::vector<Observation> observations =
       UsableObservations(bearings, focal_lengths_px, *reconstruction, options.min_bearing_z);

@@ -1,12 +1,11 @@
 // Keypoints, descriptors, matches and two-view geometries: the contents of a COLMAP database.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <map>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "ramap/scene/camera.h"
 #include "ramap/scene/image.h"

@@ -12,8 +12,8 @@
 namespace ramap {
 
 struct PositionPrior {
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();       // metres, local frame
-  Eigen::Vector3d std_dev_m = Eigen::Vector3d::Ones();    // per axis of the local frame
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();     // metres, local frame
+  Eigen::Vector3d std_dev_m = Eigen::Vector3d::Ones();  // per axis of the local frame
 };
 
 struct PositionPriors {

@@ -27,23 +27,7 @@ void PrintSummaryTable(const MapperSummary& s, const std::string& output_path, s
         << c.num_rotation_edges << std::setw(8) << c.num_pruned_edges << std::setw(11)
         << (c.rotation_certified ? "yes" : "no") << "\n";
   }
-  for (size_t k = 0; k < s.components.size(); ++k) {
-    const GeoregistrationSummary& geo = s.components[k].georegistration;
-    if (geo.georegistered) {
-      out << "  model " << k << " georegistered: " << geo.num_inliers << " of " << geo.num_priors
-          << " priors, RMSE " << std::setprecision(2) << geo.rmse_m << " m, " << geo.outliers.size()
-          << " outlier(s)\n";
-    } else if (!geo.problem.empty()) {
-      out << "  model " << k << " not georegistered: " << geo.problem << "\n";
-    }
-  }
-  if (!s.prior_outliers.empty()) {
-    out << "  position priors rejected as outliers (" << s.prior_outliers.size() << "):\n";
-    for (size_t k = 0; k < s.prior_outliers.size() && k < 10; ++k) {
-      out << "    " << s.prior_outliers[k].what << ": " << s.prior_outliers[k].reason << "\n";
-    }
-    if (s.prior_outliers.size() > 10) out << "    ... (all in summary.json)\n";
-  }
+  PrintGeoregistration(s, out);
   if (!s.dropped_images.empty()) {
     out << "  not registered (" << s.dropped_images.size() << "):\n";
     for (size_t k = 0; k < s.dropped_images.size() && k < 10; ++k) {

@@ -99,6 +99,7 @@ int RunReconstruct(int argc, char** argv) {
   std::cout << "ramap reconstruct: " << result.summary.num_registered_images << " of "
             << database.images.size() << " images registered in " << result.reconstructions.size()
             << " model(s) -> " << output_path << "/sparse\n";
+  PrintGeoregistration(result.summary, std::cout);
   return 0;
 }
 

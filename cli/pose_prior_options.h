@@ -9,6 +9,7 @@
 #include <string>
 
 #include "ramap/pipeline/georegistration.h"
+#include "ramap/pipeline/mapper.h"
 #include "ramap/pipeline/pose_priors.h"
 
 namespace ramap::cli {
@@ -32,6 +33,10 @@ void AddPosePriorOptions(CLI::App& app, PosePriorOptionText* text,
 // records are printed to `log` as warnings prefixed by `command` (ten at most, then a count).
 LocalizedPriors LoadPosePriors(const PosePriorOptionText& text, const FeatureDatabase& database,
                                const std::string& command, std::ostream& log);
+
+// One line per model saying whether (and how well) it was georegistered, then the rejected priors
+// (ten at most); nothing when the run had no priors.
+void PrintGeoregistration(const MapperSummary& summary, std::ostream& out);
 
 nlohmann::json PosePriorOptionsToJson(const PosePriorOptionText& text,
                                       const GeoregistrationOptions& georegistration);

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
+#include "exif_writer.h"
 #include "ramap/features/image_reader.h"
 #include "test_support.h"
 
@@ -53,32 +54,9 @@ TEST(Exif, ImageReaderTakesTheExifFocalLength) {
   EXPECT_TRUE(database.cameras.at(1).has_prior_focal_length);
 }
 
-// Degrees as the three rationals EXIF stores (degrees, minutes, seconds to 1e-4 s).
-Exiv2::URationalValue DegreesMinutesSeconds(double degrees) {
-  degrees = std::abs(degrees);
-  const int whole = static_cast<int>(degrees);
-  const int minutes = static_cast<int>((degrees - whole) * 60);
-  const double seconds = (degrees - whole - minutes / 60.0) * 3600;
-  Exiv2::URationalValue value;
-  value.value_ = {
-      {whole, 1}, {minutes, 1}, {static_cast<uint32_t>(std::lround(seconds * 1e4)), 10000}};
-  return value;
-}
-
 void WriteJpegWithGps(const std::string& path, double latitude, double longitude, double altitude) {
-  cv::imwrite(path, cv::Mat(300, 400, CV_8UC3, cv::Scalar(10, 200, 30)));
-  auto image = Exiv2::ImageFactory::open(path);
-  image->readMetadata();
-  Exiv2::ExifData exif;
-  exif["Exif.GPSInfo.GPSLatitudeRef"] = latitude < 0 ? "S" : "N";
-  exif["Exif.GPSInfo.GPSLatitude"] = DegreesMinutesSeconds(latitude);
-  exif["Exif.GPSInfo.GPSLongitudeRef"] = longitude < 0 ? "W" : "E";
-  exif["Exif.GPSInfo.GPSLongitude"] = DegreesMinutesSeconds(longitude);
-  exif["Exif.GPSInfo.GPSAltitudeRef"] = static_cast<uint8_t>(altitude < 0 ? 1 : 0);
-  exif["Exif.GPSInfo.GPSAltitude"] =
-      Exiv2::URational(static_cast<uint32_t>(std::lround(std::abs(altitude) * 100)), 100);
-  image->setExifData(exif);
-  image->writeMetadata();
+  test::WriteJpegWithGps(path, cv::Mat(300, 400, CV_8UC3, cv::Scalar(10, 200, 30)), latitude,
+                         longitude, altitude);
 }
 
 TEST(Exif, GpsPositionFromTheTagsOfAJpegTheTestWrote) {

@@ -7,11 +7,14 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
+#include "exif_writer.h"
 #include "ramap/geometry/geodetic.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/geo_export.h"
 #include "ramap/io/pose_prior_file.h"
+#include "ramap/io/trajectory.h"
 #include "test_support.h"
 
 namespace ramap {
@@ -103,6 +106,51 @@ TEST(GeoregistrationCommand, ModelAlignerGeoregistersAModelMadeWithoutPriors) {
   EXPECT_TRUE(fs::exists(dir / "aligned/images.txt"));
   EXPECT_TRUE(fs::exists(dir / "aligned/cameras.geojson"));
   EXPECT_LT(GeodeticError(dir / "aligned", truth), 0.1);
+}
+
+// Geotagged photos to a georegistered model in one command: twelve templeRing views as JPEGs whose
+// EXIF GPS is the true camera centre (scaled by 100 to a 60 m scene, in ENU about Lausanne);
+// `ramap reconstruct` stores the tags as the database's priors and writes the model in metres.
+TEST(GeoregistrationCommand, ReconstructGeoregistersGeotaggedJpegs) {
+  RAMAP_REQUIRE_SHARED_DATA(folder, "middlebury_templeRing");
+  std::vector<std::string> names;
+  for (int k = 20; k < 32; ++k) names.push_back("templeR00" + std::to_string(k) + ".png");
+  const std::map<std::string, Rigid3d> truth = GroundTruthByImageName(
+      ReadGroundTruth(folder + "/templeR_par.txt", GroundTruthFormat::kMiddlebury), names);
+  test::TempDir dir;
+  fs::create_directories(dir / "images");
+  const LocalEnuFrame frame(kOrigin);
+  std::map<std::string, Eigen::Vector3d> expected;  // ENU about kOrigin, by JPEG name
+  for (const std::string& name : names) {
+    const Eigen::Vector3d enu =
+        100.0 * -(truth.at(name).rotation.conjugate() * truth.at(name).translation);
+    const std::string jpeg = name.substr(0, name.size() - 4) + ".jpg";
+    expected[jpeg] = enu;
+    const GeodeticPoint fix = frame.ToGeodetic(enu);
+    test::WriteJpegWithGps(dir / ("images/" + jpeg), cv::imread(folder + "/" + name),
+                           fix.latitude_deg, fix.longitude_deg, fix.altitude_m);
+  }
+  const test::CommandResult run = test::RunCommand(
+      Ramap() + "reconstruct --image_path '" + (dir / "images") + "' --output_path '" +
+      (dir / "out") +
+      "' --ImageReader.camera_model PINHOLE --ImageReader.camera_params "
+      "1520.4,1525.9,302.32,246.87 --ImageReader.single_camera 1 --FeatureExtraction.type sift "
+      "--Matching.mode exhaustive --PosePrior.std_x_m 0.5 --PosePrior.std_y_m 0.5 "
+      "--PosePrior.std_z_m 0.5");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("EXIF GPS of 12 stored as prior positions"), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("georegistered: 12 of 12 priors"), std::string::npos) << run.output;
+  const Reconstruction model = ReadColmapModel(dir / "out/sparse/0");
+  ASSERT_EQ(model.images.size(), 12u);
+  const LocalEnuFrame model_frame(ReadGeoOrigin(dir / "out/sparse/0/geo_origin.txt"));
+  double worst = 0.0;
+  for (const auto& [id, image] : model.images) {
+    const Eigen::Vector3d in_truth = frame.FromGeodetic(model_frame.ToGeodetic(Center(image)));
+    worst = std::max(worst, (in_truth - expected.at(image.name)).norm());
+  }
+  std::printf("geotagged templeRing: worst camera centre error %.3f m in a 60 m scene\n", worst);
+  EXPECT_LT(worst, 1.0);
 }
 
 TEST(GeoregistrationCommand, PriorsThatCannotGeoregisterAreReported) {

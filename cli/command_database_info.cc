@@ -66,6 +66,19 @@ int RunDatabaseInfo(int argc, char** argv) {
   for (const auto& [config, count] : pairs_by_config) {
     std::cout << "    " << kConfigNames.at(config) << ": " << count << "\n";
   }
+  size_t num_position_priors = 0, num_rotation_priors = 0, num_pairs_with_ratios = 0;
+  for (const auto& [image_id, image] : database.images) {
+    num_position_priors += image.prior_translation ? 1 : 0;
+    num_rotation_priors += image.prior_rotation ? 1 : 0;
+  }
+  for (const auto& [pair_id, geometry] : database.two_view_geometries) {
+    num_pairs_with_ratios += geometry.inlier_ratios.empty() ? 0 : 1;
+  }
+  std::cout << "  position priors:         " << num_position_priors
+            << " images (prior_tx/ty/tz; GPS from EXIF as latitude, longitude, altitude)\n"
+            << "  rotation priors:         " << num_rotation_priors << " images\n"
+            << "  descriptor ratios:       " << num_pairs_with_ratios
+            << " verified pairs (ramap's ramap_match_confidence table)\n";
   return 0;
 }
 

@@ -88,6 +88,13 @@ TEST(GeoregistrationCommand, MapperWritesTheModelInEnuWithOriginAndGeoJson) {
   const nlohmann::json summary = nlohmann::json::parse(summary_file);
   EXPECT_EQ(summary["components"][0]["georegistration"]["georegistered"], true);
   EXPECT_EQ(summary["components"][0]["georegistration"]["used_in_bundle_adjustment"], true);
+  // COLMAP opens the georegistered model, its extra files beside it notwithstanding.
+  if (test::ColmapAvailable()) {
+    const test::CommandResult analyzer =
+        test::RunCommand("colmap model_analyzer --path '" + (dir / "sparse/0") + "'");
+    EXPECT_EQ(analyzer.exit_code, 0) << analyzer.output;
+    EXPECT_NE(analyzer.output.find("Registered images: 30"), std::string::npos) << analyzer.output;
+  }
 }
 
 TEST(GeoregistrationCommand, ModelAlignerGeoregistersAModelMadeWithoutPriors) {

@@ -36,7 +36,8 @@ int RunReconstruct(int argc, char** argv) {
   PosePriorOptionText prior_text;
   AddPosePriorOptions(app, &prior_text, &mapper.georegistration, /*with_uses=*/true);
   bool close_loops = true;
-  LoopCandidateOptions loops;
+  LoopClosureOptions closure_options;
+  LoopCandidateOptions& loops = closure_options.candidates;
   app.add_option("--LoopClosure.enable", close_loops,
                  "1: after sequential matching, match the pairs a first solve puts close, solve "
                  "again")
@@ -50,6 +51,10 @@ int RunReconstruct(int argc, char** argv) {
                  "candidates are at least this many frames apart")
       ->capture_default_str();
   app.add_option("--LoopClosure.max_candidates_per_image", loops.max_candidates_per_image)
+      ->capture_default_str();
+  app.add_option("--LoopClosure.max_bridge_pairs", closure_options.max_bridge_pairs,
+                 "when the first solve splits, pairs between two models screened to join them "
+                 "(0: off)")
       ->capture_default_str();
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   FinishFeatureOptions(&features);
@@ -66,12 +71,17 @@ int RunReconstruct(int argc, char** argv) {
   MapperResult result = RunMapper(database, mapper, database_path, &std::cout, priors.priors);
   LoopClosureSummary closure;
   if (close_loops && features.matching.mode == MatchingMode::kSequential) {
-    loops.Check();
-    closure = MatchLoopCandidates(result, loops, features.matching, &database, &std::cout);
+    closure =
+        MatchLoopCandidates(result, closure_options, features.matching, &database, &std::cout);
     std::cout << "[ramap] loop closure: " << closure.num_verified << " of "
-              << closure.num_candidates << " candidate pairs verified, " << std::fixed
-              << std::setprecision(2) << closure.seconds << " s\n";
-    if (closure.num_verified > 0) {
+              << closure.num_candidates << " candidate pairs verified";
+    if (closure.num_bridge_pairs > 0) {
+      std::cout << "; between models " << closure.num_bridge_pairs_verified << " verified of "
+                << closure.num_bridge_pairs_matched << " matched of " << closure.num_bridge_pairs
+                << " screened";
+    }
+    std::cout << ", " << std::fixed << std::setprecision(2) << closure.seconds << " s\n";
+    if (closure.num_verified + closure.num_bridge_pairs_verified > 0) {
       WriteColmapDatabase(database, database_path);  // COLMAP gets the loop pairs too
       result = RunMapper(database, mapper, database_path, &std::cout, priors.priors);
     }
@@ -94,6 +104,10 @@ int RunReconstruct(int argc, char** argv) {
         {"min_frame_gap", loops.min_frame_gap},
         {"num_candidates", closure.num_candidates},
         {"num_verified", closure.num_verified},
+        {"max_bridge_pairs", closure_options.max_bridge_pairs},
+        {"num_bridge_pairs", closure.num_bridge_pairs},
+        {"num_bridge_pairs_matched", closure.num_bridge_pairs_matched},
+        {"num_bridge_pairs_verified", closure.num_bridge_pairs_verified},
         {"loops", closure.loops}}}};
   WriteMapperOutput(result, output_path + "/sparse", ModelFormat::kBinary, run);
   std::cout << "ramap reconstruct: " << result.summary.num_registered_images << " of "

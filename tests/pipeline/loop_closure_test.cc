@@ -104,7 +104,7 @@ TEST(LoopClosure, VerifiedLoopsEnterTheSecondSolve) {
   ASSERT_EQ(first.summary.num_registered_images, 80);
   FeatureMatchingOptions matching;
   const LoopClosureSummary closure =
-      MatchLoopCandidates(first, LoopCandidateOptions(), matching, &scene.database);
+      MatchLoopCandidates(first, LoopClosureOptions(), matching, &scene.database);
   EXPECT_GT(closure.num_candidates, 0);
   EXPECT_GE(closure.num_verified, 3);
   EXPECT_EQ(closure.loops.size(), static_cast<size_t>(closure.num_verified));
@@ -119,6 +119,35 @@ TEST(LoopClosure, VerifiedLoopsEnterTheSecondSolve) {
       before.rotation_error_max_deg, after.rotation_error_max_deg);
   EXPECT_EQ(after.num_registered, 80);
   EXPECT_LT(after.ate_rmse, before.ate_rmse);
+}
+
+// A sequence whose first solve splits in two (every pair across frames 40 / 41 removed, as a
+// stretch of blur would): the pairs between the two models are screened, matched from
+// descriptors and verified, and the second solve joins them into one.
+TEST(LoopClosure, PairsBetweenModelsJoinThem) {
+  SyntheticScene scene = SequentialLoop();
+  for (auto it = scene.database.two_view_geometries.begin();
+       it != scene.database.two_view_geometries.end();) {
+    const bool across = it->second.image_id1 <= 40 && it->second.image_id2 > 40;
+    if (across) scene.database.matches.erase(it->first);
+    it = across ? scene.database.two_view_geometries.erase(it) : std::next(it);
+  }
+  const MapperResult first = RunMapper(scene.database, MapperOptions(), "synthetic");
+  ASSERT_EQ(first.reconstructions.size(), 2u);
+  const LoopClosureSummary closure = MatchLoopCandidates(first, LoopClosureOptions(),
+                                                         FeatureMatchingOptions(), &scene.database);
+  // 40 x 40 images, sampled to every second of each: 400 pairs at most.
+  EXPECT_GT(closure.num_bridge_pairs, 100);
+  EXPECT_LE(closure.num_bridge_pairs, 400);
+  EXPECT_GE(closure.num_bridge_pairs_verified, 2);
+  const MapperResult second = RunMapper(scene.database, MapperOptions(), "synthetic");
+  EXPECT_EQ(second.reconstructions.size(), 1u);
+  EXPECT_EQ(second.summary.num_registered_images, 80);
+  LoopClosureOptions off;
+  off.max_bridge_pairs = 0;
+  FeatureDatabase untouched = scene.database;
+  EXPECT_EQ(MatchLoopCandidates(first, off, FeatureMatchingOptions(), &untouched).num_bridge_pairs,
+            0);
 }
 
 }  // namespace

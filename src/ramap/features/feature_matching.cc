@@ -90,37 +90,6 @@ Descriptors LargestScaleDescriptors(const Keypoints& keypoints, const Descriptor
   return subset;
 }
 
-// Exhaustive pairs worth matching in full (see FeatureMatchingOptions::preemptive_num_features).
-std::vector<std::pair<uint32_t, uint32_t>> PreemptivePairs(
-    const FeatureDatabase& database, const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
-    const FeatureMatchingOptions& options, std::ostream* progress) {
-  std::map<uint32_t, Descriptors> top;
-  for (const auto& [id, image] : database.images) {
-    const auto keypoints = database.keypoints.find(id);
-    const auto descriptors = database.descriptors.find(id);
-    if (keypoints == database.keypoints.end() || descriptors == database.descriptors.end())
-      continue;
-    top[id] = LargestScaleDescriptors(keypoints->second, descriptors->second,
-                                      options.preemptive_num_features);
-  }
-  std::vector<char> keep(pairs.size(), 0);
-  ParallelFor(
-      pairs.size(), options.num_threads,
-      [&](size_t k) {
-        const auto one = top.find(pairs[k].first), two = top.find(pairs[k].second);
-        // An image without descriptors is reported by the full matching.
-        keep[k] = one == top.end() || two == top.end() ||
-                  static_cast<int>(MatchDescriptors(one->second, two->second, options).size()) >=
-                      options.preemptive_min_matches;
-      },
-      progress, "preemptive matching", "pairs");
-  std::vector<std::pair<uint32_t, uint32_t>> kept;
-  for (size_t k = 0; k < pairs.size(); ++k) {
-    if (keep[k]) kept.push_back(pairs[k]);
-  }
-  return kept;
-}
-
 // The same single pass for float descriptors (SIFT): squared L2 distances of a block of rows of 1
 // against every row of 2 by OpenCV's vectorised batchDistance, the two nearest per row and the
 // nearest per column taken from it. Half the work of two knnMatch calls (each direction would
@@ -333,7 +302,7 @@ MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOp
   }
   const int num_screened = static_cast<int>(pairs.size());
   if (options.mode == MatchingMode::kExhaustive && options.preemptive_num_features > 0) {
-    pairs = PreemptivePairs(*database, pairs, options, progress);
+    pairs = ScreenPairsPreemptively(*database, pairs, options, progress);
   }
   database->matches.clear();
   database->two_view_geometries.clear();
@@ -343,6 +312,36 @@ MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOp
   }
   summary.seconds = timer.ElapsedSeconds();
   return summary;
+}
+
+std::vector<std::pair<uint32_t, uint32_t>> ScreenPairsPreemptively(
+    const FeatureDatabase& database, const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
+    const FeatureMatchingOptions& options, std::ostream* progress) {
+  std::map<uint32_t, Descriptors> top;
+  for (const auto& [id, image] : database.images) {
+    const auto keypoints = database.keypoints.find(id);
+    const auto descriptors = database.descriptors.find(id);
+    if (keypoints == database.keypoints.end() || descriptors == database.descriptors.end())
+      continue;
+    top[id] = LargestScaleDescriptors(keypoints->second, descriptors->second,
+                                      options.preemptive_num_features);
+  }
+  std::vector<char> keep(pairs.size(), 0);
+  ParallelFor(
+      pairs.size(), options.num_threads,
+      [&](size_t k) {
+        const auto one = top.find(pairs[k].first), two = top.find(pairs[k].second);
+        // An image without descriptors is reported by the full matching.
+        keep[k] = one == top.end() || two == top.end() ||
+                  static_cast<int>(MatchDescriptors(one->second, two->second, options).size()) >=
+                      options.preemptive_min_matches;
+      },
+      progress, "preemptive matching", "pairs");
+  std::vector<std::pair<uint32_t, uint32_t>> kept;
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    if (keep[k]) kept.push_back(pairs[k]);
+  }
+  return kept;
 }
 
 MatchingSummary MatchImagePairs(FeatureDatabase* database,

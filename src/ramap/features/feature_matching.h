@@ -77,6 +77,12 @@ struct MatchingSummary {
 MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOptions& options,
                               std::ostream* progress = nullptr);
 
+// The pairs worth matching in full: those whose preemptive_num_features largest-scale features
+// give at least preemptive_min_matches matches (see FeatureMatchingOptions).
+std::vector<std::pair<uint32_t, uint32_t>> ScreenPairsPreemptively(
+    const FeatureDatabase& database, const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
+    const FeatureMatchingOptions& options, std::ostream* progress = nullptr);
+
 // Matches and verifies the given pairs (image_id1 < image_id2) only, replacing their earlier
 // matches and geometries and leaving every other pair as it is (loop candidates, for one).
 MatchingSummary MatchImagePairs(FeatureDatabase* database,

@@ -1,16 +1,72 @@
 #include "ramap/pipeline/loop_closure.h"
 
+#include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "ramap/pipeline/image_order.h"
+#include "ramap/util/error.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
 
-LoopClosureSummary MatchLoopCandidates(const MapperResult& first,
-                                       const LoopCandidateOptions& options,
+namespace {
+
+// Every step-th element of `ids` (all of them with step 1).
+std::vector<uint32_t> EverySampled(const std::vector<uint32_t>& ids, size_t step) {
+  std::vector<uint32_t> sampled;
+  for (size_t k = 0; k < ids.size(); k += step) sampled.push_back(ids[k]);
+  return sampled;
+}
+
+// Unmatched pairs between every two groups (the models, then the unregistered images), at most
+// max_pairs per two groups, the images of both sampled evenly.
+std::vector<std::pair<uint32_t, uint32_t>> BridgePairs(const MapperResult& first,
+                                                       const FeatureDatabase& database,
+                                                       const std::set<uint64_t>& matched,
+                                                       int max_pairs) {
+  std::vector<std::vector<uint32_t>> groups;
+  std::set<uint32_t> registered;
+  for (const Reconstruction& reconstruction : first.reconstructions) {
+    groups.emplace_back();
+    for (const auto& [id, image] : reconstruction.images) {
+      groups.back().push_back(id);
+      registered.insert(id);
+    }
+  }
+  std::vector<uint32_t> unregistered;
+  for (const auto& [id, image] : database.images) {
+    if (!registered.count(id)) unregistered.push_back(id);
+  }
+  if (!unregistered.empty()) groups.push_back(unregistered);
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  for (size_t a = 0; a < groups.size(); ++a) {
+    for (size_t b = a + 1; b < groups.size(); ++b) {
+      const double product = static_cast<double>(groups[a].size()) * groups[b].size();
+      const size_t step =
+          std::max<size_t>(1, static_cast<size_t>(std::ceil(std::sqrt(product / max_pairs))));
+      for (const uint32_t i : EverySampled(groups[a], step)) {
+        for (const uint32_t j : EverySampled(groups[b], step)) {
+          const uint32_t id1 = std::min(i, j), id2 = std::max(i, j);
+          if (!matched.count(ImagePairToPairId(id1, id2))) pairs.emplace_back(id1, id2);
+        }
+      }
+    }
+  }
+  return pairs;
+}
+
+}  // namespace
+
+void LoopClosureOptions::Check() const {
+  candidates.Check();
+  if (max_bridge_pairs < 0) throw InputError("LoopClosure.max_bridge_pairs", "must be >= 0");
+}
+
+LoopClosureSummary MatchLoopCandidates(const MapperResult& first, const LoopClosureOptions& options,
                                        const FeatureMatchingOptions& matching,
                                        FeatureDatabase* database, std::ostream* progress) {
+  options.Check();
   Timer timer;
   LoopClosureSummary summary;
   std::vector<uint32_t> ids;
@@ -27,11 +83,21 @@ LoopClosureSummary MatchLoopCandidates(const MapperResult& first,
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
   for (const Reconstruction& reconstruction : first.reconstructions) {
     for (const LoopCandidate& candidate :
-         FindLoopCandidates(reconstruction, order, matched, options)) {
+         FindLoopCandidates(reconstruction, order, matched, options.candidates)) {
       pairs.emplace_back(candidate.image_id1, candidate.image_id2);
     }
   }
   summary.num_candidates = static_cast<int>(pairs.size());
+  std::vector<std::pair<uint32_t, uint32_t>> bridges;
+  const bool split =
+      first.reconstructions.size() > 1 ||
+      first.summary.num_registered_images < static_cast<int>(database->images.size());
+  if (options.max_bridge_pairs > 0 && split) {
+    bridges = BridgePairs(first, *database, matched, options.max_bridge_pairs);
+    summary.num_bridge_pairs = static_cast<int>(bridges.size());
+    bridges = ScreenPairsPreemptively(*database, bridges, matching, progress);
+    summary.num_bridge_pairs_matched = static_cast<int>(bridges.size());
+  }
   if (!pairs.empty()) {
     summary.num_verified = MatchImagePairs(database, pairs, matching, progress).num_verified_pairs;
     for (const auto& [id1, id2] : pairs) {
@@ -41,6 +107,10 @@ LoopClosureSummary MatchLoopCandidates(const MapperResult& first,
                               ": " + std::to_string(geometry->second.inlier_matches.size()) +
                               " inliers");
     }
+  }
+  if (!bridges.empty()) {
+    summary.num_bridge_pairs_verified =
+        MatchImagePairs(database, bridges, matching, progress).num_verified_pairs;
   }
   summary.seconds = timer.ElapsedSeconds();
   return summary;

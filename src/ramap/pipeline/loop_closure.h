@@ -1,6 +1,9 @@
 // Loop closure for image-list input matched sequentially: the loop candidates of a first solve
 // (graph/loop_candidates.h: positions close) are matched and verified (enough inliers), so that a
-// second solve has the loop edges in its pose graph.
+// second solve has the loop edges in its pose graph. When the first solve splits into several
+// models (or leaves images out), pairs between them are screened by preemptive matching and the
+// survivors matched too, so that the second solve can join them: positions say nothing across
+// models.
 #pragma once
 
 #include <ostream>
@@ -13,16 +16,28 @@
 
 namespace ramap {
 
+struct LoopClosureOptions {
+  LoopCandidateOptions candidates;
+  // Pairs between two models of the first solve (or a model and the unregistered images) at most,
+  // evenly sampled from both; 0 turns the bridging off.
+  int max_bridge_pairs = 1000;
+
+  void Check() const;  // throws InputError("LoopClosure...")
+};
+
 struct LoopClosureSummary {
   int num_candidates = 0;
-  int num_verified = 0;            // candidates that got a two-view geometry: the loop edges
-  std::vector<std::string> loops;  // "NAME1 NAME2: N inliers"
+  int num_verified = 0;               // candidates that got a two-view geometry: the loop edges
+  int num_bridge_pairs = 0;           // pairs between models, screened
+  int num_bridge_pairs_matched = 0;   // kept by the screening and matched
+  int num_bridge_pairs_verified = 0;  // with a two-view geometry
+  std::vector<std::string> loops;     // "NAME1 NAME2: N inliers"
   double seconds = 0.0;
 };
 
-// Candidates in every model of `first`, matched and verified into `database` (descriptors needed).
-LoopClosureSummary MatchLoopCandidates(const MapperResult& first,
-                                       const LoopCandidateOptions& options,
+// Candidates in every model of `first` and bridge pairs between models, matched and verified into
+// `database` (descriptors needed).
+LoopClosureSummary MatchLoopCandidates(const MapperResult& first, const LoopClosureOptions& options,
                                        const FeatureMatchingOptions& matching,
                                        FeatureDatabase* database, std::ostream* progress = nullptr);
 

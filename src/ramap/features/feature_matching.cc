@@ -264,7 +264,6 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
     correspondences.bearings1.push_back(PixelToBearing(camera1, xy1));
     correspondences.bearings2.push_back(PixelToBearing(camera2, xy2));
   }
-  correspondences.confidence.assign(geometry.inlier_ratios.begin(), geometry.inlier_ratios.end());
   const RelativePoseEstimate estimate =
       EstimateRelativePose(correspondences, RelativePoseOptions());
   if (estimate.success) {

@@ -55,8 +55,7 @@ std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,
 // keypoints (OpenCV), F from E and the intrinsics, cam2_from_cam1 by EstimateRelativePose on the
 // inliers (from E when that rejects the pair; unit translation).
 // Config kCalibrated with the inliers, or kDegenerate with none when fewer than min_num_inliers
-// survive. `ratios` (one per match, or empty) are kept for the inliers (inlier_ratios) and rank
-// the matches of the grid selection.
+// survive. `ratios` (one per match, or empty) are kept for the inliers (inlier_ratios).
 TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Camera& camera1,
                               const Camera& camera2, const Keypoints& keypoints1,
                               const Keypoints& keypoints2, const std::vector<FeatureMatch>& matches,

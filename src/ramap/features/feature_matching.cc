@@ -264,6 +264,9 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
     correspondences.bearings1.push_back(PixelToBearing(camera1, xy1));
     correspondences.bearings2.push_back(PixelToBearing(camera2, xy2));
   }
+  // Ranked for the grid as the mapper ranks them by default (relative_poses.h).
+  correspondences.confidence =
+      SampsonErrors(geometry.F, correspondences.pixels1, correspondences.pixels2);
   const RelativePoseEstimate estimate =
       EstimateRelativePose(correspondences, RelativePoseOptions());
   if (estimate.success) {

@@ -33,6 +33,10 @@ void AddPosePriorOptions(CLI::App& app, PosePriorOptionText* text,
   app.add_option("--PosePrior.max_alignment_error_m", georegistration->max_alignment_error_m,
                  "RANSAC inlier threshold, m (0: 3 x the priors' median 3D standard deviation)")
       ->capture_default_str();
+  app.add_option("--PosePrior.max_fit_uncertainty_deg", georegistration->max_fit_uncertainty_deg,
+                 "priors too close together for their noise (about sigma / (spread sqrt N)) "
+                 "leave the model unregistered")
+      ->capture_default_str();
   app.add_option("--PosePrior.min_num_inliers", georegistration->min_num_inliers)
       ->capture_default_str();
   if (!with_uses) return;
@@ -111,7 +115,8 @@ nlohmann::json PosePriorOptionsToJson(const PosePriorOptionText& text,
           {"use_in_translation_averaging", g.use_in_translation_averaging},
           {"use_in_bundle_adjustment", g.use_in_bundle_adjustment},
           {"max_alignment_error_m", g.max_alignment_error_m},
-          {"min_num_inliers", g.min_num_inliers}};
+          {"min_num_inliers", g.min_num_inliers},
+          {"max_fit_uncertainty_deg", g.max_fit_uncertainty_deg}};
 }
 
 }  // namespace ramap::cli

@@ -104,6 +104,16 @@ TEST(Georegistration, PriorsThatCannotFixAFrameSayWhy) {
   EXPECT_FALSE(line.summary.georegistered);
   EXPECT_FALSE(line.summary.problem.empty());
 
+  // A scene a tenth of a metre across tagged by a 1 m GPS: the fit would be noise.
+  PositionPriors tiny;
+  for (const auto& [id, center] : centers) {
+    tiny.by_image[id] = {0.01 * center, Eigen::Vector3d::Ones()};
+  }
+  const PriorAlignment noise = AlignCentersToPriors(centers, tiny, GeoregistrationOptions());
+  EXPECT_FALSE(noise.summary.georegistered);
+  EXPECT_NE(noise.summary.problem.find("the priors spread over"), std::string::npos)
+      << noise.summary.problem;
+
   PositionPriors few;
   for (uint32_t id = 1; id <= 3; ++id) few.by_image[id] = {centers.at(id), Eigen::Vector3d::Ones()};
   few.by_image[999] = {Eigen::Vector3d::Zero(),

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 #include "ramap/util/error.h"
 
@@ -12,6 +14,9 @@ void GeoregistrationOptions::Check() const {
     throw InputError("PosePrior.max_alignment_error_m", "must be >= 0");
   }
   if (min_num_inliers < 3) throw InputError("PosePrior.min_num_inliers", "must be >= 3");
+  if (!(max_fit_uncertainty_deg > 0)) {
+    throw InputError("PosePrior.max_fit_uncertainty_deg", "must be > 0");
+  }
 }
 
 PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& centers,
@@ -38,8 +43,27 @@ PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& c
     return result;
   }
   std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
-  summary.threshold_m = options.max_alignment_error_m > 0 ? options.max_alignment_error_m
-                                                          : 3.0 * sigmas[sigmas.size() / 2];
+  const double sigma = sigmas[sigmas.size() / 2];
+  summary.threshold_m =
+      options.max_alignment_error_m > 0 ? options.max_alignment_error_m : 3.0 * sigma;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : target) centroid += p / static_cast<double>(target.size());
+  double spread = 0.0;
+  for (const Eigen::Vector3d& p : target) spread += (p - centroid).squaredNorm() / target.size();
+  spread = std::sqrt(spread);
+  // Priors that all coincide (up to rounding) get AlignPoints's own message below.
+  const bool coincident = spread <= 1e-9 * (1.0 + centroid.norm());
+  const double uncertainty_deg =
+      sigma / (spread * std::sqrt(static_cast<double>(target.size()))) * 180.0 / M_PI;
+  if (uncertainty_deg > options.max_fit_uncertainty_deg && !coincident) {
+    std::ostringstream problem;
+    problem << std::fixed << std::setprecision(2) << "the priors spread over " << spread
+            << " m (RMS) with a " << sigma << " m standard deviation: the fit's rotation would be "
+            << "uncertain by about " << std::setprecision(1) << uncertainty_deg << " deg (> "
+            << options.max_fit_uncertainty_deg << ", PosePrior.max_fit_uncertainty_deg)";
+    summary.problem = problem.str();
+    return result;
+  }
   AlignmentOptions alignment_options;
   alignment_options.estimate_scale = true;
   alignment_options.robust = true;

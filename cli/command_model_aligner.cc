@@ -18,10 +18,6 @@
 namespace ramap::cli {
 namespace {
 
-Eigen::Vector3d Center(const Image& image) {
-  return -(image.cam_from_world.rotation.conjugate() * image.cam_from_world.translation);
-}
-
 void WriteAligned(const Reconstruction& model, const std::optional<GeodeticPoint>& origin,
                   const std::string& folder, ModelFormat format) {
   WriteColmapModel(model, folder, format);
@@ -71,7 +67,7 @@ int RunModelAligner(int argc, char** argv) {
   const LocalizedPriors priors =
       LoadPosePriors(prior_text, images, "ramap model_aligner", std::cerr);
   std::map<uint32_t, Eigen::Vector3d> centers;
-  for (const auto& [id, image] : model.images) centers[id] = Center(image);
+  for (const auto& [id, image] : model.images) centers[id] = CameraCenter(image.cam_from_world);
   const PriorAlignment alignment = AlignCentersToPriors(centers, priors.priors, georegistration);
   const GeoregistrationSummary& summary = alignment.summary;
   if (!summary.georegistered) {

@@ -26,10 +26,6 @@ const GeodeticPoint kOrigin{46.5197, 6.5663, 400.0};  // Lausanne
 
 std::string Ramap() { return "'" + test::RamapBinary() + "' "; }
 
-Eigen::Vector3d Center(const Image& image) {
-  return -(image.cam_from_world.rotation.conjugate() * image.cam_from_world.translation);
-}
-
 // A synthetic loop and WGS84 priors at its true centres (world units taken as metres, z up).
 Reconstruction SynthesizeWithPriors(const test::TempDir& dir, bool identical = false) {
   const test::CommandResult result = test::RunCommand(
@@ -42,7 +38,7 @@ Reconstruction SynthesizeWithPriors(const test::TempDir& dir, bool identical = f
   std::vector<PriorRecord> records;
   for (const auto& [id, image] : truth.images) {
     const GeodeticPoint fix =
-        frame.ToGeodetic(identical ? Eigen::Vector3d(1, 1, 1) : Center(image));
+        frame.ToGeodetic(identical ? Eigen::Vector3d(1, 1, 1) : CameraCenter(image.cam_from_world));
     records.push_back({image.name,
                        Eigen::Vector3d(fix.latitude_deg, fix.longitude_deg, fix.altitude_m),
                        Eigen::Vector3d(0.1, 0.1, 0.1), ""});
@@ -59,8 +55,8 @@ double GeodeticError(const std::string& model_path, const Reconstruction& truth)
   double worst = 0.0;
   for (const auto& [id, image] : model.images) {
     const Eigen::Vector3d in_truth =
-        truth_frame.FromGeodetic(model_frame.ToGeodetic(Center(image)));
-    worst = std::max(worst, (in_truth - Center(truth.images.at(id))).norm());
+        truth_frame.FromGeodetic(model_frame.ToGeodetic(CameraCenter(image.cam_from_world)));
+    worst = std::max(worst, (in_truth - CameraCenter(truth.images.at(id).cam_from_world)).norm());
   }
   return worst;
 }
@@ -129,8 +125,7 @@ TEST(GeoregistrationCommand, ReconstructGeoregistersGeotaggedJpegs) {
   const LocalEnuFrame frame(kOrigin);
   std::map<std::string, Eigen::Vector3d> expected;  // ENU about kOrigin, by JPEG name
   for (const std::string& name : names) {
-    const Eigen::Vector3d enu =
-        100.0 * -(truth.at(name).rotation.conjugate() * truth.at(name).translation);
+    const Eigen::Vector3d enu = 100.0 * CameraCenter(truth.at(name));
     const std::string jpeg = name.substr(0, name.size() - 4) + ".jpg";
     expected[jpeg] = enu;
     const GeodeticPoint fix = frame.ToGeodetic(enu);
@@ -153,7 +148,8 @@ TEST(GeoregistrationCommand, ReconstructGeoregistersGeotaggedJpegs) {
   const LocalEnuFrame model_frame(ReadGeoOrigin(dir / "out/sparse/0/geo_origin.txt"));
   double worst = 0.0;
   for (const auto& [id, image] : model.images) {
-    const Eigen::Vector3d in_truth = frame.FromGeodetic(model_frame.ToGeodetic(Center(image)));
+    const Eigen::Vector3d in_truth =
+        frame.FromGeodetic(model_frame.ToGeodetic(CameraCenter(image.cam_from_world)));
     worst = std::max(worst, (in_truth - expected.at(image.name)).norm());
   }
   std::printf("geotagged templeRing: worst camera centre error %.3f m in a 60 m scene\n", worst);

@@ -18,10 +18,6 @@
 namespace ramap {
 namespace {
 
-Eigen::Vector3d Center(const Rigid3d& cam_from_world) {
-  return -(cam_from_world.rotation.conjugate() * cam_from_world.translation);
-}
-
 TEST(GeoregistrationRealData, Kitti07FromNoisyGpsToMetricModel) {
   RAMAP_REQUIRE_SHARED_DATA(folder, "kitti_3dv_tutorial/kitti07_first160");
   std::vector<std::string> names;
@@ -51,7 +47,7 @@ TEST(GeoregistrationRealData, Kitti07FromNoisyGpsToMetricModel) {
   const LocalEnuFrame karlsruhe({49.0113, 8.4165, 115.0});
   std::map<std::string, Eigen::Vector3d> true_enu;
   for (const auto& [name, pose] : truth) {
-    const Eigen::Vector3d c = Center(pose);
+    const Eigen::Vector3d c = CameraCenter(pose);
     true_enu[name] = Eigen::Vector3d(c.x(), c.z(), -c.y());
   }
   std::mt19937_64 random(7);
@@ -102,7 +98,7 @@ TEST(GeoregistrationRealData, Kitti07FromNoisyGpsToMetricModel) {
   std::vector<Eigen::Vector3d> estimated, expected;
   double sum_squares = 0.0;
   for (const auto& [id, image] : model.images) {
-    estimated.push_back(Center(image.cam_from_world));
+    estimated.push_back(CameraCenter(image.cam_from_world));
     expected.push_back(model_frame.FromGeodetic(karlsruhe.ToGeodetic(true_enu.at(image.name))));
     sum_squares += (estimated.back() - expected.back()).squaredNorm();
   }

@@ -14,13 +14,10 @@
 namespace ramap {
 namespace {
 
-Eigen::Vector3d Center(const Rigid3d& cam_from_world) {
-  return -(cam_from_world.rotation.conjugate() * cam_from_world.translation);
-}
-
 std::map<uint32_t, Eigen::Vector3d> Centers(const Reconstruction& reconstruction) {
   std::map<uint32_t, Eigen::Vector3d> centers;
-  for (const auto& [id, image] : reconstruction.images) centers[id] = Center(image.cam_from_world);
+  for (const auto& [id, image] : reconstruction.images)
+    centers[id] = CameraCenter(image.cam_from_world);
   return centers;
 }
 
@@ -52,8 +49,8 @@ SyntheticScene LoopScene() {
 double CenterRmse(const Reconstruction& estimate, const Reconstruction& truth) {
   double sum = 0.0;
   for (const auto& [id, image] : estimate.images) {
-    sum +=
-        (Center(image.cam_from_world) - Center(truth.images.at(id).cam_from_world)).squaredNorm();
+    sum += (CameraCenter(image.cam_from_world) - CameraCenter(truth.images.at(id).cam_from_world))
+               .squaredNorm();
   }
   return std::sqrt(sum / estimate.images.size());
 }

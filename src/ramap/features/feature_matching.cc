@@ -285,14 +285,7 @@ MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOp
                               std::ostream* progress) {
   options.Check();
   Timer timer;
-  std::vector<uint32_t> ids;
-  std::vector<std::string> names;
-  for (const auto& [id, image] : database->images) {
-    ids.push_back(id);
-    names.push_back(image.name);
-  }
-  std::vector<uint32_t> ordered;
-  for (const size_t k : CaptureOrder(names)) ordered.push_back(ids[k]);
+  const std::vector<uint32_t> ordered = ImageIdsInCaptureOrder(*database);
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
   for (size_t a = 0; a < ordered.size(); ++a) {
     const size_t last = options.mode == MatchingMode::kExhaustive
@@ -303,15 +296,13 @@ MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOp
     }
   }
   const int num_screened = static_cast<int>(pairs.size());
-  if (options.mode == MatchingMode::kExhaustive && options.preemptive_num_features > 0) {
-    pairs = ScreenPairsPreemptively(*database, pairs, options, progress);
-  }
+  const bool preemptive =
+      options.mode == MatchingMode::kExhaustive && options.preemptive_num_features > 0;
+  if (preemptive) pairs = ScreenPairsPreemptively(*database, pairs, options, progress);
   database->matches.clear();
   database->two_view_geometries.clear();
   MatchingSummary summary = MatchImagePairs(database, pairs, options, progress);
-  if (options.mode == MatchingMode::kExhaustive && options.preemptive_num_features > 0) {
-    summary.num_preemptive_pairs = num_screened;
-  }
+  if (preemptive) summary.num_preemptive_pairs = num_screened;
   summary.seconds = timer.ElapsedSeconds();
   return summary;
 }

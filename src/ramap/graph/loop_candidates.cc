@@ -6,6 +6,7 @@
 
 #include "ramap/scene/features.h"
 #include "ramap/util/error.h"
+#include "ramap/util/statistics.h"
 
 namespace ramap {
 
@@ -37,8 +38,7 @@ std::vector<LoopCandidate> FindLoopCandidates(const Reconstruction& reconstructi
     const auto image = reconstruction.images.find(capture_order[k]);
     if (image == reconstruction.images.end()) continue;
     const Rigid3d& pose = image->second.cam_from_world;
-    views.push_back({capture_order[k], static_cast<int>(k),
-                     -(pose.rotation.conjugate() * pose.translation),
+    views.push_back({capture_order[k], static_cast<int>(k), CameraCenter(pose),
                      pose.rotation.conjugate() * Eigen::Vector3d::UnitZ()});
   }
   std::vector<double> steps;
@@ -47,8 +47,7 @@ std::vector<LoopCandidate> FindLoopCandidates(const Reconstruction& reconstructi
   }
   std::vector<LoopCandidate> candidates;
   if (steps.empty()) return candidates;
-  std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
-  const double baseline = steps[steps.size() / 2];
+  const double baseline = Median(steps);
   if (!(baseline > 0)) return candidates;  // not moving: nothing is a revisit
   const double max_distance = options.max_distance_baselines * baseline;
   const double min_cos = std::cos(options.max_view_angle_deg * M_PI / 180.0);

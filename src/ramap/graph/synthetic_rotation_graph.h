@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ramap/graph/rotation_graph.h"
+#include "ramap/util/statistics.h"  // Median, which the rotation tests and benchmark use
 
 namespace ramap {
 
@@ -45,8 +46,5 @@ SyntheticRotationGraph MakeSyntheticRotationGraph(const SyntheticRotationGraphOp
 std::vector<double> AlignedRotationErrorsDeg(
     const std::vector<Eigen::Quaterniond>& estimated_rotations,
     const std::vector<Eigen::Quaterniond>& true_rotations, const std::vector<bool>& estimated = {});
-
-// Median of a non-empty vector (by copy).
-double Median(std::vector<double> values);
 
 }  // namespace ramap

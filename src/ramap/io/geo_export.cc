@@ -41,8 +41,7 @@ void WriteCamerasGeoJson(const Reconstruction& reconstruction, const LocalEnuFra
                          const std::string& path) {
   nlohmann::json features = nlohmann::json::array();
   for (const auto& [id, image] : reconstruction.images) {
-    const Rigid3d& pose = image.cam_from_world;
-    const GeodeticPoint point = frame.ToGeodetic(-(pose.rotation.conjugate() * pose.translation));
+    const GeodeticPoint point = frame.ToGeodetic(CameraCenter(image.cam_from_world));
     features.push_back(
         {{"type", "Feature"},
          {"geometry",

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "ramap/util/error.h"
+#include "ramap/util/statistics.h"
 
 namespace ramap {
 
@@ -42,8 +43,7 @@ PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& c
                       std::to_string(options.min_num_inliers) + " needed)";
     return result;
   }
-  std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
-  const double sigma = sigmas[sigmas.size() / 2];
+  const double sigma = Median(sigmas);
   summary.threshold_m =
       options.max_alignment_error_m > 0 ? options.max_alignment_error_m : 3.0 * sigma;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
@@ -125,9 +125,9 @@ void MeasurePriorErrors(const Reconstruction& reconstruction, const PositionPrio
                         const std::map<uint32_t, PositionPrior>& inliers,
                         GeoregistrationSummary* summary) {
   auto error = [&](uint32_t id) {
-    const Rigid3d& pose = reconstruction.images.at(id).cam_from_world;
-    const Eigen::Vector3d center = -(pose.rotation.conjugate() * pose.translation);
-    return (center - priors.by_image.at(id).center).norm();
+    return (CameraCenter(reconstruction.images.at(id).cam_from_world) -
+            priors.by_image.at(id).center)
+        .norm();
   };
   double sum_squares = 0.0;
   int count = 0;

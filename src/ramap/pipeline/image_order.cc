@@ -55,4 +55,16 @@ bool LooksSequential(const std::vector<std::string>& names) {
   return prefixes.size() == 1;
 }
 
+std::vector<uint32_t> ImageIdsInCaptureOrder(const FeatureDatabase& database) {
+  std::vector<uint32_t> ids;
+  std::vector<std::string> names;
+  for (const auto& [id, image] : database.images) {
+    ids.push_back(id);
+    names.push_back(image.name);
+  }
+  std::vector<uint32_t> ordered;
+  for (const size_t k : CaptureOrder(names)) ordered.push_back(ids[k]);
+  return ordered;
+}
+
 }  // namespace ramap

@@ -2,8 +2,11 @@
 // number at the end of its stem (numerically, so "img_9" comes before "img_10").
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
+
+#include "ramap/scene/features.h"
 
 namespace ramap {
 
@@ -13,5 +16,8 @@ std::vector<size_t> CaptureOrder(const std::vector<std::string>& names);
 
 // True when every name ends in a frame number and all share one prefix: a video or a drive.
 bool LooksSequential(const std::vector<std::string>& names);
+
+// The image ids of `database` in the CaptureOrder of their names.
+std::vector<uint32_t> ImageIdsInCaptureOrder(const FeatureDatabase& database);
 
 }  // namespace ramap

@@ -69,14 +69,7 @@ LoopClosureSummary MatchLoopCandidates(const MapperResult& first, const LoopClos
   options.Check();
   Timer timer;
   LoopClosureSummary summary;
-  std::vector<uint32_t> ids;
-  std::vector<std::string> names;
-  for (const auto& [id, image] : database->images) {
-    ids.push_back(id);
-    names.push_back(image.name);
-  }
-  std::vector<uint32_t> order;
-  for (const size_t k : CaptureOrder(names)) order.push_back(ids[k]);
+  const std::vector<uint32_t> order = ImageIdsInCaptureOrder(*database);
   std::set<uint64_t> matched;
   for (const auto& [pair_id, matches] : database->matches) matched.insert(pair_id);
   for (const auto& [pair_id, geometry] : database->two_view_geometries) matched.insert(pair_id);

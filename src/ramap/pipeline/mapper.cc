@@ -44,19 +44,6 @@ class StageLog {
   std::ostream* progress_;
 };
 
-// Image ids in capture order (pipeline/image_order.h).
-std::vector<uint32_t> ImagesInOrder(const FeatureDatabase& database) {
-  std::vector<uint32_t> ids;
-  std::vector<std::string> names;
-  for (const auto& [id, image] : database.images) {
-    ids.push_back(id);
-    names.push_back(image.name);
-  }
-  std::vector<uint32_t> ordered;
-  for (const size_t k : CaptureOrder(names)) ordered.push_back(ids[k]);
-  return ordered;
-}
-
 bool DatabaseLooksSequential(const FeatureDatabase& database) {
   std::vector<std::string> names;
   for (const auto& [id, image] : database.images) names.push_back(image.name);
@@ -375,7 +362,7 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
   // Stage 2: the pose graph, one reconstruction per connected component.
   summary.sequential = options.order == InputOrder::kSequential ||
                        (options.order == InputOrder::kAuto && DatabaseLooksSequential(database));
-  const std::vector<uint32_t> order = ImagesInOrder(database);
+  const std::vector<uint32_t> order = ImageIdsInCaptureOrder(database);
   const std::vector<int> labels = ConnectedComponents(graph);
   const int num_components =
       labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;

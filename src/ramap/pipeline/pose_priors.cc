@@ -6,13 +6,20 @@
 #include <sstream>
 
 #include "ramap/util/error.h"
+#include "ramap/util/statistics.h"
 
 namespace ramap {
 namespace {
 
-double Median(std::vector<double> values) {
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
+// Per-coordinate median of a non-empty set of points.
+Eigen::Vector3d MedianPoint(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d median;
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double> values;
+    for (const Eigen::Vector3d& p : points) values.push_back(p(axis));
+    median(axis) = Median(values);
+  }
+  return median;
 }
 
 std::string Vector(const Eigen::Vector3d& v) {
@@ -103,12 +110,9 @@ LocalizedPriors LocalizePriors(const std::vector<PriorRecord>& records,
     frame.emplace(*options.origin);
   } else if (options.coordinates == PriorCoordinates::kWgs84 ||
              options.coordinates == PriorCoordinates::kEcef) {
-    std::vector<double> a, b, c;
-    for (const auto& [id, record] : usable) {
-      a.push_back(record->value.x()), b.push_back(record->value.y()),
-          c.push_back(record->value.z());
-    }
-    const Eigen::Vector3d median(Median(a), Median(b), Median(c));
+    std::vector<Eigen::Vector3d> values;
+    for (const auto& [id, record] : usable) values.push_back(record->value);
+    const Eigen::Vector3d median = MedianPoint(values);
     frame.emplace(options.coordinates == PriorCoordinates::kWgs84
                       ? GeodeticPoint{median.x(), median.y(), median.z()}
                       : EcefToGeodetic(median));
@@ -136,9 +140,9 @@ LocalizedPriors LocalizePriors(const std::vector<PriorRecord>& records,
   // Gross errors: too far from the origin (for local frames without one, the median position).
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   if (!result.priors.origin) {
-    std::vector<double> a, b, c;
-    for (const auto& [id, p] : local) a.push_back(p.x()), b.push_back(p.y()), c.push_back(p.z());
-    centre = Eigen::Vector3d(Median(a), Median(b), Median(c));
+    std::vector<Eigen::Vector3d> positions;
+    for (const auto& [id, p] : local) positions.push_back(p);
+    centre = MedianPoint(positions);
   }
   for (const auto& [id, position] : local) {
     const double distance = (position - centre).norm();

@@ -198,7 +198,6 @@ struct StackedSystem {
   double prior_min_residual = 1.0;  // IRLS residual floor of prior blocks (Huber at one sigma)
 
   int num_extra_cols() const { return num_pair_scales + num_prior_columns; }
-  int first_prior_col() const { return num_position_cols + num_pair_scales; }
 };
 
 Eigen::VectorXd SoftThreshold(const Eigen::VectorXd& v, double kappa) {
@@ -301,14 +300,13 @@ Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
   const int num_blocks = static_cast<int>(B.rows()) / 3;
   const int first_pair_block = num_blocks - num_scales;
   const int first_prior_block = first_pair_block + system.num_pair_scales;
-  const auto is_prior = [&](int k) { return k >= system.num_pair_scales; };
   std::vector<bool> held(num_scales);
   for (int k = 0; k < num_scales; ++k) {
-    held[k] = is_prior(k) || x(num_position_cols + k) <= system.scale_bound;
+    held[k] = k >= system.num_pair_scales || x(num_position_cols + k) <= system.scale_bound;
   }
   // The pair row of scale k is w (c_j - c_i - s d): its column holds -w d.
-  std::vector<Eigen::Vector3d> scale_columns(num_scales, Eigen::Vector3d::Zero());
-  for (int k = 0; k < num_scales; ++k) {
+  std::vector<Eigen::Vector3d> scale_columns(system.num_pair_scales, Eigen::Vector3d::Zero());
+  for (int k = 0; k < system.num_pair_scales; ++k) {
     for (Eigen::SparseMatrix<double>::InnerIterator it(B, num_position_cols + k); it; ++it) {
       scale_columns[k](it.row() - 3 * (first_pair_block + k)) = it.value();
     }

@@ -7,6 +7,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/features2d.hpp>
+#include <set>
 
 #include "ramap/geometry/camera_projection.h"
 #include "ramap/geometry/relative_pose.h"
@@ -27,6 +28,27 @@ cv::Mat AsMat(const Descriptors& descriptors) {
   return floats;
 }
 
+// The matches that pass the ratio test (nearest < max_ratio * second nearest) and, if asked, the
+// cross check (row i of 1 is also the nearest of its match in 2), from the nearest neighbours found
+// in one pass over the distance matrix; `ratios` gets nearest / second nearest of each.
+template <typename Distance>
+std::vector<FeatureMatch> AcceptMatches(const std::vector<int>& best2,
+                                        const std::vector<Distance>& first2,
+                                        const std::vector<Distance>& second2,
+                                        const std::vector<int>& best1,
+                                        const FeatureMatchingOptions& options,
+                                        std::vector<float>* ratios) {
+  std::vector<FeatureMatch> matches;
+  for (size_t i = 0; i < best2.size(); ++i) {
+    // Passing the test makes second2[i] > 0.
+    if (!(first2[i] < options.max_ratio * second2[i])) continue;
+    if (options.cross_check && best1[best2[i]] != static_cast<int>(i)) continue;
+    matches.push_back({static_cast<uint32_t>(i), static_cast<uint32_t>(best2[i])});
+    if (ratios != nullptr) ratios->push_back(static_cast<float>(first2[i]) / second2[i]);
+  }
+  return matches;
+}
+
 // Brute-force Hamming matching of 256-bit descriptors in one pass over the distance matrix: the two
 // nearest neighbours of every row of 1 (ratio test) and the nearest row of 1 for every row of 2
 // (cross check) at once. About 4x faster than two OpenCV knnMatch calls on ORB's 32 bytes.
@@ -35,8 +57,7 @@ std::vector<FeatureMatch> MatchBinaryDescriptors(const Descriptors& descriptors1
                                                  const FeatureMatchingOptions& options,
                                                  std::vector<float>* ratios) {
   const size_t n1 = descriptors1.size(), n2 = descriptors2.size();
-  std::vector<FeatureMatch> matches;
-  if (n1 == 0 || n2 < 2) return matches;
+  if (n1 == 0 || n2 < 2) return {};
   auto words = [](const Descriptors& d) {
     std::vector<uint64_t> w(d.size() * 4);
     std::memcpy(w.data(), d.data.data(), d.data.size());
@@ -61,13 +82,7 @@ std::vector<FeatureMatch> MatchBinaryDescriptors(const Descriptors& descriptors1
     }
     best2[i] = first_j, first2[i] = first, second2[i] = second;
   }
-  for (size_t i = 0; i < n1; ++i) {
-    if (!(first2[i] < options.max_ratio * second2[i])) continue;
-    if (options.cross_check && best1[best2[i]] != static_cast<int>(i)) continue;
-    matches.push_back({static_cast<uint32_t>(i), static_cast<uint32_t>(best2[i])});
-    if (ratios != nullptr) ratios->push_back(static_cast<float>(first2[i]) / second2[i]);
-  }
-  return matches;
+  return AcceptMatches(best2, first2, second2, best1, options, ratios);
 }
 
 // The descriptors of an image's `count` largest-scale keypoints (keypoint column 3 is the scale;
@@ -97,9 +112,8 @@ Descriptors LargestScaleDescriptors(const Keypoints& keypoints, const Descriptor
 std::vector<FeatureMatch> MatchFloatDescriptors(const cv::Mat& d1, const cv::Mat& d2,
                                                 const FeatureMatchingOptions& options,
                                                 std::vector<float>* ratios) {
-  std::vector<FeatureMatch> matches;
   const int n1 = d1.rows, n2 = d2.rows;
-  if (n1 == 0 || n2 < 2) return matches;
+  if (n1 == 0 || n2 < 2) return {};
   constexpr int kBlockRows = 256;  // a 256 x 4000 float block (4 MB) stays in cache
   std::vector<int> best2(n1), best1(n2, -1);
   std::vector<float> first2(n1), second2(n1), best1_distance(n2, FLT_MAX);
@@ -124,13 +138,7 @@ std::vector<FeatureMatch> MatchFloatDescriptors(const cv::Mat& d1, const cv::Mat
       best2[i] = first_j, first2[i] = std::sqrt(first), second2[i] = std::sqrt(second);
     }
   }
-  for (int i = 0; i < n1; ++i) {
-    if (!(first2[i] < options.max_ratio * second2[i])) continue;
-    if (options.cross_check && best1[best2[i]] != i) continue;
-    matches.push_back({static_cast<uint32_t>(i), static_cast<uint32_t>(best2[i])});
-    if (ratios != nullptr) ratios->push_back(second2[i] > 0 ? first2[i] / second2[i] : 1.0f);
-  }
-  return matches;
+  return AcceptMatches(best2, first2, second2, best1, options, ratios);
 }
 
 Eigen::Matrix3d CalibrationMatrix(const Camera& camera) {
@@ -310,8 +318,10 @@ MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOp
 std::vector<std::pair<uint32_t, uint32_t>> ScreenPairsPreemptively(
     const FeatureDatabase& database, const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
     const FeatureMatchingOptions& options, std::ostream* progress) {
+  std::set<uint32_t> images;
+  for (const auto& [id1, id2] : pairs) images.insert({id1, id2});
   std::map<uint32_t, Descriptors> top;
-  for (const auto& [id, image] : database.images) {
+  for (const uint32_t id : images) {
     const auto keypoints = database.keypoints.find(id);
     const auto descriptors = database.descriptors.find(id);
     if (keypoints == database.keypoints.end() || descriptors == database.descriptors.end())

@@ -51,8 +51,9 @@ PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& c
   double spread = 0.0;
   for (const Eigen::Vector3d& p : target) spread += (p - centroid).squaredNorm() / target.size();
   spread = std::sqrt(spread);
-  // Priors that all coincide (up to rounding) get AlignPoints's own message below.
-  const bool coincident = spread <= 1e-9 * (1.0 + centroid.norm());
+  // Priors that all coincide get AlignPoints's own message below.
+  const bool coincident = CheckPointSpread(target, AlignmentOptions().min_spread_ratio) ==
+                          AlignmentStatus::kCoincidentPoints;
   const double uncertainty_deg =
       sigma / (spread * std::sqrt(static_cast<double>(target.size()))) * 180.0 / M_PI;
   if (uncertainty_deg > options.max_fit_uncertainty_deg && !coincident) {

@@ -223,12 +223,6 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
                   ", " + std::to_string(geo.outliers.size()) + " outliers" +
                   (geo.used_in_translation_averaging ? ", used in translation averaging" : "")
             : "not georegistered: " + geo.problem);
-    for (const PriorOutlier& outlier : geo.outliers) {
-      context.summary.prior_outliers.push_back(
-          {database.images.at(outlier.image_id).name, "prior " + Metres(outlier.error_m) +
-                                                          " from the aligned camera centre (> " +
-                                                          Metres(geo.threshold_m) + "): not used"});
-    }
   }
   const bool georegistered = georegistration.summary.georegistered;
 
@@ -278,6 +272,14 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
   if (georegistered) {
     MeasurePriorErrors(*reconstruction, context.priors, georegistration.inliers,
                        &georegistration.summary);
+    // Reported with the errors of the final model, as in the component's summary.
+    const GeoregistrationSummary& geo = georegistration.summary;
+    for (const PriorOutlier& outlier : geo.outliers) {
+      context.summary.prior_outliers.push_back(
+          {database.images.at(outlier.image_id).name, "prior " + Metres(outlier.error_m) +
+                                                          " from the aligned camera centre (> " +
+                                                          Metres(geo.threshold_m) + "): not used"});
+    }
   }
   component.georegistration = georegistration.summary;
   component.num_images = static_cast<int>(reconstruction->images.size());

@@ -1,15 +1,15 @@
 #include "test_support.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
-
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace ramap::test {
 namespace fs = std::filesystem;
@@ -38,7 +38,8 @@ CommandResult RunCommand(const std::string& command_line) {
   if (pipe == nullptr) return result;
   std::array<char, 4096> buffer;
   size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    result.output.append(buffer.data(), n);
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
@@ -157,6 +158,16 @@ std::string CachedColmapModel(const ColmapRun& run) {
   }
   std::ofstream(dir + "/model.done") << "ok\n";
   return model;
+}
+
+Camera VgaPinholeCamera(double fx, double fy) {
+  Camera camera;
+  camera.camera_id = 1;
+  camera.model = CameraModel::kPinhole;
+  camera.width = 640;
+  camera.height = 480;
+  camera.params = {fx, fy, 320, 240};
+  return camera;
 }
 
 }  // namespace ramap::test

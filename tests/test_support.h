@@ -2,10 +2,12 @@
 // and colmap binaries.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
+#include "ramap/scene/camera.h"
 
 namespace ramap::test {
 
@@ -36,12 +38,17 @@ struct ColmapRun {
   std::string camera_model = "PINHOLE";  // one shared camera with known intrinsics
   std::string camera_params;             // "fx,fy,cx,cy" at FULL resolution (scaled by COLMAP)
   int max_image_size = 640;
-  bool sequential_matching = false;      // exhaustive by default
+  bool sequential_matching = false;  // exhaustive by default
 };
-// Path of a database built by colmap feature_extractor + matcher; "" and a gtest failure if COLMAP fails.
+// Path of a database built by colmap feature_extractor + matcher; "" and a gtest failure if COLMAP
+// fails.
 std::string CachedColmapDatabase(const ColmapRun& run);
 // Path of the sparse model folder (sparse/0) of `colmap mapper` on that database, intrinsics fixed.
 std::string CachedColmapModel(const ColmapRun& run);
+
+// Camera 1: a 640 x 480 PINHOLE camera with focal lengths fx, fy and the principal point at the
+// image centre.
+Camera VgaPinholeCamera(double fx = 500, double fy = 500);
 
 // A fresh folder under the system's temporary folder, removed with its contents at scope end.
 class TempDir {
@@ -60,15 +67,15 @@ class TempDir {
 }  // namespace ramap::test
 
 // Skips the current test, visibly, when a shared data set is absent; defines `var` as its path.
-#define RAMAP_REQUIRE_SHARED_DATA(var, relative)                                          \
-  const std::string var = ::ramap::test::SharedDataPath(relative);                        \
-  if (var.empty()) {                                                                      \
-    GTEST_SKIP() << "shared data '" << relative << "' not found under "                   \
-                 << ::ramap::test::SharedDataDir() << " (set RAMAP_DATA_DIR)";            \
+#define RAMAP_REQUIRE_SHARED_DATA(var, relative)                               \
+  const std::string var = ::ramap::test::SharedDataPath(relative);             \
+  if (var.empty()) {                                                           \
+    GTEST_SKIP() << "shared data '" << relative << "' not found under "        \
+                 << ::ramap::test::SharedDataDir() << " (set RAMAP_DATA_DIR)"; \
   }
 
 // Skips the current test, visibly, when the colmap binary is not installed.
-#define RAMAP_REQUIRE_COLMAP()                                                            \
-  if (!::ramap::test::ColmapAvailable()) {                                                \
-    GTEST_SKIP() << "colmap binary not found (scripts/install-deps.sh installs it)";      \
+#define RAMAP_REQUIRE_COLMAP()                                                       \
+  if (!::ramap::test::ColmapAvailable()) {                                           \
+    GTEST_SKIP() << "colmap binary not found (scripts/install-deps.sh installs it)"; \
   }

@@ -21,13 +21,7 @@ namespace {
 
 Reconstruction ModelOf(const std::map<std::string, Rigid3d>& poses) {
   Reconstruction model;
-  Camera camera;
-  camera.camera_id = 1;
-  camera.model = CameraModel::kPinhole;
-  camera.width = 640;
-  camera.height = 480;
-  camera.params = {500, 500, 320, 240};
-  model.cameras[1] = camera;
+  model.cameras[1] = VgaPinholeCamera();
   uint32_t id = 1;
   for (const auto& [name, pose] : poses) {
     Image image;

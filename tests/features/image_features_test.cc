@@ -87,13 +87,7 @@ TEST(ImageFeatures, ShiftedCopyMatchesAtTheShift) {
 TEST(ImageFeatures, PreemptiveMatchingSkipsPairsThatShareNothing) {
   const cv::Mat image = Texture(640, 480, 3);
   FeatureDatabase database;
-  Camera camera;
-  camera.camera_id = 1;
-  camera.model = CameraModel::kPinhole;
-  camera.width = 640;
-  camera.height = 480;
-  camera.params = {500, 500, 320, 240};
-  database.cameras[1] = camera;
+  database.cameras[1] = test::VgaPinholeCamera();
   const cv::Mat views[] = {image, image(cv::Rect(20, 10, 600, 460)).clone(), Texture(640, 480, 9)};
   for (uint32_t id = 1; id <= 3; ++id) {
     Image entry;

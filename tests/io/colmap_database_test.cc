@@ -131,13 +131,7 @@ FeatureDatabase MakeFullDatabase() {
 FeatureDatabase MakeSmallDatabase() {
   std::mt19937 rng(3);
   FeatureDatabase database;
-  Camera camera;
-  camera.camera_id = 1;
-  camera.model = CameraModel::kPinhole;
-  camera.width = 640;
-  camera.height = 480;
-  camera.params = {500, 510, 320, 240};
-  database.cameras[1] = camera;
+  database.cameras[1] = test::VgaPinholeCamera(500, 510);
   for (uint32_t id = 1; id <= 3; ++id) {
     Image image;
     image.image_id = id;

@@ -11,6 +11,10 @@
 namespace ramap {
 namespace {
 
+bool ValidDeviations(const Eigen::Vector3d& std_dev_m) {
+  return std_dev_m.allFinite() && std_dev_m.minCoeff() > 0;
+}
+
 // Per-coordinate median of a non-empty set of points.
 Eigen::Vector3d MedianPoint(const std::vector<Eigen::Vector3d>& points) {
   Eigen::Vector3d median;
@@ -48,7 +52,7 @@ std::string ValueProblem(const PriorRecord& record, PriorCoordinates coordinates
 }  // namespace
 
 void PosePriorOptions::Check() const {
-  if (!(std_dev_m.allFinite() && std_dev_m.minCoeff() > 0)) {
+  if (!ValidDeviations(std_dev_m)) {
     throw InputError("PosePrior", "standard deviations must be finite and > 0");
   }
   if (origin && !IsValidGeodeticPoint(*origin)) {
@@ -96,7 +100,7 @@ LocalizedPriors LocalizePriors(const std::vector<PriorRecord>& records,
       warn(record, problem);
       continue;
     }
-    if (record.std_dev_m && !(record.std_dev_m->allFinite() && record.std_dev_m->minCoeff() > 0)) {
+    if (record.std_dev_m && !ValidDeviations(*record.std_dev_m)) {
       warn(record, "standard deviations must be finite and > 0");
       continue;
     }

@@ -20,6 +20,7 @@
 #include "ramap/io/trajectory.h"
 #include "ramap/pipeline/image_order.h"
 #include "ramap/util/error.h"
+#include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
 
 namespace ramap::cli {
@@ -114,11 +115,13 @@ int RunCompare(int argc, char** argv) {
                  "0: intrinsics fixed in every mapper (fair with known calibration); 1: refined")
       ->capture_default_str();
   app.add_option("--Compare.num_threads", num_threads, "threads of every mapper")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(1, 256));
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   if (ground_truth_path.empty() != ground_truth_format.empty()) {
     throw InputError("--ground_truth", "give both --ground_truth and --ground_truth_format");
   }
+  CheckFolderOutput("--output_path", output_path, {database_path, image_path, ground_truth_path});
 
   DatabaseReadOptions read_options;
   read_options.read_matches = false;
@@ -136,9 +139,7 @@ int RunCompare(int argc, char** argv) {
     }
   }
 
-  fs::create_directories(output_path);
   const std::string images = image_path.empty() ? output_path + "/no_images" : image_path;
-  fs::create_directories(images);
   const std::string self = fs::read_symlink("/proc/self/exe").string();
   const std::string intrinsics =
       refine_intrinsics ? ""
@@ -161,6 +162,24 @@ int RunCompare(int argc, char** argv) {
            Quote(output_path + "/ramap_ba") + " --Mapper.num_threads " + threads +
            " --Mapper.refine 1" + ""},
   };
+
+  // Each run's folder is replaced whole, so it may hold only an earlier run's output; checked for
+  // every run before the first one starts.
+  for (const Plan& plan : plans) {
+    const std::string folder = output_path + "/" + plan.folder;
+    std::string foreign;
+    if (fs::exists(fs::symlink_status(folder)) && !IsReplaceableMapperOutput(folder, &foreign)) {
+      throw InputError("--output_path " + output_path,
+                       folder + " holds " + foreign +
+                           ", which is not an earlier compare run's output; choose another "
+                           "--output_path");
+    }
+    if (fs::is_directory(folder + ".log")) {
+      throw InputError("--output_path " + output_path, folder + ".log is a folder");
+    }
+  }
+  fs::create_directories(output_path);
+  fs::create_directories(images);
 
   Comparison comparison;
   comparison.database_path = database_path;
@@ -258,6 +277,14 @@ int RunCompare(int argc, char** argv) {
   const std::string markdown = ComparisonToMarkdown(comparison);
   WriteFileAtomically(output_path + "/report.md", [&](std::ostream& out) { out << markdown; });
   std::cout << "\n" << markdown;
+  std::string failed;
+  for (const MapperRun& run : comparison.runs) {
+    if (!run.succeeded) failed += (failed.empty() ? "" : ", ") + run.name;
+  }
+  if (!failed.empty()) {
+    // The report is written (it says which run failed), but the comparison is incomplete.
+    throw InputError("ramap compare", failed + " failed; see the .log files in " + output_path);
+  }
   return 0;
 }
 

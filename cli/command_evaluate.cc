@@ -24,6 +24,7 @@
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/util/error.h"
+#include "ramap/util/output_policy.h"
 
 namespace ramap::cli {
 namespace {
@@ -92,12 +93,14 @@ int RunEvaluate(int argc, char** argv) {
                  "RANSAC over triples of centres, then a refit on the inliers")
       ->capture_default_str();
   app.add_option("--robust_alignment_max_error", options.alignment.robust_max_error,
-                 "inlier threshold of the robust alignment, in ground-truth units");
+                 "inlier threshold of the robust alignment, in ground-truth units")
+      ->check(AtLeast(0));
   app.add_option("--auc_thresholds", auc_thresholds, "relative pose AUC thresholds, degrees")
       ->capture_default_str();
   app.add_option("--min_baseline", options.min_baseline,
                  "pairs with a shorter ground-truth baseline score rotation only")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--ordered_pairs", options.ordered_pairs,
                  "score both orders of each pair, as COLMAP's benchmark")
       ->capture_default_str();
@@ -105,6 +108,10 @@ int RunEvaluate(int argc, char** argv) {
   options.alignment.robust = robust;
   options.auc_thresholds_deg = ParseThresholds(auc_thresholds);
   options.Check();
+  if (!output_path.empty()) {
+    CheckFileOutput("--output_path", output_path,
+                    {model_path, ground_truth_path, image_list_path, database_path});
+  }
 
   const GroundTruthFormat format = GroundTruthFormatFromName(ground_truth_format);
   const Reconstruction model = ReadColmapModel(model_path);
@@ -146,7 +153,13 @@ int RunEvaluate(int argc, char** argv) {
 
   const PoseEvaluation evaluation = EvaluatePoses(estimated, gt_poses, input_names, options);
   if (evaluation.num_with_ground_truth == 0) {
-    throw InputError(ground_truth_path, "no input image has a ground-truth pose (names differ?)");
+    const std::string inputs = !image_list_path.empty() ? "--image_list " + image_list_path
+                               : !database_path.empty() ? "--database_path " + database_path
+                                                        : "the model " + model_path;
+    throw InputError(ground_truth_path, "none of the " + std::to_string(input_names.size()) +
+                                            " images of " + inputs +
+                                            " has a ground-truth pose here (another scene, or "
+                                            "names that differ?)");
   }
   std::cout << FormatPoseEvaluation(evaluation);
   if (!output_path.empty()) {

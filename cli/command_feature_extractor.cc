@@ -7,6 +7,7 @@
 #include "options.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/util/error.h"
+#include "ramap/util/output_policy.h"
 
 namespace ramap::cli {
 
@@ -44,6 +45,7 @@ int RunFeatureExtractor(int argc, char** argv) {
   AddExtractionOptions(app, &options);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   FinishFeatureOptions(&options);
+  CheckNewDatabasePath("--database_path", database_path, {image_path, image_list});
   const FeatureDatabase database = ExtractAndReport(image_path, image_list, options);
   WriteColmapDatabase(database, database_path);
   std::cout << "Wrote " << database_path << "\n";

@@ -10,6 +10,7 @@
 #include "ramap/pipeline/mapper.h"
 #include "ramap/pipeline/mapper_output.h"
 #include "ramap/util/error.h"
+#include "ramap/util/output_policy.h"
 #include "ramap/util/timer.h"
 
 namespace ramap::cli {
@@ -63,8 +64,17 @@ int RunMapper(int argc, char** argv) {
   if (output_type != "BIN" && output_type != "TXT") {
     throw InputError("--output_type", "'" + output_type + "' is not BIN or TXT");
   }
+  CheckFolderOutput("--output_path", output_path, {database_path, image_path, prior_text.path});
 
   const FeatureDatabase database = ReadColmapDatabase(database_path);
+  const ModelFormat format = output_type == "TXT" ? ModelFormat::kText : ModelFormat::kBinary;
+  for (const auto& [image_id, image] : database.images) {
+    const std::string problem = ImageNameProblem(image.name, format);
+    if (!problem.empty()) {
+      throw InputError(database_path, "image " + std::to_string(image_id) + " '" + image.name +
+                                          "': " + problem + " (--output_type " + output_type + ")");
+    }
+  }
   const LocalizedPriors priors = LoadPosePriors(prior_text, database, "ramap mapper", std::cerr);
   MapperResult result = ramap::RunMapper(database, options, database_path,
                                          log_level > 0 ? &std::cout : nullptr, priors.priors);

@@ -36,7 +36,7 @@ int RunMatcher(int argc, char** argv) {
   read_options.read_matches = false;
   FeatureDatabase database = ReadColmapDatabase(database_path, read_options);
   MatchAndReport(&database, options);
-  WriteColmapDatabase(database, database_path);
+  WriteColmapDatabaseMatches(database, database_path);
   std::cout << "Wrote " << database_path << "\n";
   return 0;
 }

@@ -13,6 +13,7 @@
 #include "ramap/io/geo_export.h"
 #include "ramap/pipeline/georegistration.h"
 #include "ramap/util/error.h"
+#include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
 
 namespace ramap::cli {
@@ -45,6 +46,7 @@ int RunModelAligner(int argc, char** argv) {
   if (prior_text.path.empty() && database_path.empty()) {
     throw InputError("ramap model_aligner", "give --PosePrior.path or --database_path");
   }
+  CheckFolderOutput("--output_path", output_path, {input_path, database_path, prior_text.path});
 
   Reconstruction model = ReadColmapModel(input_path);
   // The priors are matched to the model's images by name.

@@ -9,6 +9,7 @@
 #include "options.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/util/error.h"
+#include "ramap/util/output_policy.h"
 
 namespace ramap::cli {
 
@@ -29,6 +30,7 @@ int RunModelConverter(int argc, char** argv) {
   if (type != "BIN" && type != "TXT") {
     throw InputError("--output_type", "'" + output_type + "' is not BIN or TXT");
   }
+  CheckFolderOutput("--output_path", output_path, {input_path});
   const Reconstruction model = ReadColmapModel(input_path);
   WriteColmapModel(model, output_path, type == "BIN" ? ModelFormat::kBinary : ModelFormat::kText);
   std::cout << "Wrote " << model.cameras.size() << " cameras, " << model.images.size()

@@ -17,6 +17,8 @@
 #include "ramap/pipeline/mapper.h"
 #include "ramap/pipeline/mapper_output.h"
 #include "ramap/util/error.h"
+#include "ramap/util/output_policy.h"
+#include "ramap/util/staged_output.h"
 
 namespace ramap::cli {
 
@@ -44,26 +46,36 @@ int RunReconstruct(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--LoopClosure.max_distance_baselines", loops.max_distance_baselines,
                  "candidate centres within this many median frame-to-frame baselines")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(Above(0));
   app.add_option("--LoopClosure.max_view_angle_deg", loops.max_view_angle_deg)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NumberCheck(0, true, 180, false));
   app.add_option("--LoopClosure.min_frame_gap", loops.min_frame_gap,
                  "candidates are at least this many frames apart")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(2));
   app.add_option("--LoopClosure.max_candidates_per_image", loops.max_candidates_per_image)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(1));
   app.add_option("--LoopClosure.max_bridge_pairs", closure_options.max_bridge_pairs,
                  "when the first solve splits, pairs between two models screened to join them "
                  "(0: off)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0));
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   FinishFeatureOptions(&features);
   FinishMapperOptions(text, &mapper);
+  CheckFolderOutput("--output_path", output_path, {image_path, image_list});
+  const std::string database_path = output_path + "/database.db";
+  CheckNewDatabasePath("--output_path", database_path, {image_path, image_list});
+  // A run that fails or is interrupted removes what it created (the folder, when it made it).
+  CreatedOutput created_folder(output_path);
+  CreatedOutput created_database(database_path);
 
   FeatureDatabase database = ExtractAndReport(image_path, image_list, features);
   MatchAndReport(&database, features);
   std::filesystem::create_directories(output_path);
-  const std::string database_path = output_path + "/database.db";
   WriteColmapDatabase(database, database_path);
   // EXIF GPS went into the database's prior positions (as COLMAP's ImageReader does).
   const LocalizedPriors priors =
@@ -82,7 +94,7 @@ int RunReconstruct(int argc, char** argv) {
     }
     std::cout << ", " << std::fixed << std::setprecision(2) << closure.seconds << " s\n";
     if (closure.num_verified + closure.num_bridge_pairs_verified > 0) {
-      WriteColmapDatabase(database, database_path);  // COLMAP gets the loop pairs too
+      WriteColmapDatabaseMatches(database, database_path);  // COLMAP gets the loop pairs too
       result = RunMapper(database, mapper, database_path, &std::cout, priors.priors);
     }
   }
@@ -110,6 +122,8 @@ int RunReconstruct(int argc, char** argv) {
         {"num_bridge_pairs_verified", closure.num_bridge_pairs_verified},
         {"loops", closure.loops}}}};
   WriteMapperOutput(result, output_path + "/sparse", ModelFormat::kBinary, run);
+  created_database.Keep();
+  created_folder.Keep();
   std::cout << "ramap reconstruct: " << result.summary.num_registered_images << " of "
             << database.images.size() << " images registered in " << result.reconstructions.size()
             << " model(s) -> " << output_path << "/sparse\n";

@@ -12,6 +12,7 @@
 #include "ramap/io/relative_pose_file.h"
 #include "ramap/pipeline/relative_poses.h"
 #include "ramap/util/error.h"
+#include "ramap/util/output_policy.h"
 #include "ramap/util/timer.h"
 
 namespace ramap::cli {
@@ -46,6 +47,7 @@ int RunRelativePoses(int argc, char** argv) {
   AddRelativePoseOptions(app, &options, &text);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   FinishMapperOptions(text, &options);
+  CheckFileOutput("--output_path", output_path, {database_path});
 
   const FeatureDatabase database = ReadColmapDatabase(database_path);
   const ImageBearings bearings = ComputeBearings(database, database_path);

@@ -2,6 +2,7 @@
 // rotations.txt`: stages 1-3 of the mapper (or 2-3 from a relative pose file): robust rotation
 // averaging with pruning and the strong-duality certificate on the largest connected view graph,
 // one line per image (io/relative_pose_file.h).
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -14,6 +15,7 @@
 #include "ramap/pipeline/relative_poses.h"
 #include "ramap/pipeline/rotation_stage.h"
 #include "ramap/util/error.h"
+#include "ramap/util/output_policy.h"
 #include "ramap/util/timer.h"
 
 namespace ramap::cli {
@@ -55,6 +57,7 @@ int RunRotationAverager(int argc, char** argv) {
   if (database_path.empty() && relative_poses_path.empty()) {
     throw InputError("rotation_averager", "give --database_path or --relative_poses");
   }
+  CheckFileOutput("--output_path", output_path, {database_path, relative_poses_path});
 
   const std::vector<RelativePoseRecord> records =
       LoadRelativePoses(database_path, relative_poses_path, options);
@@ -93,9 +96,19 @@ int RunRotationAverager(int argc, char** argv) {
 
   const RotationCertificate& certificate = result.certificate;
   const RotationAveragingTimings& t = result.timings;
+  // Edges outside the largest component were consistent, only not connected to it: they are
+  // not called pruned.
+  const size_t num_disconnected = std::count_if(
+      result.pruned_edges.begin(), result.pruned_edges.end(),
+      [](const PrunedEdge& e) { return e.reason == EdgeStatus::kPrunedDisconnected; });
   std::cout << std::fixed << std::setprecision(3) << "ramap rotation_averager: " << rotations.size()
             << " of " << names.size() << " images, " << graph.edges.size() << " edges ("
-            << result.pruned_edges.size() << " pruned), "
+            << result.pruned_edges.size() - num_disconnected << " pruned";
+  if (num_disconnected > 0) {
+    std::cout << ", " << num_disconnected
+              << " outside the largest connected component, whose images are not written";
+  }
+  std::cout << "), "
             << (sequential ? std::to_string(stage.num_keyframes) + " keyframes, " +
                                  std::to_string(stage.num_loop_edges) + " loop edges, "
                            : std::string("unordered, "))

@@ -15,6 +15,8 @@
 #include "ramap/io/trajectory.h"
 #include "ramap/scene/synthetic.h"
 #include "ramap/util/error.h"
+#include "ramap/util/output_policy.h"
+#include "ramap/util/staged_output.h"
 
 namespace ramap::cli {
 
@@ -115,8 +117,13 @@ int RunSynthesize(int argc, char** argv) {
     if (app.count("--Synthetic.num_images") == 0) options.num_images = 0;
   }
   options.Check();
+  CheckFolderOutput("--output_path", output_path, {trajectory_path});
+  CheckNewDatabasePath("--output_path", output_path + "/database.db", {trajectory_path});
 
   const SyntheticScene scene = BuildSyntheticScene(options);
+  // Removed again if writing fails or is interrupted.
+  CreatedOutput created(output_path);
+  CreatedOutput created_database(output_path + "/database.db");
   std::error_code error;
   std::filesystem::create_directories(output_path, error);
   if (error) throw InputError(output_path, "cannot create the folder: " + error.message());
@@ -131,6 +138,8 @@ int RunSynthesize(int argc, char** argv) {
   for (const auto& [pair_id, geometry] : scene.database.two_view_geometries) {
     num_inliers += geometry.inlier_matches.size();
   }
+  created_database.Keep();
+  created.Keep();
   std::cout << "Synthetic scene in " << output_path << ": " << scene.ground_truth.images.size()
             << " images, " << scene.ground_truth.points3D.size() << " points3D, "
             << scene.database.two_view_geometries.size() << " verified pairs ("

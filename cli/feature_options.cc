@@ -1,5 +1,7 @@
 #include "feature_options.h"
 
+#include "options.h"
+
 namespace ramap::cli {
 
 void AddExtractionOptions(CLI::App& app, FeatureOptions* o) {
@@ -12,31 +14,47 @@ void AddExtractionOptions(CLI::App& app, FeatureOptions* o) {
       ->capture_default_str();
   app.add_option("--ImageReader.default_focal_length_factor", o->reader.default_focal_length_factor,
                  "focal length guess, times the longest side, without camera_params")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(Above(0));
   app.add_option("--FeatureExtraction.type", o->type, "orb|sift")->capture_default_str();
   app.add_option("--FeatureExtraction.max_image_size", o->extraction.max_image_size)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(32));
   app.add_option("--FeatureExtraction.max_num_features", o->extraction.max_num_features)
-      ->capture_default_str();
-  app.add_option("--FeatureExtraction.num_threads", o->reader.num_threads)->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(16));
+  app.add_option("--FeatureExtraction.num_threads", o->reader.num_threads)
+      ->capture_default_str()
+      ->check(AtLeast(1, 256));
 }
 
 void AddMatchingOptions(CLI::App& app, FeatureOptions* o) {
   app.add_option("--Matching.mode", o->mode, "sequential|exhaustive")->capture_default_str();
   app.add_option("--Matching.overlap", o->matching.overlap,
                  "sequential: each image with its next N")
-      ->capture_default_str();
-  app.add_option("--Matching.max_ratio", o->matching.max_ratio)->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(1));
+  app.add_option("--Matching.max_ratio", o->matching.max_ratio)
+      ->capture_default_str()
+      ->check(NumberCheck(0, true, 1, false));
   app.add_option("--Matching.cross_check", o->matching.cross_check)->capture_default_str();
-  app.add_option("--Matching.max_error_px", o->matching.max_error_px)->capture_default_str();
-  app.add_option("--Matching.min_num_inliers", o->matching.min_num_inliers)->capture_default_str();
+  app.add_option("--Matching.max_error_px", o->matching.max_error_px)
+      ->capture_default_str()
+      ->check(Above(0));
+  app.add_option("--Matching.min_num_inliers", o->matching.min_num_inliers)
+      ->capture_default_str()
+      ->check(AtLeast(5));
   app.add_option("--Matching.preemptive_num_features", o->matching.preemptive_num_features,
                  "exhaustive: match the N largest-scale features first, full matching only for "
                  "pairs with enough matches among them (0: off)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--Matching.preemptive_min_matches", o->matching.preemptive_min_matches)
-      ->capture_default_str();
-  app.add_option("--Matching.num_threads", o->matching.num_threads)->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(1));
+  app.add_option("--Matching.num_threads", o->matching.num_threads)
+      ->capture_default_str()
+      ->check(AtLeast(1, 256));
 }
 
 void FinishFeatureOptions(FeatureOptions* o) {

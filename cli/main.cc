@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "ramap/util/error.h"
+#include "ramap/util/staged_output.h"
 
 namespace {
 
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
     PrintUsage(std::cout);
     return argc < 2 ? 1 : 0;
   }
+  ramap::InstallInterruptCleanup();
   const std::string name = argv[1];
   for (const ramap::cli::Command& command : ramap::cli::AllCommands()) {
     if (command.name != name) continue;

@@ -1,5 +1,6 @@
 #include "mapper_options.h"
 
+#include "options.h"
 #include "ramap/util/error.h"
 
 namespace ramap::cli {
@@ -7,9 +8,14 @@ namespace ramap::cli {
 void AddRelativePoseOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
   app.add_option("--RelativePose.min_num_inliers", o->relative_pose.min_num_inliers,
                  "pairs with fewer verified matches are not used")
-      ->capture_default_str();
-  app.add_option("--RelativePose.grid_cols", o->relative_pose.grid_cols)->capture_default_str();
-  app.add_option("--RelativePose.grid_rows", o->relative_pose.grid_rows)->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(6));
+  app.add_option("--RelativePose.grid_cols", o->relative_pose.grid_cols)
+      ->capture_default_str()
+      ->check(AtLeast(1, 100));
+  app.add_option("--RelativePose.grid_rows", o->relative_pose.grid_rows)
+      ->capture_default_str()
+      ->check(AtLeast(1, 100));
   app.add_option("--RelativePose.sampler", text->sampler, "grid|random|roi|ransac5")
       ->capture_default_str();
   app.add_option("--RelativePose.use_descriptor_ratios", o->relative_pose.use_descriptor_ratios,
@@ -18,11 +24,15 @@ void AddRelativePoseOptions(CLI::App& app, MapperOptions* o, MapperOptionText* t
       ->capture_default_str();
   app.add_option("--RelativePose.max_epipolar_error_px", o->relative_pose.max_epipolar_error_px,
                  "pixels")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(Above(0));
   app.add_option("--RelativePose.pure_rotation_parallax_px",
                  o->relative_pose.pure_rotation_parallax_px, "pixels")
-      ->capture_default_str();
-  app.add_option("--Mapper.num_threads", o->num_threads)->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--Mapper.num_threads", o->num_threads)
+      ->capture_default_str()
+      ->check(AtLeast(1, 256));
 }
 
 void AddRotationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
@@ -30,23 +40,31 @@ void AddRotationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptionTe
                  "auto|1|0: keyframe windows for sequences, one view graph for collections")
       ->capture_default_str();
   app.add_option("--PoseGraph.keyframe_interval", o->pose_graph.keyframe_interval)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(1));
   // Rotation averaging (stage 3).
   RotationAveragingOptions& ra = o->rotation_averaging;
   app.add_option("--RotationAveraging.max_l1_iterations", ra.max_l1_iterations)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--RotationAveraging.max_irls_iterations", ra.max_irls_iterations)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--RotationAveraging.loss", text->loss, "geman_mcclure|l1_half")
       ->capture_default_str();
-  app.add_option("--RotationAveraging.sigma_deg", ra.sigma_deg)->capture_default_str();
+  app.add_option("--RotationAveraging.sigma_deg", ra.sigma_deg)
+      ->capture_default_str()
+      ->check(Above(0));
   app.add_option("--RotationAveraging.pruning", text->pruning,
                  "fixed|duality: alpha_max as a fixed angle "
                  "or the strong-duality bound")
       ->capture_default_str();
-  app.add_option("--RotationAveraging.alpha_max_deg", ra.alpha_max_deg)->capture_default_str();
+  app.add_option("--RotationAveraging.alpha_max_deg", ra.alpha_max_deg)
+      ->capture_default_str()
+      ->check(NumberCheck(0, true, 180, false));
   app.add_option("--RotationAveraging.max_pruning_rounds", ra.max_pruning_rounds)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--RotationAveraging.certificate", ra.compute_certificate)->capture_default_str();
 }
 
@@ -57,38 +75,54 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
   TranslationAveragingOptions& ta = o->translation_averaging;
   app.add_option("--TranslationAveraging.min_triangulation_angle_deg",
                  ta.min_triangulation_angle_deg)
-      ->capture_default_str();
-  app.add_option("--TranslationAveraging.max_num_tracks", ta.max_num_tracks)->capture_default_str();
+      ->capture_default_str()
+      ->check(Above(0, 90));
+  app.add_option("--TranslationAveraging.max_num_tracks", ta.max_num_tracks)
+      ->capture_default_str()
+      ->check(AtLeast(1));
   app.add_option("--TranslationAveraging.solver", text->translation_solver, "irls|admm")
       ->capture_default_str();
   app.add_option("--TranslationAveraging.max_irls_iterations", ta.max_irls_iterations)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--TranslationAveraging.max_admm_iterations", ta.max_admm_iterations)
-      ->capture_default_str();
-  app.add_option("--TranslationAveraging.admm_rho", ta.admm_rho)->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--TranslationAveraging.admm_rho", ta.admm_rho)
+      ->capture_default_str()
+      ->check(Above(0));
   app.add_option("--TranslationAveraging.pair_constraint_weight", ta.pair_constraint_weight)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(Above(0));
   app.add_option("--TranslationAveraging.admm_adaptive_rho", ta.admm_adaptive_rho)
       ->capture_default_str();
   // Structure (stage 5) and refinement (stage 6).
   app.add_option("--Triangulation.max_reprojection_error_px",
                  o->structure.max_reprojection_error_px)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(Above(0));
   app.add_option("--Triangulation.min_triangulation_angle_deg",
                  o->structure.min_triangulation_angle_deg)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0, 90));
   app.add_option("--Mapper.refine", o->refine, "1: bundle adjustment after averaging")
       ->capture_default_str();
   app.add_option("--BundleAdjustment.max_num_iterations", o->bundle_adjustment.max_num_iterations)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--BundleAdjustment.loss_scale_px", o->bundle_adjustment.loss_scale_px)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(Above(0));
   app.add_option("--BundleAdjustment.function_tolerance", o->bundle_adjustment.function_tolerance)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--BundleAdjustment.max_num_points", o->bundle_adjustment.max_num_points,
                  "points adjusted at most (0: all); every track is triangulated again after")
-      ->capture_default_str();
-  app.add_option("--Mapper.min_component_size", o->min_component_size)->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--Mapper.min_component_size", o->min_component_size)
+      ->capture_default_str()
+      ->check(AtLeast(2));
 }
 
 void FinishMapperOptions(const MapperOptionText& text, MapperOptions* options) {

@@ -2,6 +2,7 @@
 
 #include <iomanip>
 
+#include "options.h"
 #include "ramap/io/pose_prior_file.h"
 #include "ramap/util/error.h"
 
@@ -22,23 +23,29 @@ void AddPosePriorOptions(CLI::App& app, PosePriorOptionText* text,
   app.add_option("--PosePrior.origin", text->origin,
                  "lat,lon,alt of the ENU frame (default: the median of the priors)");
   app.add_option("--PosePrior.std_x_m", text->std_x_m, "standard deviation east (or x), m")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(Above(0));
   app.add_option("--PosePrior.std_y_m", text->std_y_m, "standard deviation north (or y), m")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(Above(0));
   app.add_option("--PosePrior.std_z_m", text->std_z_m, "standard deviation up (or z), m")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(Above(0));
   app.add_option("--PosePrior.max_distance_from_origin_m", text->max_distance_from_origin_m,
                  "priors further away are rejected as gross errors")
       ->capture_default_str();
   app.add_option("--PosePrior.max_alignment_error_m", georegistration->max_alignment_error_m,
                  "RANSAC inlier threshold, m (0: 3 x the priors' median 3D standard deviation)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--PosePrior.max_fit_uncertainty_deg", georegistration->max_fit_uncertainty_deg,
                  "priors too close together for their noise (about sigma / (spread sqrt N)) "
                  "leave the model unregistered")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(Above(0));
   app.add_option("--PosePrior.min_num_inliers", georegistration->min_num_inliers)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(AtLeast(3));
   if (!with_uses) return;
   app.add_option("--PosePrior.align", georegistration->align,
                  "1: georegister each model to its priors (0 ignores the priors)")

@@ -218,7 +218,14 @@ TEST(ColmapModel, ReadPicksBinaryWhenBothFormatsArePresent) {
   Reconstruction model = HandBuiltModel();
   WriteColmapModel(model, dir / "m", ModelFormat::kText);
   model.cameras.at(3).params[0] = 999.0;
-  WriteColmapModel(model, dir / "m", ModelFormat::kBinary);
+  // ramap never writes one format beside the other (readers would see the old one)...
+  EXPECT_THROW(WriteColmapModel(model, dir / "m", ModelFormat::kBinary), InputError);
+  EXPECT_FALSE(fs::exists(dir / "m/cameras.bin"));
+  // ...but reads such a folder as COLMAP does, binary first.
+  WriteColmapModel(model, dir / "b", ModelFormat::kBinary);
+  for (const char* file : {"cameras.bin", "images.bin", "points3D.bin"}) {
+    fs::copy_file(dir / ("b/" + std::string(file)), dir / ("m/" + std::string(file)));
+  }
   EXPECT_EQ(ReadColmapModel(dir / "m").cameras.at(3).params[0], 999.0);
   EXPECT_EQ(ReadColmapModelText(dir / "m").cameras.at(3).params[0], 500.25);
 }

@@ -1,11 +1,12 @@
 #include "ramap/util/staged_output.h"
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
-#include <gtest/gtest.h>
-
+#include "ramap/util/error.h"
 #include "test_support.h"
 
 namespace ramap {
@@ -35,7 +36,7 @@ TEST(StagedOutput, FailedWriterLeavesNothingBehind) {
   EXPECT_TRUE(fs::is_empty(dir.path()));
 }
 
-TEST(StagedOutput, FolderReplacesOldOnlyOnCommit) {
+TEST(StagedOutput, NeverReplacesAFolderThatHoldsSomething) {
   test::TempDir dir;
   const std::string final_path = dir / "model";
   fs::create_directory(final_path);
@@ -44,18 +45,62 @@ TEST(StagedOutput, FolderReplacesOldOnlyOnCommit) {
     StagedPath staged(final_path);
     fs::create_directory(staged.path());
     std::ofstream(staged.path() + "/new.txt") << "new";
-    // Not committed: the old folder stays and the staging folder goes.
+    EXPECT_THROW(staged.Commit(), InputError);
   }
+  // The user's folder stays as it was and the staging folder is gone.
   EXPECT_TRUE(fs::exists(final_path + "/old.txt"));
+  EXPECT_FALSE(fs::exists(final_path + "/new.txt"));
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
+  // A file is never put in place of a folder either.
+  EXPECT_THROW(WriteFileAtomically(final_path, [](std::ostream& out) { out << "x"; }), InputError);
+  EXPECT_TRUE(fs::exists(final_path + "/old.txt"));
+}
+
+TEST(StagedOutput, NewFolderAppearsOnCommit) {
+  test::TempDir dir;
+  const std::string final_path = dir / "model";
   {
     StagedPath staged(final_path);
     fs::create_directory(staged.path());
     std::ofstream(staged.path() + "/new.txt") << "new";
-    staged.Commit();
+    // Not committed: nothing appears.
   }
-  EXPECT_FALSE(fs::exists(final_path + "/old.txt"));
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+  StagedPath staged(final_path);
+  fs::create_directory(staged.path());
+  std::ofstream(staged.path() + "/new.txt") << "new";
+  staged.Commit();
   EXPECT_TRUE(fs::exists(final_path + "/new.txt"));
+}
+
+TEST(StagedOutput, InterruptRemovesStagedAndCreatedOutputs) {
+  test::TempDir dir;
+  StagedPath staged(dir / "model");
+  fs::create_directory(staged.path());
+  std::ofstream(staged.path() + "/part.bin") << "half";
+  CreatedOutput created(dir / "database.db");
+  std::ofstream(dir / "database.db") << "half";
+  std::ofstream(dir / "mine.txt") << "the user's";
+  CreatedOutput existed(dir / "mine.txt");  // existed before: never removed
+  RemoveLiveOutputs();
+  EXPECT_FALSE(fs::exists(staged.path()));
+  EXPECT_FALSE(fs::exists(dir / "database.db"));
+  EXPECT_TRUE(fs::exists(dir / "mine.txt"));
+}
+
+TEST(StagedOutput, CreatedOutputKeptOrRemoved) {
+  test::TempDir dir;
+  {
+    CreatedOutput created(dir / "out");
+    fs::create_directories(dir / "out/sub");
+  }
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  {
+    CreatedOutput created(dir / "out");
+    fs::create_directories(dir / "out/sub");
+    created.Keep();
+  }
+  EXPECT_TRUE(fs::exists(dir / "out/sub"));
 }
 
 }  // namespace

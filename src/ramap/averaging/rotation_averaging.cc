@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 
 #include "ramap/graph/fiedler.h"
@@ -303,12 +304,37 @@ double KeptGraphBound(const RotationGraph& graph, const std::vector<bool>& keep,
 
 }  // namespace
 
-bool RotationAveragingOptions::Check() const {
-  return max_l1_iterations >= 0 && l1_inner_iterations >= 1 && l1_step_tolerance_deg >= 0.0 &&
-         l1_min_residual_deg > 0.0 && max_irls_iterations >= 0 && irls_step_tolerance_deg >= 0.0 &&
-         sigma_deg > 0.0 && alpha_max_deg > 0.0 && alpha_max_deg <= 180.0 &&
-         max_pruning_rounds >= 0 && max_certificate_iterations >= 0 &&
-         certificate_step_tolerance_deg >= 0.0;
+std::string RotationAveragingOptions::Problem() const {
+  const struct {
+    bool ok;
+    const char* name;
+    const char* requirement;
+    double value;
+  } checks[] = {
+      {max_l1_iterations >= 0, "max_l1_iterations", ">= 0", double(max_l1_iterations)},
+      {l1_inner_iterations >= 1, "l1_inner_iterations", ">= 1", double(l1_inner_iterations)},
+      {l1_step_tolerance_deg >= 0.0, "l1_step_tolerance_deg", ">= 0", l1_step_tolerance_deg},
+      {l1_min_residual_deg > 0.0, "l1_min_residual_deg", "> 0", l1_min_residual_deg},
+      {max_irls_iterations >= 0, "max_irls_iterations", ">= 0", double(max_irls_iterations)},
+      {irls_step_tolerance_deg >= 0.0, "irls_step_tolerance_deg", ">= 0", irls_step_tolerance_deg},
+      {sigma_deg > 0.0 && std::isfinite(sigma_deg), "sigma_deg", "finite and > 0", sigma_deg},
+      {alpha_max_deg > 0.0 && alpha_max_deg <= 180.0, "alpha_max_deg", "in (0, 180]",
+       alpha_max_deg},
+      {max_pruning_rounds >= 0, "max_pruning_rounds", ">= 0", double(max_pruning_rounds)},
+      {max_certificate_iterations >= 0, "max_certificate_iterations", ">= 0",
+       double(max_certificate_iterations)},
+      {certificate_step_tolerance_deg >= 0.0, "certificate_step_tolerance_deg", ">= 0",
+       certificate_step_tolerance_deg},
+  };
+  for (const auto& check : checks) {
+    if (!check.ok) {
+      std::ostringstream problem;
+      problem << "RotationAveraging." << check.name << " must be " << check.requirement << ", got "
+              << check.value;
+      return problem.str();
+    }
+  }
+  return "";
 }
 
 double EdgeResidualDeg(const RelativeRotationEdge& edge, const Eigen::Quaterniond& R_i,

@@ -78,7 +78,10 @@ struct RotationAveragingOptions {
   double certificate_step_tolerance_deg = 1e-8;
 
   // Whether every option is in range.
-  bool Check() const;
+  bool Check() const { return Problem().empty(); }
+  // The first option out of range, as "RotationAveraging.<option> must be ..., got V"; empty when
+  // all are in range.
+  std::string Problem() const;
 };
 
 enum class EdgeStatus {

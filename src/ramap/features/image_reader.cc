@@ -147,7 +147,21 @@ FeatureDatabase ExtractImageFeatures(const std::string& image_path,
         }
         results[k].width = grey.cols;
         results[k].height = grey.rows;
-        results[k].features = ExtractFeatures(grey, extraction);
+        // Smaller than a feature's support region: no detector finds anything there, and OpenCV's
+        // pyramids throw on it.
+        constexpr int kMinImageSide = 16;
+        if (grey.cols < kMinImageSide || grey.rows < kMinImageSide) {
+          results[k].problem = "too small (" + std::to_string(grey.cols) + "x" +
+                               std::to_string(grey.rows) + " pixels; at least " +
+                               std::to_string(kMinImageSide) + " on each side)";
+          return;
+        }
+        try {
+          results[k].features = ExtractFeatures(grey, extraction);
+        } catch (const cv::Exception& error) {
+          results[k].problem = std::string("OpenCV cannot extract features: ") + error.what();
+          return;
+        }
         if (reader.camera_params.empty()) {
           results[k].exif_focal_px = ExifFocalLengthPx(path, grey.cols, grey.rows);
         }
@@ -194,6 +208,11 @@ FeatureDatabase ExtractImageFeatures(const std::string& image_path,
     ++summary->num_images;
   }
   summary->seconds = timer.ElapsedSeconds();
+  if (database.images.empty()) {
+    throw InputError(image_path,
+                     "none of the " + std::to_string(names.size()) +
+                         " images could be read (first: " + summary->skipped_images.front() + ")");
+  }
   return database;
 }
 

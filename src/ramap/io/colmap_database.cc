@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -345,6 +346,13 @@ class Reader {
       if (Values(3, 4, q)) image.prior_rotation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
       double t[3];
       if (Values(7, 3, t)) image.prior_translation = Eigen::Vector3d(t[0], t[1], t[2]);
+      // COLMAP's schema makes names unique; a database without that index could hold two images
+      // of one name, which no model can tell apart.
+      const auto [named, fresh] = names_.emplace(image.name, image.image_id);
+      if (!fresh) {
+        Fail("images: image ids " + std::to_string(named->second) + " and " + std::to_string(id) +
+             " have the same name '" + image.name + "'");
+      }
       database_.images.emplace(image.image_id, std::move(image));
     }
   }
@@ -375,6 +383,15 @@ class Reader {
       int64_t rows = 0, cols = 0;
       const BlobView blob = CheckedBlob(row, 1, 2, 3, sizeof(uint8_t), what, &rows, &cols);
       if (rows > 0 && cols == 0) Fail(what + ": zero columns");
+      // Descriptor r belongs to keypoint r: the matcher indexes keypoints by descriptor row.
+      const auto keypoints = database_.keypoints.find(image_id);
+      const int64_t num_keypoints = keypoints == database_.keypoints.end()
+                                        ? 0
+                                        : static_cast<int64_t>(keypoints->second.size());
+      if (rows != num_keypoints) {
+        Fail(what + ": " + std::to_string(rows) + " descriptors for " +
+             std::to_string(num_keypoints) + " keypoints (must be one per keypoint)");
+      }
       Descriptors& descriptors = database_.descriptors[image_id];
       descriptors.num_cols = static_cast<int>(cols);
       descriptors.data.assign(static_cast<const uint8_t*>(blob.data),
@@ -488,6 +505,7 @@ class Reader {
   Connection db_;
   std::unique_ptr<Statement> table_info_;  // prepared once, for every table
   FeatureDatabase database_;
+  std::map<std::string, uint32_t> names_;  // image name -> id, to refuse duplicates
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -585,7 +603,7 @@ void BindRowMajor(Statement& statement, int index, const Matrix& matrix) {
   statement.BindBlob(index, row_major.data(), row_major.size() * sizeof(double));
 }
 
-void WriteContents(const FeatureDatabase& database, Connection& db) {
+void WriteImageRows(const FeatureDatabase& database, Connection& db) {
   Statement camera_row(db,
                        "INSERT INTO cameras(camera_id, model, width, height, params, "
                        "prior_focal_length) VALUES(?, ?, ?, ?, ?, ?)");
@@ -640,7 +658,9 @@ void WriteContents(const FeatureDatabase& database, Connection& db) {
     descriptor_row.BindBlob(4, descriptors.data.data(), descriptors.data.size());
     descriptor_row.Run();
   }
+}
 
+void WriteMatchRows(const FeatureDatabase& database, Connection& db) {
   Statement match_row(db, "INSERT INTO matches(pair_id, rows, cols, data) VALUES(?, ?, ?, ?)");
   for (const auto& [pair_id, matches] : database.matches) {
     match_row.BindInt64(1, static_cast<int64_t>(pair_id));
@@ -678,7 +698,7 @@ void WriteContents(const FeatureDatabase& database, Connection& db) {
       std::any_of(database.two_view_geometries.begin(), database.two_view_geometries.end(),
                   [](const auto& entry) { return !entry.second.inlier_ratios.empty(); });
   if (!any_ratios) return;
-  db.Execute(std::string("CREATE TABLE ") + kMatchConfidenceTable +
+  db.Execute(std::string("CREATE TABLE IF NOT EXISTS ") + kMatchConfidenceTable +
              " (pair_id INTEGER PRIMARY KEY NOT NULL, rows INTEGER NOT NULL, data BLOB)");
   Statement ratio_row(db, std::string("INSERT INTO ") + kMatchConfidenceTable +
                               "(pair_id, rows, data) VALUES(?, ?, ?)");
@@ -715,13 +735,35 @@ void WriteColmapDatabase(const FeatureDatabase& database, const std::string& pat
     db.Execute("BEGIN TRANSACTION");
     for (const char* statement : kSchema) db.Execute(statement);
     db.Execute("PRAGMA user_version = " + std::to_string(kColmapUserVersion));
-    WriteContents(database, db);
+    WriteImageRows(database, db);
+    WriteMatchRows(database, db);
     db.Execute("COMMIT");
     // COLMAP keeps its databases in WAL mode (a setting stored in the file); closing the
     // connection checkpoints and removes the -wal file, so only the database is renamed.
     db.Execute("PRAGMA journal_mode = WAL");
   }
   staged.Commit();
+}
+
+void WriteColmapDatabaseMatches(const FeatureDatabase& database, const std::string& path) {
+  CheckWritable(database, path);
+  // The images must be the database's own: pairs are stored by image id.
+  const FeatureDatabase stored = ReadColmapDatabase(path, DatabaseReadOptions{false, false});
+  for (const auto& [image_id, image] : database.images) {
+    const auto found = stored.images.find(image_id);
+    if (found == stored.images.end() || found->second.name != image.name) {
+      throw InputError(path, "cannot write the matches: image id " + std::to_string(image_id) +
+                                 " (" + image.name + ") is not that image in the database");
+    }
+  }
+  Connection db(path, Connection::OpenExisting(), path);
+  db.Execute("BEGIN IMMEDIATE TRANSACTION");
+  db.Execute("DELETE FROM matches; DELETE FROM two_view_geometries;");
+  db.Execute(std::string("DROP TABLE IF EXISTS ") + kMatchConfidenceTable);
+  WriteMatchRows(database, db);
+  // Nothing is changed unless everything is: an exception before this line rolls back when the
+  // connection closes.
+  db.Execute("COMMIT");
 }
 
 }  // namespace ramap

@@ -47,4 +47,10 @@ FeatureDatabase ReadColmapDatabase(const std::string& path,
 // `path` and the item, and nothing is written.
 void WriteColmapDatabase(const FeatureDatabase& database, const std::string& path);
 
+// Replaces, in place and in one transaction, the matches, two-view geometries and ramap's
+// descriptor ratios of the existing database at `path` by those of `database`, whose images must
+// be the file's own (same ids and names). Every other table and row, including tables ramap does
+// not know, is kept; on any failure the file is left as it was.
+void WriteColmapDatabaseMatches(const FeatureDatabase& database, const std::string& path);
+
 }  // namespace ramap

@@ -679,21 +679,21 @@ void WritePoints3DBinary(const Reconstruction& model, std::ostream& stream) {
 // Image names that the chosen format cannot carry back unchanged.
 void CheckNamesWritable(const Reconstruction& model, const ModelFiles& files, ModelFormat format) {
   for (const auto& [image_id, image] : model.images) {
-    if (image.name.empty()) throw InputError(files.images, ImageLabel(image) + " has no name");
-    if (image.name.find('\0') != std::string::npos) {
-      throw InputError(files.images, "the name of image " + std::to_string(image_id) +
-                                         " contains a NUL character");
-    }
-    if (format == ModelFormat::kText &&
-        image.name.find_first_of(" \t\r\n\v\f") != std::string::npos) {
-      throw InputError(files.images, ImageLabel(image) +
-                                         ": COLMAP's text format cannot hold a name with "
-                                         "white space; write the binary format");
-    }
+    const std::string problem = ImageNameProblem(image.name, format);
+    if (!problem.empty()) throw InputError(files.images, ImageLabel(image) + ": " + problem);
   }
 }
 
 }  // namespace
+
+std::string ImageNameProblem(const std::string& name, ModelFormat format) {
+  if (name.empty()) return "has no name";
+  if (name.find('\0') != std::string::npos) return "the name contains a NUL character";
+  if (format == ModelFormat::kText && name.find_first_of(" \t\r\n\v\f") != std::string::npos) {
+    return "COLMAP's text format cannot hold a name with white space; write the binary format";
+  }
+  return "";
+}
 
 Reconstruction ReadColmapModel(const std::string& path) {
   std::error_code ec;
@@ -734,6 +734,23 @@ void WriteColmapModel(const Reconstruction& reconstruction, const std::string& p
   std::error_code ec;
   if (fs::exists(path, ec) && !fs::is_directory(path, ec)) {
     throw InputError(path, "exists and is not a folder");
+  }
+  if (fs::is_directory(path, ec)) {
+    // A model of the other format beside the new one would be what readers see (COLMAP reads
+    // .bin first), so a mixed folder is refused rather than silently shadowed or cleaned up.
+    const ModelFiles other = FilesIn(path, binary ? ".txt" : ".bin");
+    for (const std::string& file : {other.cameras, other.images, other.points3D}) {
+      if (fs::exists(file, ec)) {
+        throw InputError(path, "already holds a " + std::string(binary ? "text" : "binary") +
+                                   " model (" + file + "); write the " +
+                                   (binary ? "binary" : "text") +
+                                   " model to another folder, or remove that one first");
+      }
+    }
+    for (const std::string& file :
+         {final_files.cameras, final_files.images, final_files.points3D}) {
+      if (fs::is_directory(file, ec)) throw InputError(file, "is a folder; expected a model file");
+    }
   }
   // A new folder is staged whole; into an existing one, the three files are staged side by side
   // and renamed only once all three are complete.

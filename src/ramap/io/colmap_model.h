@@ -28,6 +28,10 @@ Reconstruction ReadColmapModelText(const std::string& path);
 // 17 significant digits (lossless). The model is checked as by the readers before anything is
 // created: a bad model throws InputError and leaves nothing behind. Text cannot hold image names
 // with white space (InputError).
+// Why an image of this name cannot be written in `format` (empty, NUL, white space in text); empty
+// when it can. Commands check their input's names with it before any work starts.
+std::string ImageNameProblem(const std::string& name, ModelFormat format);
+
 void WriteColmapModel(const Reconstruction& reconstruction, const std::string& path,
                       ModelFormat format = ModelFormat::kBinary);
 

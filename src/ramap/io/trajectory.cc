@@ -286,7 +286,9 @@ GroundTruthFormat GroundTruthFormatFromName(const std::string& name) {
                                               "' (known: tum, kitti, strecha, middlebury, colmap)");
 }
 
-GroundTruth ReadGroundTruth(const std::string& path, GroundTruthFormat format) {
+namespace {
+
+GroundTruth ReadGroundTruthOfFormat(const std::string& path, GroundTruthFormat format) {
   switch (format) {
     case GroundTruthFormat::kTum:
       return ReadTum(path);
@@ -300,6 +302,30 @@ GroundTruth ReadGroundTruth(const std::string& path, GroundTruthFormat format) {
       return ReadColmapReference(path);
   }
   throw InputError(path, "unknown ground truth format");
+}
+
+// Pose k for the image numbered k (KITTI's 000042.png), when every name is a frame number within
+// the poses; empty otherwise.
+std::map<std::string, Rigid3d> ByFrameNumber(const GroundTruth& ground_truth,
+                                             const std::vector<std::string>& image_names) {
+  std::map<std::string, Rigid3d> result;
+  for (const std::string& name : image_names) {
+    const std::optional<double> number = NameNumber(name);
+    if (!number || *number < 0 || *number != std::floor(*number) ||
+        *number >= static_cast<double>(ground_truth.poses.size())) {
+      return {};
+    }
+    result.emplace(name, ground_truth.poses[static_cast<size_t>(*number)].cam_from_world);
+  }
+  return result;
+}
+
+}  // namespace
+
+GroundTruth ReadGroundTruth(const std::string& path, GroundTruthFormat format) {
+  GroundTruth ground_truth = ReadGroundTruthOfFormat(path, format);
+  ground_truth.source = path;
+  return ground_truth;
 }
 
 std::map<std::string, Rigid3d> GroundTruthByImageName(const GroundTruth& ground_truth,
@@ -334,10 +360,17 @@ std::map<std::string, Rigid3d> GroundTruthByImageName(const GroundTruth& ground_
     }
     if (matched.size() == image_names.size()) return matched;
   }
-  if (ground_truth.poses.size() < image_names.size()) {
-    throw InputError("ground truth", "matched by index, but it has " +
-                                         std::to_string(ground_truth.poses.size()) + " poses for " +
-                                         std::to_string(image_names.size()) + " images");
+  if (ground_truth.poses.size() != image_names.size()) {
+    // A subset of a sequence is matched by its frame numbers; anything else would pair poses with
+    // the wrong images without a word.
+    std::map<std::string, Rigid3d> numbered = ByFrameNumber(ground_truth, image_names);
+    if (!numbered.empty() || image_names.empty()) return numbered;
+    throw InputError(ground_truth.source,
+                     "poses are matched to images by index, but it has " +
+                         std::to_string(ground_truth.poses.size()) + " poses for " +
+                         std::to_string(image_names.size()) +
+                         " images whose names are not all frame numbers within the poses "
+                         "(give as many poses as images, or name the images 000000.png, ...)");
   }
   for (size_t i = 0; i < image_names.size(); ++i) {
     result.emplace(image_names[i], ground_truth.poses[i].cam_from_world);

@@ -28,6 +28,8 @@ struct GroundTruth {
   // True for TUM: poses carry timestamps, which GroundTruthByImageName tries before the index.
   bool has_timestamps = false;
   std::vector<GroundTruthPose> poses;
+  // The file or folder it was read from, for messages.
+  std::string source = "ground truth";
 };
 
 // Reads ground truth at `path` (a file, or a folder for Strecha's gt_dense_cameras and COLMAP).

@@ -287,19 +287,60 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
   return true;
 }
 
+// Why the database has no pair the mapper can use, in the user's terms.
+std::string WhyNoVerifiedPairs(const FeatureDatabase& database, int min_num_inliers) {
+  if (database.two_view_geometries.empty()) {
+    return "no image pair has verified matches (two_view_geometries is empty); run a matcher "
+           "first";
+  }
+  int panoramic = 0, unusable = 0, few_inliers = 0;
+  for (const auto& [pair_id, geometry] : database.two_view_geometries) {
+    if (geometry.config == TwoViewConfig::kPanoramic) {
+      ++panoramic;
+    } else if (!IsUsableTwoViewConfig(geometry.config)) {
+      ++unusable;
+    } else if (static_cast<int>(geometry.inlier_matches.size()) < min_num_inliers) {
+      ++few_inliers;
+    }
+  }
+  const size_t total = database.two_view_geometries.size();
+  std::string problem = "none of the " + std::to_string(total) + " verified pairs can be used: ";
+  if (panoramic > 0) {
+    problem += std::to_string(panoramic) +
+               " PANORAMIC (pure rotation, as in a panorama: averaging needs the cameras to move "
+               "between views), ";
+  }
+  if (unusable > 0) {
+    problem += std::to_string(unusable) + " degenerate, watermark or of unknown geometry, ";
+  }
+  if (few_inliers > 0) {
+    problem += std::to_string(few_inliers) + " with fewer than --RelativePose.min_num_inliers " +
+               std::to_string(min_num_inliers) + " inliers, ";
+  }
+  return problem.substr(0, problem.size() - 2);
+}
+
 }  // namespace
 
 void MapperOptions::Check() const {
   relative_pose.Check();
-  if (!pose_graph.Check()) throw std::invalid_argument("PoseGraph.keyframe_interval must be >= 1");
-  if (!rotation_averaging.Check())
-    throw std::invalid_argument("RotationAveraging options out of range");
+  if (!pose_graph.Check()) {
+    throw InputError("--PoseGraph.keyframe_interval",
+                     "must be >= 1, got " + std::to_string(pose_graph.keyframe_interval));
+  }
+  const std::string rotation_problem = rotation_averaging.Problem();
+  if (!rotation_problem.empty()) throw InputError("--RotationAveraging", rotation_problem);
   pair_direction.Check();
   translation_averaging.Check();
   structure.Check();
   bundle_adjustment.Check();
-  if (min_component_size < 2) throw std::invalid_argument("Mapper.min_component_size must be >= 2");
-  if (num_threads < 1) throw std::invalid_argument("Mapper.num_threads must be >= 1");
+  if (min_component_size < 2) {
+    throw InputError("--Mapper.min_component_size",
+                     "must be >= 2, got " + std::to_string(min_component_size));
+  }
+  if (num_threads < 1) {
+    throw InputError("--Mapper.num_threads", "must be >= 1, got " + std::to_string(num_threads));
+  }
 }
 
 MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& options,
@@ -355,8 +396,7 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
   if (graph.edges.empty()) {
     throw InputError(source,
                      view_edges.empty()
-                         ? "no image pair has verified matches (two_view_geometries is empty "
-                           "or below RelativePose.min_num_inliers); run a COLMAP matcher first"
+                         ? WhyNoVerifiedPairs(database, options.relative_pose.min_num_inliers)
                          : "no image pair gave a relative pose (all " +
                                std::to_string(view_edges.size()) + " rejected)");
   }

@@ -6,6 +6,7 @@
 #include "ramap/io/geo_export.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/util/error.h"
+#include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
 
 namespace ramap {
@@ -123,18 +124,39 @@ void WriteMapperOutput(const MapperResult& result, const std::string& output_pat
   }
   if (!fs::is_directory(output_path)) throw InputError(output_path, "exists and is not a folder");
   // An existing folder (perhaps holding the user's other files) gets each entry moved in once
-  // everything has been written beside it.
+  // everything has been written beside it. Only model folders and summary.json are replaced, and
+  // only after every one of them has been checked.
+  std::vector<fs::path> replaced;
+  auto check_model_target = [&](const fs::path& target) {
+    std::string foreign;
+    if (!IsReplaceableModelFolder(target.string(), &foreign)) {
+      throw InputError(output_path, "cannot replace " + target.string() + ": it holds " + foreign +
+                                        ", which ramap did not write (move it, or choose "
+                                        "another --output_path)");
+    }
+  };
+  for (size_t k = 0;; ++k) {
+    const fs::path target = fs::path(output_path) / std::to_string(k);
+    std::error_code ec;
+    const bool exists = fs::exists(fs::symlink_status(target, ec));
+    const bool stale = k >= result.reconstructions.size();
+    if (!exists) {
+      if (stale) break;
+      continue;
+    }
+    if (stale && !fs::exists(target / "cameras.bin") && !fs::exists(target / "cameras.txt")) break;
+    check_model_target(target);
+    replaced.push_back(target);
+  }
+  if (fs::is_directory(fs::path(output_path) / "summary.json")) {
+    throw InputError(output_path, "summary.json there is a folder; ramap does not replace it");
+  }
   StagedPath staged(output_path + "/.ramap-output");
   WriteContents(result, staged.path(), format, run_info);
   std::error_code ec;
-  for (size_t k = result.reconstructions.size();; ++k) {
-    const fs::path stale = fs::path(output_path) / std::to_string(k);
-    if (!fs::exists(stale / "cameras.bin") && !fs::exists(stale / "cameras.txt")) break;
-    fs::remove_all(stale, ec);
-  }
+  for (const fs::path& target : replaced) fs::remove_all(target, ec);
   for (const auto& entry : fs::directory_iterator(staged.path())) {
     const fs::path target = fs::path(output_path) / entry.path().filename();
-    fs::remove_all(target, ec);
     fs::rename(entry.path(), target, ec);
     if (ec)
       throw InputError(output_path,

@@ -1,6 +1,8 @@
 #include "ramap/util/parallel.h"
 
 #include <atomic>
+#include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -10,6 +12,12 @@ void ParallelFor(size_t count, int num_threads, const std::function<void(size_t)
                  std::ostream* progress, const std::string& what, const std::string& unit) {
   std::atomic<size_t> next{0};
   std::atomic<size_t> done{0};
+  // The first exception of any work item; once set, every thread stops taking new items and the
+  // caller rethrows it, so a failure inside a worker ends as the command's one error message
+  // instead of std::terminate.
+  std::exception_ptr first_error;
+  std::mutex error_mutex;
+  std::atomic<bool> failed{false};
   size_t reported = 0;  // tens of percent shown so far; touched by the calling thread only
   auto report = [&](size_t finished) {
     if (reported == 0) *progress << "[ramap] " << what << " of " << count << " " << unit << ":";
@@ -17,8 +25,15 @@ void ParallelFor(size_t count, int num_threads, const std::function<void(size_t)
     *progress << " " << 10 * reported << "%" << std::flush;
   };
   auto run = [&](bool reporting) {
-    for (size_t k = next++; k < count; k = next++) {
-      work(k);
+    for (size_t k = next++; k < count && !failed; k = next++) {
+      try {
+        work(k);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (!first_error) first_error = std::current_exception();
+        failed = true;
+        return;
+      }
       const size_t finished = ++done;
       if (reporting && progress != nullptr && finished * 10 / count > reported) report(finished);
     }
@@ -27,6 +42,8 @@ void ParallelFor(size_t count, int num_threads, const std::function<void(size_t)
   for (int t = 1; t < num_threads; ++t) threads.emplace_back(run, false);
   run(true);
   for (std::thread& thread : threads) thread.join();
+  if (progress != nullptr && reported > 0 && failed) *progress << "\n" << std::flush;
+  if (first_error) std::rethrow_exception(first_error);
   if (progress != nullptr && count > 0) {
     if (reported < 10) report(count);
     *progress << "\n" << std::flush;

@@ -11,7 +11,8 @@ namespace ramap {
 
 // Runs work(k) for k in [0, count) on `num_threads` threads (the calling thread among them).
 // With `progress`, "[ramap] <what> of <count> <unit>: 10% 20% ... 100%" is written there by the
-// calling thread only (streams are not thread-safe), ending with a newline.
+// calling thread only (streams are not thread-safe), ending with a newline. The first exception
+// thrown by any work item stops the loop (items under way finish) and is rethrown to the caller.
 void ParallelFor(size_t count, int num_threads, const std::function<void(size_t)>& work,
                  std::ostream* progress = nullptr, const std::string& what = "",
                  const std::string& unit = "");

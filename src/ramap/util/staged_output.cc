@@ -1,11 +1,16 @@
 #include "ramap/util/staged_output.h"
 
+#include <pthread.h>
+#include <unistd.h>
+
 #include <atomic>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <set>
 #include <system_error>
-
-#include <unistd.h>
+#include <thread>
 
 #include "ramap/util/error.h"
 
@@ -23,29 +28,113 @@ std::string MakeStagingName(const std::string& final_path) {
          std::to_string(counter++);
 }
 
+// Every path this process has staged or created and not yet committed, so that an interrupted run
+// can remove them. The mutex also orders a Commit against the interrupt's clean-up.
+struct LiveOutputs {
+  std::mutex mutex;
+  std::set<std::string> paths;
+};
+
+LiveOutputs& Live() {
+  static LiveOutputs* live =
+      new LiveOutputs;  // never destroyed: the signal thread may outlive main
+  return *live;
+}
+
+void Track(const std::string& path) {
+  std::lock_guard<std::mutex> lock(Live().mutex);
+  Live().paths.insert(path);
+}
+
+void Untrack(const std::string& path) {
+  std::lock_guard<std::mutex> lock(Live().mutex);
+  Live().paths.erase(path);
+}
+
+void RemoveQuietly(const std::string& path) {
+  std::error_code ec;
+  fs::remove_all(path, ec);
+}
+
 }  // namespace
 
 StagedPath::StagedPath(std::string final_path)
     : final_path_(std::move(final_path)), staging_path_(MakeStagingName(final_path_)) {
-  std::error_code ec;
-  fs::remove_all(staging_path_, ec);
+  RemoveQuietly(staging_path_);
+  Track(staging_path_);
 }
 
 StagedPath::~StagedPath() {
   if (committed_) return;
-  std::error_code ec;
-  fs::remove_all(staging_path_, ec);
+  RemoveQuietly(staging_path_);
+  Untrack(staging_path_);
 }
 
 void StagedPath::Commit() {
+  std::lock_guard<std::mutex> lock(Live().mutex);
   std::error_code ec;
   fs::path target(final_path_);
   if (!target.has_filename()) target = target.parent_path();
-  if (fs::exists(target, ec)) fs::remove_all(target, ec);
-  if (ec) throw InputError(final_path_, "cannot replace the existing output: " + ec.message());
+  const fs::file_status existing = fs::symlink_status(target, ec);
+  if (fs::is_directory(existing)) {
+    // Never replace a folder: only an empty one (made by a concurrent run, say) may go.
+    if (!fs::is_empty(target, ec) || !fs::remove(target, ec)) {
+      throw InputError(final_path_,
+                       "is a folder that is not empty; ramap does not replace a folder with its "
+                       "output (choose another path)");
+    }
+  } else if (fs::exists(existing) && fs::is_directory(staging_path_, ec)) {
+    throw InputError(final_path_, "exists and is not a folder");
+  }
+  // rename() replaces a file atomically; a reader sees the old file or the new one, never half.
   fs::rename(staging_path_, target, ec);
-  if (ec) throw InputError(final_path_, "cannot move the finished output into place: " + ec.message());
+  if (ec)
+    throw InputError(final_path_, "cannot move the finished output into place: " + ec.message());
+  Live().paths.erase(staging_path_);
   committed_ = true;
+}
+
+CreatedOutput::CreatedOutput(std::string path) : path_(std::move(path)) {
+  std::error_code ec;
+  created_ = !fs::exists(fs::symlink_status(path_, ec));
+  if (created_) Track(path_);
+}
+
+CreatedOutput::~CreatedOutput() {
+  if (!created_ || kept_) return;
+  RemoveQuietly(path_);
+  Untrack(path_);
+}
+
+void CreatedOutput::Keep() {
+  if (created_) Untrack(path_);
+  kept_ = true;
+}
+
+void RemoveLiveOutputs() {
+  std::lock_guard<std::mutex> lock(Live().mutex);
+  for (const std::string& path : Live().paths) RemoveQuietly(path);
+  Live().paths.clear();
+}
+
+void InstallInterruptCleanup() {
+  // Block the signals in this (the main) thread before any other thread exists, so that every
+  // thread inherits the mask and only the waiting thread below receives them. It then runs
+  // ordinary code (not a signal handler), so removing folders is safe there.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGHUP);
+  if (pthread_sigmask(SIG_BLOCK, &signals, nullptr) != 0) return;
+  std::thread([signals]() {
+    int signal = 0;
+    if (sigwait(&signals, &signal) != 0) return;
+    RemoveLiveOutputs();
+    const char message[] = "ramap: interrupted; unfinished outputs removed\n";
+    (void)!::write(STDERR_FILENO, message, sizeof(message) - 1);
+    ::_exit(128 + signal);
+  }).detach();
 }
 
 void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,

@@ -21,7 +21,8 @@ class StagedPath {
   // Where to write now.
   const std::string& path() const { return staging_path_; }
   const std::string& final_path() const { return final_path_; }
-  // Replaces whatever is at final_path() with what was written at path().
+  // Moves what was written at path() to final_path(). A file there is replaced; a folder never is
+  // (an empty one excepted): that throws InputError and leaves the staged output to the destructor.
   void Commit();
 
  private:
@@ -29,6 +30,29 @@ class StagedPath {
   std::string staging_path_;
   bool committed_ = false;
 };
+
+// A path a command creates directly (a database it fills in place, an output folder): removed
+// again when the guard is destroyed before Keep(), on an error or an interrupt, but only when it
+// did not exist before the guard was made.
+class CreatedOutput {
+ public:
+  explicit CreatedOutput(std::string path);
+  ~CreatedOutput();
+  CreatedOutput(const CreatedOutput&) = delete;
+  CreatedOutput& operator=(const CreatedOutput&) = delete;
+  void Keep();
+
+ private:
+  std::string path_;
+  bool created_ = false;
+  bool kept_ = false;
+};
+
+// On SIGINT, SIGTERM or SIGHUP, every staged path and every CreatedOutput not yet kept is removed
+// and the process exits with 128 + the signal. Call once from main() before any thread starts.
+void InstallInterruptCleanup();
+// Removes every staged path and CreatedOutput not yet kept (what an interrupt does).
+void RemoveLiveOutputs();
 
 // Writes one file through `write` and renames it into place; throws InputError naming the path
 // when the file cannot be written.

@@ -1,0 +1,127 @@
+#include "ramap/util/output_policy.h"
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <system_error>
+
+#include "ramap/util/error.h"
+
+namespace ramap {
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::array<const char*, 13> kModelFiles = {
+    "cameras.bin",  "images.bin", "points3D.bin",   "cameras.txt",        "images.txt",
+    "points3D.txt", "rigs.bin",   "frames.bin",     "trajectory_tum.txt", "geo_origin.txt",
+    "rigs.txt",     "frames.txt", "cameras.geojson"};
+
+bool IsModelFileName(const std::string& name) {
+  return std::any_of(kModelFiles.begin(), kModelFiles.end(),
+                     [&](const char* file) { return name == file; });
+}
+
+bool SameFile(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  return fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec) && !ec;
+}
+
+std::string Named(const std::string& option, const std::string& path) {
+  return option + " " + path;
+}
+
+}  // namespace
+
+void CheckFileOutput(const std::string& option, const std::string& path,
+                     const std::vector<std::string>& inputs) {
+  if (path.empty()) throw InputError(option, "is empty; give a file path");
+  const fs::path as_path(path);
+  std::error_code ec;
+  if (!as_path.has_filename() || as_path.filename() == "." || as_path.filename() == "..") {
+    throw InputError(Named(option, path), "names a folder; give a file path");
+  }
+  if (fs::is_directory(path, ec)) {
+    throw InputError(Named(option, path),
+                     "is a folder; ramap writes a file here and never replaces a folder");
+  }
+  for (const std::string& input : inputs) {
+    if (input.empty()) continue;
+    // A model folder given as input is read file by file: its model files are inputs too.
+    const bool in_input_model =
+        fs::is_directory(input, ec) &&
+        SameFile(as_path.parent_path().empty() ? "." : as_path.parent_path().string(), input) &&
+        IsModelFileName(as_path.filename().string());
+    if (SameFile(path, input) || in_input_model) {
+      throw InputError(Named(option, path),
+                       "is an input of this run (" + input + "); ramap never overwrites its input");
+    }
+  }
+}
+
+void CheckFolderOutput(const std::string& option, const std::string& path,
+                       const std::vector<std::string>& inputs) {
+  if (path.empty()) throw InputError(option, "is empty; give a folder path");
+  std::error_code ec;
+  if (fs::exists(path, ec) && !fs::is_directory(path, ec)) {
+    throw InputError(Named(option, path), "exists and is not a folder");
+  }
+  for (const std::string& input : inputs) {
+    if (!input.empty() && SameFile(path, input)) {
+      throw InputError(Named(option, path), "is an input of this run (" + input +
+                                                "); write the output to another folder");
+    }
+  }
+}
+
+void CheckNewDatabasePath(const std::string& option, const std::string& path,
+                          const std::vector<std::string>& inputs) {
+  CheckFileOutput(option, path, inputs);
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(path, ec))) {
+    throw InputError(Named(option, path),
+                     "exists already; ramap writes a new database and never overwrites one "
+                     "(remove it, or choose another path)");
+  }
+}
+
+bool IsReplaceableModelFolder(const std::string& folder, std::string* foreign) {
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) {
+    if (foreign != nullptr) *foreign = folder;
+    return false;
+  }
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    const bool known = IsModelFileName(name);
+    if (!known || !entry.is_regular_file(ec)) {
+      if (foreign != nullptr) *foreign = entry.path().string();
+      return false;
+    }
+  }
+  if (ec) {
+    if (foreign != nullptr) *foreign = folder;
+    return false;
+  }
+  return true;
+}
+
+bool IsReplaceableMapperOutput(const std::string& folder, std::string* foreign) {
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) {
+    if (foreign != nullptr) *foreign = folder;
+    return false;
+  }
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    const bool numbered = !name.empty() && std::all_of(name.begin(), name.end(),
+                                                       [](char c) { return c >= '0' && c <= '9'; });
+    if (numbered && IsReplaceableModelFolder(entry.path().string(), foreign)) continue;
+    if ((name == "summary.json" || name == "project.ini") && entry.is_regular_file(ec)) continue;
+    if (foreign != nullptr && !numbered) *foreign = entry.path().string();
+    return false;
+  }
+  return !ec;
+}
+
+}  // namespace ramap

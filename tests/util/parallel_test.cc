@@ -1,0 +1,38 @@
+#include "ramap/util/parallel.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <sstream>
+#include <stdexcept>
+
+namespace ramap {
+namespace {
+
+TEST(ParallelFor, RunsEveryItemOnce) {
+  std::vector<std::atomic<int>> counts(1000);
+  ParallelFor(counts.size(), 2, [&](size_t k) { ++counts[k]; });
+  for (const std::atomic<int>& count : counts) EXPECT_EQ(count, 1);
+}
+
+TEST(ParallelFor, CarriesAWorkersExceptionToTheCaller) {
+  for (const int threads : {1, 2, 4}) {
+    std::atomic<int> started{0};
+    std::ostringstream progress;
+    // Item 7 fails whichever thread takes it; the caller sees that exception, not terminate().
+    EXPECT_THROW(ParallelFor(
+                     100, threads,
+                     [&](size_t k) {
+                       ++started;
+                       if (k == 7) throw std::out_of_range("item 7");
+                     },
+                     &progress, "work", "items"),
+                 std::out_of_range)
+        << threads << " threads";
+    // The loop stops taking new items after the failure (those under way may finish).
+    EXPECT_LT(started.load(), 100) << threads << " threads";
+  }
+}
+
+}  // namespace
+}  // namespace ramap

@@ -115,7 +115,7 @@ int RunEvaluate(int argc, char** argv) {
 
   const GroundTruthFormat format = GroundTruthFormatFromName(ground_truth_format);
   const Reconstruction model = ReadColmapModel(model_path);
-  const std::map<std::string, Rigid3d> estimated = PosesByName(model);
+  const std::map<std::string, Rigid3d> estimated = PosesByName(model, model_path);
   const GroundTruth ground_truth = ReadGroundTruth(ground_truth_path, format);
 
   std::vector<std::string> input_names;

@@ -61,7 +61,11 @@ namespace ramap::test {
 namespace {
 
 std::string CacheRoot() {
-  const fs::path root = fs::path(RAMAP_CLI_PATH).parent_path() / "test-cache";
+  // $RAMAP_TEST_CACHE_DIR lets a second build (the sanitizer one) share the COLMAP runs.
+  const char* env = std::getenv("RAMAP_TEST_CACHE_DIR");
+  const fs::path root = env != nullptr && *env != '\0'
+                            ? fs::path(env)
+                            : fs::path(RAMAP_CLI_PATH).parent_path() / "test-cache";
   fs::create_directories(root);
   return root.string();
 }

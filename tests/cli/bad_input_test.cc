@@ -328,15 +328,46 @@ TEST_F(BadInput, PairWithEveryKeypointOnOnePixelIsDropped) {
     keypoints.data[k * keypoints.num_cols + 1] = 100.5f;
   }
   WriteColmapDatabase(database, W("one_pixel.db"));
-  const test::CommandResult result = test::RunCommand(
-      Ramap() + "relative_poses --database_path " + Q(W("one_pixel.db")) + " --output_path " +
-      Q(W("edges.txt")));
+  const test::CommandResult result =
+      test::RunCommand(Ramap() + "relative_poses --database_path " + Q(W("one_pixel.db")) +
+                       " --output_path " + Q(W("edges.txt")));
   ASSERT_EQ(result.exit_code, 0) << result.output;
   std::ifstream edges(W("edges.txt"));
   const std::string name = database.images.at(1).name;
   for (std::string line; std::getline(edges, line);) {
     EXPECT_EQ(line.find(name + " "), std::string::npos) << "kept: " << line;
   }
+}
+
+TEST_F(BadInput, DisconnectedGraphIsNotCalledPruned) {
+  ASSERT_EQ(test::RunCommand(Ramap() + "relative_poses --database_path " + Q(W("database.db")) +
+                             " --output_path " + Q(W("edges.txt")))
+                .exit_code,
+            0);
+  // The same edges again under other names: a second component, as consistent as the first.
+  std::ifstream in(W("edges.txt"));
+  std::ofstream out(W("two_components.txt"));
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  for (const std::string& line : lines) out << line << "\n";
+  for (const std::string& line : lines) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::string name1, name2, rest;
+    fields >> name1 >> name2;
+    std::getline(fields, rest);
+    // The first component is the larger: drop one edge of the copy.
+    if (&line == &lines.back()) continue;
+    out << "copy_" << name1 << " copy_" << name2 << rest << "\n";
+  }
+  out.close();
+  const test::CommandResult result =
+      test::RunCommand(Ramap() + "rotation_averager --relative_poses " +
+                       Q(W("two_components.txt")) + " --output_path " + Q(W("rotations.txt")));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("(0 pruned, "), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("outside the largest connected component"), std::string::npos)
+      << result.output;
 }
 
 // --- Partial outputs ---

@@ -99,11 +99,12 @@ double RotationAngleDeg(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b
   return 2.0 * std::atan2(d.vec().norm(), std::abs(d.w())) * kRadToDeg;
 }
 
-std::map<std::string, Rigid3d> PosesByName(const Reconstruction& reconstruction) {
+std::map<std::string, Rigid3d> PosesByName(const Reconstruction& reconstruction,
+                                           const std::string& source) {
   std::map<std::string, Rigid3d> poses;
   for (const auto& [image_id, image] : reconstruction.images) {
     if (!poses.emplace(image.name, image.cam_from_world).second) {
-      throw InputError("reconstruction", "two registered images are named '" + image.name + "'");
+      throw InputError(source, "two registered images are named '" + image.name + "'");
     }
   }
   return poses;

@@ -98,7 +98,9 @@ struct PoseEvaluation {
 };
 
 // Image name -> cam_from_world of the registered images of a reconstruction.
-std::map<std::string, Rigid3d> PosesByName(const Reconstruction& reconstruction);
+// `source` (the model's path) names the model in the error for two images of one name.
+std::map<std::string, Rigid3d> PosesByName(const Reconstruction& reconstruction,
+                                           const std::string& source = "reconstruction");
 
 // Evaluates `estimated` against `ground_truth` over `all_image_names` (the input: names missing
 // from `estimated` are failures, names missing from `ground_truth` cannot be scored and are only

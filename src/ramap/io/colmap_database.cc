@@ -170,6 +170,7 @@ class Reader {
     if (options_.read_matches) ReadMatches();
     ReadTwoViewGeometries();
     ReadMatchConfidence();
+    database_.source_path = path_;
     return std::move(database_);
   }
 

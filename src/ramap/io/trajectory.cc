@@ -214,9 +214,10 @@ GroundTruth ReadMiddlebury(const std::string& path) {
   std::vector<std::string> t;
   if (!in.Next(&t)) throw InputError(path, "empty file (expected the number of images first)");
   if (t.size() != 1) throw InputError(in.where(), "expected the number of images alone");
-  const std::optional<double> count = ParseNumber(t[0]);
+  const std::string count_text = t[0];
+  const std::optional<double> count = ParseNumber(count_text);
   if (!count || *count < 0 || *count != std::floor(*count)) {
-    throw InputError(in.where(), "cannot read the number of images from '" + t[0] + "'");
+    throw InputError(in.where(), "cannot read the number of images from '" + count_text + "'");
   }
   GroundTruth gt;
   while (in.Next(&t)) {
@@ -237,9 +238,10 @@ GroundTruth ReadMiddlebury(const std::string& path) {
         PoseFromMatrix(CheckedRotation(R, in.where()), Eigen::Vector3d(v[18], v[19], v[20]));
     gt.poses.push_back(pose);
   }
-  if (gt.poses.size() != static_cast<size_t>(*count)) {
-    throw InputError(path, "announces " + std::to_string(static_cast<size_t>(*count)) +
-                               " images but lists " + std::to_string(gt.poses.size()));
+  // Compared as doubles: a count past size_t's range (a corrupt header) must not be cast.
+  if (static_cast<double>(gt.poses.size()) != *count) {
+    throw InputError(path, "announces " + count_text + " images but lists " +
+                               std::to_string(gt.poses.size()));
   }
   return gt;
 }
@@ -282,8 +284,8 @@ GroundTruthFormat GroundTruthFormatFromName(const std::string& name) {
   if (name == "strecha") return GroundTruthFormat::kStrecha;
   if (name == "middlebury") return GroundTruthFormat::kMiddlebury;
   if (name == "colmap") return GroundTruthFormat::kColmap;
-  throw InputError("ground truth format", "unknown format '" + name +
-                                              "' (known: tum, kitti, strecha, middlebury, colmap)");
+  throw InputError("--ground_truth_format",
+                   "unknown format '" + name + "' (known: tum, kitti, strecha, middlebury, colmap)");
 }
 
 namespace {

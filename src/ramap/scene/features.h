@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -93,6 +94,8 @@ struct FeatureDatabase {
   std::map<uint32_t, Descriptors> descriptors;
   std::map<uint64_t, std::vector<FeatureMatch>> matches;
   std::map<uint64_t, TwoViewGeometry> two_view_geometries;
+  // The file it was read from (empty when built in memory), for messages.
+  std::string source_path;
 };
 
 }  // namespace ramap

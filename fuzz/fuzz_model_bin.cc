@@ -1,0 +1,14 @@
+// libFuzzer harness: a COLMAP model folder in the binary format, its three files
+// (cameras, images, points3D) separated in the input by "\n@@\n".
+#include "fuzz_input.h"
+#include "ramap/io/colmap_model.h"
+#include "ramap/util/error.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::string folder = ramap::fuzz::WriteModelFolder(data, size, ".bin");
+  try {
+    ramap::ReadColmapModel(folder);
+  } catch (const ramap::InputError&) {
+  }
+  return 0;
+}

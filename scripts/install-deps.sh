@@ -18,6 +18,7 @@ packages=(
   nlohmann-json3-dev          # reports and summaries
   libspectra-dev              # sparse eigenvalues (Fiedler value of the certificate)
   libexiv2-dev                # EXIF focal length and GPS
+  clang libclang-rt-14-dev    # libFuzzer and the sanitizers for the readers' fuzz harnesses
 )
 
 missing=()

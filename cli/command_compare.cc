@@ -15,6 +15,7 @@
 #include "options.h"
 #include "ramap/eval/comparison.h"
 #include "ramap/eval/plots.h"
+#include "ramap/geometry/camera_projection.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/trajectory.h"
@@ -145,6 +146,12 @@ int RunCompare(int argc, char** argv) {
       refine_intrinsics ? ""
                         : " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0"
                           " --Mapper.ba_refine_extra_params 0";
+  // ramap's bundle adjustment under the same rule (COLMAP's option names and defaults).
+  const std::string ramap_intrinsics = refine_intrinsics
+                                           ? ""
+                                           : " --BundleAdjustment.refine_focal_length 0"
+                                             " --BundleAdjustment.refine_principal_point 0"
+                                             " --BundleAdjustment.refine_extra_params 0";
   struct Plan {
     std::string name, folder, command;
   };
@@ -160,7 +167,7 @@ int RunCompare(int argc, char** argv) {
       {"ramap+BA", "ramap_ba",
        Quote(self) + " mapper --database_path " + Quote(database_path) + " --output_path " +
            Quote(output_path + "/ramap_ba") + " --Mapper.num_threads " + threads +
-           " --Mapper.refine 1" + ""},
+           " --Mapper.refine 1" + ramap_intrinsics},
   };
 
   // Each run's folder is replaced whole, so it may hold only an earlier run's output; checked for
@@ -204,7 +211,11 @@ int RunCompare(int argc, char** argv) {
     if (!run.succeeded) {
       std::cerr << "ramap compare: " << plan.name << " failed (see " << folder << ".log)\n";
     } else {
-      poses[run.name] = PosesByName(ReadColmapModel(run.model_path));
+      const Reconstruction model = ReadColmapModel(run.model_path);
+      poses[run.name] = PosesByName(model, run.model_path);
+      for (const auto& [camera_id, camera] : model.cameras) {
+        run.focal_lengths_px[camera_id] = MeanFocalLength(camera);
+      }
     }
     run.stage_seconds = StageSeconds(folder + "/summary.json");
     std::cout << "[ramap compare] " << plan.name << ": " << run.num_registered << " of "

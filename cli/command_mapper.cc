@@ -1,4 +1,5 @@
 // `ramap mapper`: a COLMAP database in, COLMAP models out, by motion averaging.
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 
@@ -29,6 +30,22 @@ void PrintSummaryTable(const MapperSummary& s, const std::string& output_path, s
         << (c.rotation_certified ? "yes" : "no") << "\n";
   }
   PrintGeoregistration(s, out);
+  // Focal lengths the database did not know, and every camera BA changed.
+  for (const CameraIntrinsicsSummary& camera : s.cameras) {
+    const CameraCalibration& estimate = camera.view_graph;
+    const bool changed = !camera.final_params.empty() && camera.final_params != camera.prior_params;
+    if (estimate.camera_id == 0 && !changed) continue;
+    out << "  camera " << camera.camera_id << " (" << camera.model << "): focal "
+        << std::setprecision(1) << camera.prior_params[0];
+    if (estimate.camera_id != 0) {
+      out << (estimate.estimated
+                  ? " -> " + std::to_string(std::lround(estimate.estimated_focal_px)) +
+                        " (view graph, " + std::to_string(estimate.num_pairs) + " pairs)"
+                  : " kept (view graph: " + estimate.problem + ")");
+    }
+    if (changed) out << " -> " << camera.final_params[0] << " (written)";
+    out << "\n";
+  }
   if (!s.dropped_images.empty()) {
     out << "  not registered (" << s.dropped_images.size() << "):\n";
     for (size_t k = 0; k < s.dropped_images.size() && k < 10; ++k) {

@@ -120,6 +120,26 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
                  "points adjusted at most (0: all); every track is triangulated again after")
       ->capture_default_str()
       ->check(AtLeast(0));
+  app.add_option("--BundleAdjustment.refine_focal_length", o->bundle_adjustment.refine_focal_length,
+                 "1: refine each camera's focal length")
+      ->capture_default_str();
+  app.add_option("--BundleAdjustment.refine_principal_point",
+                 o->bundle_adjustment.refine_principal_point)
+      ->capture_default_str();
+  app.add_option("--BundleAdjustment.refine_extra_params", o->bundle_adjustment.refine_extra_params,
+                 "1: refine distortion coefficients")
+      ->capture_default_str();
+  ViewGraphCalibrationOptions& calibration = o->view_graph_calibration;
+  app.add_option("--ViewGraphCalibration.enable", calibration.enable,
+                 "1: estimate the focal length of cameras without a prior (prior_focal_length 0) "
+                 "from the verified pairs' fundamental matrices")
+      ->capture_default_str();
+  app.add_option("--ViewGraphCalibration.min_num_pairs", calibration.min_num_pairs)
+      ->capture_default_str()
+      ->check(AtLeast(1));
+  app.add_option("--ViewGraphCalibration.max_median_cost", calibration.max_median_cost)
+      ->capture_default_str()
+      ->check(Above(0, 1));
   app.add_option("--Mapper.min_component_size", o->min_component_size)
       ->capture_default_str()
       ->check(AtLeast(2));
@@ -208,8 +228,15 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
        {{"refine", o.refine},
         {"min_component_size", o.min_component_size},
         {"num_threads", o.num_threads}}},
+      {"ViewGraphCalibration",
+       {{"enable", o.view_graph_calibration.enable},
+        {"min_num_pairs", o.view_graph_calibration.min_num_pairs},
+        {"max_median_cost", o.view_graph_calibration.max_median_cost}}},
       {"BundleAdjustment",
-       {{"max_num_iterations", o.bundle_adjustment.max_num_iterations},
+       {{"refine_focal_length", o.bundle_adjustment.refine_focal_length},
+        {"refine_principal_point", o.bundle_adjustment.refine_principal_point},
+        {"refine_extra_params", o.bundle_adjustment.refine_extra_params},
+        {"max_num_iterations", o.bundle_adjustment.max_num_iterations},
         {"loss_scale_px", o.bundle_adjustment.loss_scale_px},
         {"max_num_points", o.bundle_adjustment.max_num_points},
         {"function_tolerance", o.bundle_adjustment.function_tolerance}}},

@@ -11,13 +11,24 @@
 # database is complete is not touched again). Intrinsics stay fixed in every mapper, as
 # ../shared/data/README.md asks. Settings: RAMAP_DATA_DIR (default ../shared/data), RAMAP_BENCH_DIR
 # (default build/bench).
+#
+# RAMAP_INTRINSICS=unknown: the same on databases made as a user without a calibration makes them
+# (COLMAP's SIMPLE_RADIAL guess, prior_focal_length 0), every mapper with its defaults (intrinsics
+# refined); rewrites the "Unknown intrinsics" table, with each mapper's focal length error.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench}
+intrinsics=${RAMAP_INTRINSICS:-known}
+if [[ $intrinsics == unknown ]]; then
+  bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench-unknown-intrinsics}
+  compare_options=(--Compare.refine_intrinsics 1)
+else
+  bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench}
+  compare_options=()
+fi
 ramap=${RAMAP_BINARY:-$root/build/ramap}
 source "$root/scripts/datasets/list.sh"
 [[ -x $ramap ]] || { echo "benchmark: $ramap not built (run scripts/build.sh)" >&2; exit 1; }
-RAMAP_BENCH_DIR=$bench_dir bash "$root/scripts/prepare_datasets.sh" "$@"
+RAMAP_INTRINSICS=$intrinsics RAMAP_BENCH_DIR=$bench_dir bash "$root/scripts/prepare_datasets.sh" "$@"
 
 ran=()
 for entry in "${RAMAP_DATASETS[@]}"; do
@@ -33,13 +44,22 @@ for entry in "${RAMAP_DATASETS[@]}"; do
   gt_options=()
   [[ -n $ground_truth ]] && gt_options=(--ground_truth "$ground_truth" --ground_truth_format "$ground_truth_format")
   echo "benchmark: $name"
-  "$ramap" compare --database_path "$dir/database.db" --image_path "$images" \
-    --output_path "$dir/compare" "${gt_options[@]}" >"$dir/compare.log" 2>&1 ||
-    { echo "benchmark: $name: ramap compare failed (log: $dir/compare.log)" >&2; continue; }
-  mkdir -p "$root/docs/figures/$name"
-  cp "$dir"/compare/*.png "$root/docs/figures/$name/"
+  rm -f "$dir/compare/report.json"
+  # compare exits non-zero when a mapper failed, after writing the report that says which.
+  if ! "$ramap" compare --database_path "$dir/database.db" --image_path "$images" \
+    --output_path "$dir/compare" "${gt_options[@]}" "${compare_options[@]}" >"$dir/compare.log" 2>&1; then
+    if [[ ! -f $dir/compare/report.json ]]; then
+      echo "benchmark: $name: ramap compare failed (log: $dir/compare.log)" >&2
+      continue
+    fi
+    echo "benchmark: $name: a mapper failed; its row says so (log: $dir/compare.log)" >&2
+  fi
+  if [[ $intrinsics == known ]]; then
+    mkdir -p "$root/docs/figures/$name"
+    cp "$dir"/compare/*.png "$root/docs/figures/$name/"
+  fi
   ran+=("$dir")
 done
 
 ((${#ran[@]})) || { echo "benchmark: nothing ran" >&2; exit 1; }
-python3 "$root/scripts/benchmark_table.py" "$root/BENCHMARKS.md" "${ran[@]}"
+python3 "$root/scripts/benchmark_table.py" --intrinsics "$intrinsics" "$root/BENCHMARKS.md" "${ran[@]}"

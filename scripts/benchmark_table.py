@@ -2,17 +2,21 @@
 """The mapper table of one scripts/benchmark.sh run, from each data set's `ramap compare`
 report.json: accuracy and wall time of `colmap mapper`, `ramap mapper` and `ramap mapper
 --Mapper.refine 1` on the same database, side by side, with the speed ratios. Prints it and
-rewrites it in BENCHMARKS.md between the mapper-table markers.
+rewrites it in BENCHMARKS.md between the mapper-table markers (with --intrinsics unknown: the
+unknown-intrinsics table, with each mapper's focal length error against the known calibration).
 
-Usage: benchmark_table.py BENCHMARKS.md FOLDER [FOLDER ...]   (standard library only)"""
+Usage: benchmark_table.py [--intrinsics known|unknown] BENCHMARKS.md FOLDER [FOLDER ...]
+(standard library only)"""
 import json
 import os
 import platform
 import sys
 import time
 
-BEGIN = "<!-- mapper-table:begin -->"
-END = "<!-- mapper-table:end -->"
+MARKERS = {
+    "known": ("<!-- mapper-table:begin -->", "<!-- mapper-table:end -->"),
+    "unknown": ("<!-- unknown-intrinsics-table:begin -->", "<!-- unknown-intrinsics-table:end -->"),
+}
 
 
 def read_env(path):
@@ -28,12 +32,24 @@ def fmt(value, digits=2, suffix=""):
     return "-" if value is None else f"{value:.{digits}f}{suffix}"
 
 
-def table(folders):
+def focal_error(env, run):
+    """Error (%) of the run's focal length against the data set's known one (its first
+    parameter: f or fx), for the single camera these databases have."""
+    focal = run.get("focal_lengths_px", {})
+    if not focal or not env.get("camera_params"):
+        return "-"
+    truth = float(env["camera_params"].split(",")[0])
+    estimate = next(iter(focal.values()))
+    return f"{100 * (estimate / truth - 1):+.2f}%"
+
+
+def table(folders, unknown):
+    focal_header = " focal error |" if unknown else ""
     rows = [
-        "| data set | images | mapper | registered | AUC@1 | AUC@3 | AUC@5 | rot. err. median (deg) "
-        "| rel. rot. err. median (deg) | ATE RMSE | ATE / path | ATE / extent | wall time (s) "
-        "| speed-up over COLMAP |",
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+        "| data set | images | mapper |" + focal_header + " registered | AUC@1 | AUC@3 | AUC@5 "
+        "| rot. err. median (deg) | rel. rot. err. median (deg) | ATE RMSE | ATE / path "
+        "| ATE / extent | wall time (s) | speed-up over COLMAP |",
+        "|" + " --- |" * (14 + unknown),
     ]
     for folder in folders:
         env = read_env(os.path.join(folder, "dataset.env"))
@@ -43,7 +59,10 @@ def table(folders):
         for run in report["runs"]:
             registered = f"{run['num_registered']}" if run["succeeded"] else "failed"
             speedup = run.get("speedup_over_colmap")
-            cells = [name, str(report["num_images"]), run["name"], registered]
+            cells = [name, str(report["num_images"]), run["name"]]
+            if unknown:
+                cells.append(focal_error(env, run))
+            cells.append(registered)
             e = run.get("evaluation")
             if e:
                 auc = e["relative"]["auc_by_threshold_deg"]
@@ -64,8 +83,9 @@ def table(folders):
         f"{platform.machine()}.\n"
 
 
-def main(benchmarks, folders):
-    text = table(folders)
+def main(benchmarks, folders, intrinsics):
+    text = table(folders, intrinsics == "unknown")
+    BEGIN, END = MARKERS[intrinsics]
     print(text)
     with open(benchmarks) as f:
         content = f.read()
@@ -79,6 +99,10 @@ def main(benchmarks, folders):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) < 3:
+    args = sys.argv[1:]
+    intrinsics = "known"
+    if args[:1] == ["--intrinsics"] and len(args) > 1:
+        intrinsics, args = args[1], args[2:]
+    if len(args) < 2 or intrinsics not in MARKERS:
         sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2:])
+    main(args[0], args[1:], intrinsics)

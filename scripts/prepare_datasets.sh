@@ -5,11 +5,19 @@
 #   scripts/prepare_datasets.sh [NAME ...]      (default: every data set present)
 #
 # Settings: RAMAP_DATA_DIR (default ../shared/data), RAMAP_BENCH_DIR (default build/bench),
-# RAMAP_MAX_IMAGE_SIZE (default 1600, as in ../shared/data/README.md's COLMAP timings).
+# RAMAP_MAX_IMAGE_SIZE (default 1600, as in ../shared/data/README.md's COLMAP timings),
+# RAMAP_INTRINSICS=unknown for databases as a user without a calibration makes them (COLMAP's
+# defaults: one SIMPLE_RADIAL camera, focal length 1.2 x the longest side, prior_focal_length 0;
+# default bench folder build/bench-unknown-intrinsics).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 data_dir=${RAMAP_DATA_DIR:-$root/../shared/data}
-bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench}
+intrinsics=${RAMAP_INTRINSICS:-known}
+if [[ $intrinsics == unknown ]]; then
+  bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench-unknown-intrinsics}
+else
+  bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench}
+fi
 max_image_size=${RAMAP_MAX_IMAGE_SIZE:-1600}
 source "$root/scripts/datasets/list.sh"
 
@@ -34,9 +42,11 @@ for entry in "${RAMAP_DATASETS[@]}"; do
   # Links to the image files only (templeRing's folder also holds text files).
   find "$data_dir/$images" -maxdepth 1 -type f \( -iname '*.png' -o -iname '*.jpg' -o -iname '*.jpeg' \) \
     -exec ln -s {} "$out/images/" \;
+  camera=(--ImageReader.camera_model "$model" --ImageReader.camera_params "$params")
+  [[ $intrinsics == unknown ]] && camera=(--ImageReader.camera_model SIMPLE_RADIAL)
   start=$(date +%s%N)
   colmap feature_extractor --database_path "$out/database.db" --image_path "$out/images" \
-    --ImageReader.single_camera 1 --ImageReader.camera_model "$model" --ImageReader.camera_params "$params" \
+    --ImageReader.single_camera 1 "${camera[@]}" \
     --SiftExtraction.use_gpu 0 --SiftExtraction.max_image_size "$max_image_size" > "$out/extract.log" 2>&1
   colmap "${matcher}_matcher" --database_path "$out/database.db" --SiftMatching.use_gpu 0 > "$out/match.log" 2>&1
   end=$(date +%s%N)
@@ -46,6 +56,7 @@ name=$name
 images=$out/images
 camera_model=$model
 camera_params=$params
+intrinsics=$intrinsics
 matcher=$matcher
 ground_truth=${gt:+$data_dir/$gt}
 ground_truth_format=$gt_format

@@ -39,6 +39,9 @@ nlohmann::json ComparisonToJson(const Comparison& comparison) {
                             {"seconds", run.seconds},
                             {"num_models", run.num_models},
                             {"num_registered", run.num_registered}};
+    for (const auto& [camera_id, focal] : run.focal_lengths_px) {
+      entry["focal_lengths_px"][std::to_string(camera_id)] = focal;
+    }
     const double ratio = SpeedRatio(comparison, run);
     entry["speedup_over_colmap"] = std::isfinite(ratio) ? nlohmann::json(ratio) : nlohmann::json();
     for (const auto& [stage, seconds] : run.stage_seconds) entry["stage_seconds"][stage] = seconds;

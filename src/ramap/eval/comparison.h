@@ -4,6 +4,8 @@
 // for people); running the mappers is the CLI's business.
 #pragma once
 
+#include <cstdint>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -22,6 +24,9 @@ struct MapperRun {
   double seconds = 0.0;    // wall time of the whole process
   int num_models = 0;
   int num_registered = 0;  // images of the largest model
+  // The mean focal length (px) of each camera of the largest model, by camera id: what the mapper
+  // calibrated, when it refined the intrinsics.
+  std::map<uint32_t, double> focal_lengths_px;
   // Per-stage seconds as the mapper reported them (ramap's summary.json); empty for COLMAP.
   std::vector<std::pair<std::string, double>> stage_seconds;
   // Against the reference; empty when there is none for this run (the reference run itself).

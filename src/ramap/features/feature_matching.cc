@@ -141,28 +141,6 @@ std::vector<FeatureMatch> MatchFloatDescriptors(const cv::Mat& d1, const cv::Mat
   return AcceptMatches(best2, first2, second2, best1, options, ratios);
 }
 
-Eigen::Matrix3d CalibrationMatrix(const Camera& camera) {
-  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
-  const std::vector<double>& p = camera.params;
-  switch (camera.model) {
-    case CameraModel::kSimplePinhole:
-    case CameraModel::kSimpleRadial:
-    case CameraModel::kRadial:
-    case CameraModel::kSimpleRadialFisheye:
-    case CameraModel::kRadialFisheye:
-      K(0, 0) = K(1, 1) = p[0];
-      K(0, 2) = p[1];
-      K(1, 2) = p[2];
-      break;
-    default:
-      K(0, 0) = p[0];
-      K(1, 1) = p[1];
-      K(0, 2) = p[2];
-      K(1, 2) = p[3];
-  }
-  return K;
-}
-
 }  // namespace
 
 MatchingMode MatchingModeFromName(const std::string& name) {
@@ -227,20 +205,39 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
   }
   if (static_cast<int>(usable.size()) < options.min_num_inliers) return geometry;
   const double focal = 0.5 * (MeanFocalLength(camera1) + MeanFocalLength(camera2));
+  // Without a known focal length (COLMAP's prior_focal_length 0) the essential matrix would hold
+  // the guess as truth: estimate F on the pixels instead, as COLMAP does for such pairs, so that
+  // the mapper's view-graph calibration can estimate the focal length from it.
+  const bool calibrated = camera1.has_prior_focal_length && camera2.has_prior_focal_length;
   cv::Mat mask;
-  // OpenCV's USAC (Ivashechkin, Barath, Matas, "USAC: a universal framework for random sample
-  // consensus", 2021) rather than its plain RANSAC: the pairs of an exhaustive match that do not
-  // overlap ran plain RANSAC to its iteration cap and took 54% of the matching time. Measured
-  // (templeRing, 1081 pairs): SIFT 43.7 -> 14.1 s, ORB 62.5 -> 18.9 s, with fewer but cleaner
-  // verified pairs (the mapper's AUC@1 after BA 70.9 -> 73.7%, ORB 19.8 -> 29.9%); KITTI 07's
-  // sequential pairs equal in time and accuracy (ATE after BA: ORB 0.38 -> 0.44%, SIFT 0.51 ->
-  // 0.50% of the path).
-  const cv::Mat E = cv::findEssentialMat(points1, points2, 1.0, cv::Point2d(0, 0), cv::USAC_DEFAULT,
-                                         options.confidence, options.max_error_px / focal, mask);
-  if (E.rows != 3 || E.cols != 3) return geometry;  // none, or several stacked solutions
-  cv::Mat R, t;
-  cv::Mat pose_mask = mask.clone();
-  cv::recoverPose(E, points1, points2, R, t, 1.0, cv::Point2d(0, 0), pose_mask);
+  if (!calibrated) {
+    std::vector<cv::Point2d> pixels1, pixels2;
+    for (const FeatureMatch& match : usable) {
+      const Eigen::Vector2d xy1 = keypoints1.xy(match.point2D_idx1);
+      const Eigen::Vector2d xy2 = keypoints2.xy(match.point2D_idx2);
+      pixels1.emplace_back(xy1.x(), xy1.y());
+      pixels2.emplace_back(xy2.x(), xy2.y());
+    }
+    const cv::Mat F = cv::findFundamentalMat(pixels1, pixels2, cv::USAC_DEFAULT,
+                                             options.max_error_px, options.confidence, mask);
+    if (F.rows != 3 || F.cols != 3) return geometry;
+    cv::cv2eigen(F, geometry.F);
+  }
+  cv::Mat E, R, t;
+  if (calibrated) {
+    // OpenCV's USAC (Ivashechkin, Barath, Matas, "USAC: a universal framework for random sample
+    // consensus", 2021) rather than its plain RANSAC: the pairs of an exhaustive match that do not
+    // overlap ran plain RANSAC to its iteration cap and took 54% of the matching time. Measured
+    // (templeRing, 1081 pairs): SIFT 43.7 -> 14.1 s, ORB 62.5 -> 18.9 s, with fewer but cleaner
+    // verified pairs (the mapper's AUC@1 after BA 70.9 -> 73.7%, ORB 19.8 -> 29.9%); KITTI 07's
+    // sequential pairs equal in time and accuracy (ATE after BA: ORB 0.38 -> 0.44%, SIFT 0.51 ->
+    // 0.50% of the path).
+    E = cv::findEssentialMat(points1, points2, 1.0, cv::Point2d(0, 0), cv::USAC_DEFAULT,
+                             options.confidence, options.max_error_px / focal, mask);
+    if (E.rows != 3 || E.cols != 3) return geometry;  // none, or several stacked solutions
+    cv::Mat pose_mask = mask.clone();
+    cv::recoverPose(E, points1, points2, R, t, 1.0, cv::Point2d(0, 0), pose_mask);
+  }
   for (size_t k = 0; k < usable.size(); ++k) {
     if (!mask.at<uchar>(static_cast<int>(k))) continue;
     geometry.inlier_matches.push_back(usable[k]);
@@ -251,10 +248,14 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
     geometry.inlier_ratios.clear();
     return geometry;
   }
-  geometry.config = TwoViewConfig::kCalibrated;
-  cv::cv2eigen(E, geometry.E);
-  const Eigen::Matrix3d K1 = CalibrationMatrix(camera1), K2 = CalibrationMatrix(camera2);
-  geometry.F = K2.inverse().transpose() * geometry.E * K1.inverse();
+  if (calibrated) {
+    geometry.config = TwoViewConfig::kCalibrated;
+    cv::cv2eigen(E, geometry.E);
+    const Eigen::Matrix3d K1 = CalibrationMatrix(camera1), K2 = CalibrationMatrix(camera2);
+    geometry.F = K2.inverse().transpose() * geometry.E * K1.inverse();
+  } else {
+    geometry.config = TwoViewConfig::kUncalibrated;
+  }
   // The pair's pose by ramap's own estimator on the inliers (grid-selected six points, refined on
   // all): OpenCV's minimal-sample E is poorly conditioned through long lenses (templeRing: median
   // 8.7 deg, with twisted-pair flips), and COLMAP 3.8 stores no pose at all.
@@ -279,7 +280,7 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
       EstimateRelativePose(correspondences, RelativePoseOptions());
   if (estimate.success) {
     geometry.cam2_from_cam1 = Rigid3d(estimate.rotation, estimate.translation);
-  } else {
+  } else if (calibrated) {
     Eigen::Matrix3d rotation;
     Eigen::Vector3d translation;
     cv::cv2eigen(R, rotation);
@@ -352,14 +353,15 @@ MatchingSummary MatchImagePairs(FeatureDatabase* database,
                                 const FeatureMatchingOptions& options, std::ostream* progress) {
   options.Check();
   Timer timer;
+  const std::string source = database->source_path.empty() ? "database" : database->source_path;
   for (const auto& [id1, id2] : pairs) {
     for (const uint32_t id : {id1, id2}) {
       if (!database->images.count(id)) {
-        throw InputError("database", "no image " + std::to_string(id) + " to match");
+        throw InputError(source, "no image " + std::to_string(id) + " to match");
       }
       if (!database->descriptors.count(id) || !database->keypoints.count(id)) {
-        throw InputError("database", "image " + database->images.at(id).name +
-                                         " has no keypoints or descriptors: run feature_extractor");
+        throw InputError(source, "image " + database->images.at(id).name +
+                                     " has no keypoints or descriptors: run feature_extractor");
       }
     }
   }

@@ -7,24 +7,11 @@
 #include <limits>
 #include <sstream>
 
+#include "ramap/geometry/camera_distortion.h"
 #include "ramap/util/error.h"
 
 namespace ramap {
 namespace {
-
-// Models with a single focal length f (params f, cx, cy, ...); the others have fx, fy, cx, cy.
-bool HasSingleFocalLength(CameraModel model) {
-  switch (model) {
-    case CameraModel::kSimplePinhole:
-    case CameraModel::kSimpleRadial:
-    case CameraModel::kRadial:
-    case CameraModel::kSimpleRadialFisheye:
-    case CameraModel::kRadialFisheye:
-      return true;
-    default:
-      return false;
-  }
-}
 
 struct Intrinsics {
   double fx = 1.0;
@@ -50,91 +37,6 @@ Intrinsics SplitParams(const Camera& camera) {
     in.extra = p.data() + 4;
   }
   return in;
-}
-
-// atan(x) / x as a function of x^2, smooth at 0 (where the series avoids the sqrt's infinite
-// slope).
-template <typename T>
-T AtanRatio(const T& x2) {
-  using std::atan;
-  using std::sqrt;
-  if (x2 < 1e-6) return 1.0 - x2 / 3.0 + x2 * x2 / 5.0;  // next term x^6/7 < 2e-19
-  const T x = sqrt(x2);
-  return atan(x) / x;
-}
-
-// Radial scale of the FOV model, r_d / r_u = atan(2 r_u tan(omega/2)) / (omega r_u), as a function
-// of s = r_u^2; continuous as omega -> 0, where it becomes the pinhole.
-template <typename T>
-T FovScale(double omega, const T& s) {
-  const double a = 2.0 * std::tan(0.5 * omega);
-  const double a_over_omega = std::abs(omega) < 1e-6 ? 1.0 + omega * omega / 12.0 : a / omega;
-  return a_over_omega * AtanRatio<T>(a * a * s);
-}
-
-// The distortion function of each model on normalized coordinates (u, v): for perspective models
-// u = x/z, v = y/z; for fisheye models (u, v) = theta * (x, y) / |(x, y)| (equidistant), which
-// turns COLMAP's thetad / r factor into a polynomial in theta^2 = u^2 + v^2. Returns the distorted
-// normalized coordinates, to be multiplied by the focal lengths.
-template <typename T>
-void Distort(CameraModel model, const double* k, const T& u, const T& v, T* ud, T* vd) {
-  const T u2 = u * u;
-  const T v2 = v * v;
-  const T uv = u * v;
-  const T s = u2 + v2;
-  switch (model) {
-    case CameraModel::kSimplePinhole:
-    case CameraModel::kPinhole:
-      *ud = u;
-      *vd = v;
-      return;
-    case CameraModel::kSimpleRadial:
-    case CameraModel::kSimpleRadialFisheye: {
-      const T radial = 1.0 + k[0] * s;
-      *ud = u * radial;
-      *vd = v * radial;
-      return;
-    }
-    case CameraModel::kRadial:
-    case CameraModel::kRadialFisheye: {
-      const T radial = 1.0 + s * (k[0] + k[1] * s);
-      *ud = u * radial;
-      *vd = v * radial;
-      return;
-    }
-    case CameraModel::kOpenCV: {  // k1, k2, p1, p2
-      const T radial = 1.0 + s * (k[0] + k[1] * s);
-      *ud = u * radial + 2.0 * k[2] * uv + k[3] * (s + 2.0 * u2);
-      *vd = v * radial + 2.0 * k[3] * uv + k[2] * (s + 2.0 * v2);
-      return;
-    }
-    case CameraModel::kOpenCVFisheye: {  // k1..k4 on theta
-      const T radial = 1.0 + s * (k[0] + s * (k[1] + s * (k[2] + s * k[3])));
-      *ud = u * radial;
-      *vd = v * radial;
-      return;
-    }
-    case CameraModel::kFullOpenCV: {  // k1, k2, p1, p2, k3, k4, k5, k6
-      const T radial =
-          (1.0 + s * (k[0] + s * (k[1] + s * k[4]))) / (1.0 + s * (k[5] + s * (k[6] + s * k[7])));
-      *ud = u * radial + 2.0 * k[2] * uv + k[3] * (s + 2.0 * u2);
-      *vd = v * radial + 2.0 * k[3] * uv + k[2] * (s + 2.0 * v2);
-      return;
-    }
-    case CameraModel::kFOV: {  // omega
-      const T scale = FovScale<T>(k[0], s);
-      *ud = u * scale;
-      *vd = v * scale;
-      return;
-    }
-    case CameraModel::kThinPrismFisheye: {  // k1, k2, p1, p2, k3, k4, sx1, sy1 on theta
-      const T radial = 1.0 + s * (k[0] + s * (k[1] + s * (k[4] + s * k[5])));
-      *ud = u * radial + 2.0 * k[2] * uv + k[3] * (s + 2.0 * u2) + k[6] * s;
-      *vd = v * radial + 2.0 * k[3] * uv + k[2] * (s + 2.0 * v2) + k[7] * s;
-      return;
-    }
-  }
-  *ud = *vd = T(std::numeric_limits<double>::quiet_NaN());
 }
 
 void DistortWithJacobian(CameraModel model, const double* k, const Eigen::Vector2d& m,
@@ -234,6 +136,16 @@ Eigen::Vector3d PixelToBearing(const Camera& camera, const Eigen::Vector2d& pixe
   // sin(theta) / theta, by its series where the division would lose digits.
   const double sinc = theta < 1e-4 ? 1.0 - theta * theta / 6.0 : std::sin(theta) / theta;
   return Eigen::Vector3d(sinc * m.x(), sinc * m.y(), std::cos(theta)).normalized();
+}
+
+Eigen::Matrix3d CalibrationMatrix(const Camera& camera, double focal_scale) {
+  const Intrinsics in = SplitParams(camera);
+  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
+  K(0, 0) = focal_scale * in.fx;
+  K(1, 1) = focal_scale * in.fy;
+  K(0, 2) = in.cx;
+  K(1, 2) = in.cy;
+  return K;
 }
 
 double MeanFocalLength(const Camera& camera) {

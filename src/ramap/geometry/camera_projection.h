@@ -34,6 +34,10 @@ Eigen::Vector2d ProjectToPixel(const Camera& camera, const Eigen::Vector3d& poin
 // distortion can be inverted (e.g. beyond the fold of a strong barrel distortion).
 Eigen::Vector3d PixelToBearing(const Camera& camera, const Eigen::Vector2d& pixel);
 
+// The pinhole part of the calibration, [fx 0 cx; 0 fy cy; 0 0 1] (distortion left out), with the
+// focal lengths multiplied by `focal_scale`: F = K2^-T E K1^-1 and E = K2^T F K1 use it.
+Eigen::Matrix3d CalibrationMatrix(const Camera& camera, double focal_scale = 1.0);
+
 // The focal length in pixels, (fx + fy) / 2 for models with two.
 double MeanFocalLength(const Camera& camera);
 

@@ -21,4 +21,10 @@ struct ImageBearings {
 // Throws InputError (naming `source`) when a camera's parameters are unusable.
 ImageBearings ComputeBearings(const FeatureDatabase& database, const std::string& source);
 
+// The same through `cameras` (e.g. calibrated or refined intrinsics) instead of the database's,
+// for the images in `image_ids` (all the database's images when empty).
+ImageBearings ComputeBearings(const FeatureDatabase& database,
+                              const std::map<uint32_t, Camera>& cameras, const std::string& source,
+                              const std::vector<uint32_t>& image_ids = {});
+
 }  // namespace ramap

@@ -64,6 +64,8 @@ std::string Degrees(double value) {
 struct MapperContext {
   const FeatureDatabase& database;
   const MapperOptions& options;
+  // The intrinsics the stages use: the database's, with view-graph estimates where it had none.
+  const std::map<uint32_t, Camera>& cameras;
   const ImageBearings& bearings;
   const std::vector<ViewGraphEdge>& view_edges;
   const std::vector<uint32_t>& order;
@@ -233,12 +235,14 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
     poses[id] = Rigid3d(R, -(R * center));
     if (georegistered) poses[id] = TransformPose(georegistration.prior_from_model, poses[id]);
   }
-  auto triangulate = [&](const std::map<uint32_t, Rigid3d>& fixed_poses, const std::string& what) {
+  auto triangulate = [&](const std::map<uint32_t, Rigid3d>& fixed_poses,
+                         const ImageBearings& bearings, const std::map<uint32_t, Camera>& cameras,
+                         const std::string& what) {
     Timer structure_timer;
     StructureSummary structure;
-    *reconstruction =
-        BuildReconstruction(database, fixed_poses, tracks, context.bearings.bearings,
-                            context.bearings.focal_lengths_px, options.structure, &structure);
+    *reconstruction = BuildReconstruction(database, fixed_poses, tracks, bearings.bearings,
+                                          bearings.focal_lengths_px, options.structure, &structure);
+    for (auto& [camera_id, camera] : reconstruction->cameras) camera = cameras.at(camera_id);
     component.num_points = structure.num_points;
     component.num_observations = structure.num_observations;
     component.mean_reprojection_error_px = structure.mean_reprojection_error_px;
@@ -247,7 +251,7 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
                            std::to_string(tracks.size()) + " tracks, mean reprojection error " +
                            std::to_string(structure.mean_reprojection_error_px) + " px");
   };
-  triangulate(poses, "");
+  triangulate(poses, context.bearings, context.cameras, "");
 
   if (options.refine) {
     // Bundle adjustment on the best-connected points, then every track triangulated again with
@@ -266,8 +270,26 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
                            std::to_string(ba.final_rmse_px) + " px, " +
                            std::to_string(ba.num_iterations) + " iterations");
     std::map<uint32_t, Rigid3d> refined;
-    for (const auto& [id, image] : adjusted.images) refined[id] = image.cam_from_world;
-    triangulate(refined, "again with the refined poses: ");
+    std::vector<uint32_t> image_ids;
+    for (const auto& [id, image] : adjusted.images) {
+      refined[id] = image.cam_from_world;
+      image_ids.push_back(id);
+    }
+    // Refined intrinsics change every bearing of the component's images.
+    std::map<uint32_t, Camera> refined_cameras = context.cameras;
+    for (const auto& [camera_id, camera] : adjusted.cameras) refined_cameras[camera_id] = camera;
+    const bool intrinsics_refined =
+        std::any_of(adjusted.cameras.begin(), adjusted.cameras.end(), [&](const auto& entry) {
+          return RefinesIntrinsics(options.bundle_adjustment, entry.second.model);
+        });
+    if (intrinsics_refined) {
+      const ImageBearings refined_bearings =
+          ComputeBearings(database, refined_cameras, "bundle adjustment", image_ids);
+      triangulate(refined, refined_bearings, refined_cameras,
+                  "again with the refined poses and intrinsics: ");
+    } else {
+      triangulate(refined, context.bearings, context.cameras, "again with the refined poses: ");
+    }
   }
   if (georegistered) {
     MeasurePriorErrors(*reconstruction, context.priors, georegistration.inliers,
@@ -285,6 +307,32 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
   component.num_images = static_cast<int>(reconstruction->images.size());
   context.summary.components.push_back(component);
   return true;
+}
+
+// Each camera's intrinsics as given, as the view graph estimated them, and as written (from the
+// largest model that holds the camera).
+std::vector<CameraIntrinsicsSummary> SummariseIntrinsics(
+    const FeatureDatabase& database, const ViewGraphCalibrationSummary& calibration,
+    const std::vector<Reconstruction>& reconstructions) {
+  std::vector<CameraIntrinsicsSummary> cameras;
+  for (const auto& [camera_id, camera] : database.cameras) {
+    CameraIntrinsicsSummary entry;
+    entry.camera_id = camera_id;
+    entry.model = CameraModelName(camera.model);
+    entry.prior_focal_length_known = camera.has_prior_focal_length;
+    entry.prior_params = camera.params;
+    for (const CameraCalibration& estimate : calibration.cameras) {
+      if (estimate.camera_id == camera_id) entry.view_graph = estimate;
+    }
+    for (const Reconstruction& reconstruction : reconstructions) {
+      const auto written = reconstruction.cameras.find(camera_id);
+      if (written == reconstruction.cameras.end()) continue;
+      entry.final_params = written->second.params;
+      break;
+    }
+    cameras.push_back(entry);
+  }
+  return cameras;
 }
 
 // Why the database has no pair the mapper can use, in the user's terms.
@@ -323,6 +371,7 @@ std::string WhyNoVerifiedPairs(const FeatureDatabase& database, int min_num_inli
 }  // namespace
 
 void MapperOptions::Check() const {
+  view_graph_calibration.Check();
   relative_pose.Check();
   if (!pose_graph.Check()) {
     throw InputError("--PoseGraph.keyframe_interval",
@@ -358,8 +407,27 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
   for (const auto& [id, image] : database.images)
     image_reasons[id] = "no verified pair with a usable geometry";
 
+  // Stage 0: the focal lengths the database does not know, from the view graph's F matrices.
+  std::map<uint32_t, Camera> cameras = database.cameras;
+  const ViewGraphCalibrationSummary calibration =
+      CalibrateFocalLengths(database, options.view_graph_calibration, &cameras);
+  if (!calibration.cameras.empty()) {
+    int num_estimated = 0;
+    std::ostringstream focal_lengths;
+    for (const CameraCalibration& camera : calibration.cameras) {
+      num_estimated += camera.estimated;
+      if (focal_lengths.tellp() > 0) focal_lengths << ", ";
+      focal_lengths << std::fixed << std::setprecision(1) << camera.prior_focal_px << " -> "
+                    << (camera.estimated ? camera.estimated_focal_px : camera.prior_focal_px)
+                    << " px";
+    }
+    log.Record("view-graph calibration", calibration.seconds,
+               std::to_string(num_estimated) + " of " + std::to_string(calibration.cameras.size()) +
+                   " uncalibrated cameras estimated (" + focal_lengths.str() + ")");
+  }
+
   Timer timer;
-  const ImageBearings bearings = ComputeBearings(database, source);
+  const ImageBearings bearings = ComputeBearings(database, cameras, source);
   log.Record("bearings", timer.ElapsedSeconds(),
              std::to_string(bearings.bearings.size()) + " images");
 
@@ -408,8 +476,8 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
   const std::vector<int> labels = ConnectedComponents(graph);
   const int num_components =
       labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
-  MapperContext context{database,           options, bearings, view_edges,    order,
-                        summary.sequential, log,     summary,  image_reasons, priors};
+  MapperContext context{database,           options, cameras, bearings,      view_edges, order,
+                        summary.sequential, log,     summary, image_reasons, priors};
   for (int label = 0; label < num_components; ++label) {
     std::vector<bool> keep(graph.edges.size());
     const std::unordered_map<uint32_t, int> index = NodeIndex(graph);
@@ -461,6 +529,7 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
   }
   for (const auto& [id, reason] : image_reasons)
     summary.dropped_images.push_back({database.images.at(id).name, reason});
+  summary.cameras = SummariseIntrinsics(database, calibration, result.reconstructions);
   summary.total_seconds = total.ElapsedSeconds();
   if (result.reconstructions.empty()) {
     throw InputError(source, "no component of at least " +

@@ -26,6 +26,7 @@
 #include "ramap/graph/keyframes.h"
 #include "ramap/pipeline/georegistration.h"
 #include "ramap/pipeline/structure.h"
+#include "ramap/pipeline/view_graph_calibration.h"
 #include "ramap/refine/bundle_adjustment.h"
 #include "ramap/scene/features.h"
 #include "ramap/scene/reconstruction.h"
@@ -39,6 +40,8 @@ enum class InputOrder {
 };
 
 struct MapperOptions {
+  // Focal lengths of uncalibrated cameras (prior_focal_length 0) from the view graph, first.
+  ViewGraphCalibrationOptions view_graph_calibration;
   RelativePoseOptions relative_pose;
   InputOrder order = InputOrder::kAuto;
   KeyframeOptions pose_graph;
@@ -87,8 +90,19 @@ struct MapperComponentSummary {
   GeoregistrationSummary georegistration;     // num_priors 0 when run without priors
 };
 
+// The intrinsics of one camera through the stages.
+struct CameraIntrinsicsSummary {
+  uint32_t camera_id = 0;
+  std::string model;
+  bool prior_focal_length_known = false;  // the database's prior_focal_length flag
+  std::vector<double> prior_params;       // as the database gives them
+  CameraCalibration view_graph;           // camera_id 0 when not calibrated from the view graph
+  std::vector<double> final_params;       // as written (after BA, when refined)
+};
+
 struct MapperSummary {
   int num_images = 0;
+  std::vector<CameraIntrinsicsSummary> cameras;
   int num_verified_pairs = 0;
   int num_relative_poses = 0;
   int num_registered_images = 0;

@@ -75,6 +75,24 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
     }
     json["components"].push_back(component);
   }
+  json["cameras"] = nlohmann::json::array();
+  for (const CameraIntrinsicsSummary& camera : summary.cameras) {
+    nlohmann::json entry = {{"camera_id", camera.camera_id},
+                            {"model", camera.model},
+                            {"prior_focal_length_known", camera.prior_focal_length_known},
+                            {"prior_params", camera.prior_params},
+                            {"final_params", camera.final_params}};
+    const CameraCalibration& estimate = camera.view_graph;
+    if (estimate.camera_id != 0) {
+      entry["view_graph_calibration"] = {{"estimated", estimate.estimated},
+                                         {"prior_focal_px", estimate.prior_focal_px},
+                                         {"estimated_focal_px", estimate.estimated_focal_px},
+                                         {"num_pairs", estimate.num_pairs},
+                                         {"median_cost", estimate.median_cost},
+                                         {"problem", estimate.problem}};
+    }
+    json["cameras"].push_back(entry);
+  }
   json["dropped_images"] = nlohmann::json::array();
   for (const DroppedItem& item : summary.dropped_images) {
     json["dropped_images"].push_back({{"image", item.what}, {"reason", item.reason}});

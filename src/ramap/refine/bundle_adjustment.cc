@@ -6,9 +6,11 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <stdexcept>
 
+#include "ramap/geometry/camera_distortion.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
@@ -36,6 +38,69 @@ struct NormalizedPlaneError {
   double focal;
 };
 
+// Pixel error through the camera model: keypoint against the projection of the point, with the
+// camera's kNumParams parameters as a parameter block (some held constant by a SubsetManifold).
+template <int kNumParams>
+struct PixelError {
+  PixelError(CameraModel camera_model, const Eigen::Vector2d& keypoint)
+      : model(camera_model), observed(keypoint) {}
+
+  template <typename T>
+  bool operator()(const T* const rotation, const T* const translation, const T* const point,
+                  const T* const params, T* residual) const {
+    const Eigen::Map<const Eigen::Quaternion<T>> q(rotation);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t(translation);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> X(point);
+    const Eigen::Matrix<T, 3, 1> x = q * X + t;
+    T pixel[2];
+    if (!ProjectPerspective(model, params, x.data(), pixel)) return false;
+    residual[0] = pixel[0] - T(observed.x());
+    residual[1] = pixel[1] - T(observed.y());
+    return true;
+  }
+
+  CameraModel model;
+  Eigen::Vector2d observed;
+};
+
+template <int kNumParams>
+ceres::CostFunction* NewPixelError(CameraModel model, const Eigen::Vector2d& keypoint) {
+  return new ceres::AutoDiffCostFunction<PixelError<kNumParams>, 2, 4, 3, 3, kNumParams>(
+      new PixelError<kNumParams>(model, keypoint));
+}
+
+ceres::CostFunction* PixelErrorFor(CameraModel model, const Eigen::Vector2d& keypoint) {
+  switch (NumCameraParams(model)) {
+    case 3:
+      return NewPixelError<3>(model, keypoint);
+    case 4:
+      return NewPixelError<4>(model, keypoint);
+    case 5:
+      return NewPixelError<5>(model, keypoint);
+    case 8:
+      return NewPixelError<8>(model, keypoint);
+    case 12:
+      return NewPixelError<12>(model, keypoint);
+  }
+  return nullptr;
+}
+
+// The parameters of `model` that `options` keeps fixed, by index into COLMAP's order.
+std::vector<int> FixedIntrinsics(const BundleAdjustmentOptions& options, CameraModel model) {
+  const bool single = HasSingleFocalLength(model);
+  const int first_extra = single ? 3 : 4;
+  std::vector<int> fixed;
+  for (int k = 0; k < NumCameraParams(model); ++k) {
+    const bool focal = k < (single ? 1 : 2);
+    const bool principal_point = !focal && k < first_extra;
+    const bool refined = focal             ? options.refine_focal_length
+                         : principal_point ? options.refine_principal_point
+                                           : options.refine_extra_params;
+    if (!refined) fixed.push_back(k);
+  }
+  return fixed;
+}
+
 // A camera centre prior, in standard deviations per axis: (c - p) / sigma with c = -R^T t.
 struct CenterPriorError {
   CenterPriorError(const Eigen::Vector3d& prior_center, const Eigen::Vector3d& std_dev_m)
@@ -60,13 +125,16 @@ struct Observation {
   uint64_t point3D_id;
   const Eigen::Vector3d* bearing;
   double focal_px;
+  // Pixel residual through the camera model (its intrinsics refined), else on the normalised plane.
+  bool in_pixels;
 };
 
 // Every track element with a usable bearing (in front of the camera, not grazing).
 std::vector<Observation> UsableObservations(
     const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
     const std::map<uint32_t, double>& focal_lengths_px, const Reconstruction& reconstruction,
-    double min_bearing_z) {
+    const BundleAdjustmentOptions& options) {
+  const double min_bearing_z = options.min_bearing_z;
   std::vector<Observation> observations;
   for (const auto& [point3D_id, point] : reconstruction.points3D) {
     for (const TrackElement& element : point.track) {
@@ -78,17 +146,30 @@ std::vector<Observation> UsableObservations(
       }
       const Eigen::Vector3d& bearing = image_bearings->second[element.point2D_idx];
       if (!(bearing.z() >= min_bearing_z)) continue;
+      const uint32_t camera_id = image->second.camera_id;
+      const auto camera = reconstruction.cameras.find(camera_id);
+      const bool in_pixels = camera != reconstruction.cameras.end() &&
+                             RefinesIntrinsics(options, camera->second.model) &&
+                             element.point2D_idx < image->second.points2D.size();
       observations.push_back({element.image_id, element.point2D_idx, point3D_id, &bearing,
-                              focal_lengths_px.at(image->second.camera_id)});
+                              focal_lengths_px.at(camera_id), in_pixels});
     }
   }
   return observations;
 }
 
 double SquaredErrorPx(const Observation& o, const Reconstruction& reconstruction) {
-  const Eigen::Vector3d x = reconstruction.images.at(o.image_id).cam_from_world *
-                            reconstruction.points3D.at(o.point3D_id).xyz;
+  const Image& image = reconstruction.images.at(o.image_id);
+  const Eigen::Vector3d x = image.cam_from_world * reconstruction.points3D.at(o.point3D_id).xyz;
   if (x.z() <= 0) return std::numeric_limits<double>::infinity();
+  if (o.in_pixels) {
+    const Camera& camera = reconstruction.cameras.at(image.camera_id);
+    Eigen::Vector2d pixel;
+    if (!ProjectPerspective(camera.model, camera.params.data(), x.data(), pixel.data())) {
+      return std::numeric_limits<double>::infinity();
+    }
+    return (pixel - image.points2D[o.point2D_idx].xy).squaredNorm();
+  }
   return (o.focal_px * (x.head<2>() / x.z() - o.bearing->head<2>() / o.bearing->z())).squaredNorm();
 }
 
@@ -108,15 +189,37 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  std::vector<std::unique_ptr<ceres::SubsetManifold>> intrinsics_manifolds;  // outlive `problem`
   ceres::Problem problem(problem_options);
   ceres::CauchyLoss loss(options.loss_scale_px);
   ceres::EigenQuaternionManifold quaternion_manifold;
   for (const Observation& o : observations) {
-    Rigid3d& pose = reconstruction->images.at(o.image_id).cam_from_world;
+    Image& image = reconstruction->images.at(o.image_id);
+    Rigid3d& pose = image.cam_from_world;
+    double* point = reconstruction->points3D.at(o.point3D_id).xyz.data();
+    if (o.in_pixels) {
+      Camera& camera = reconstruction->cameras.at(image.camera_id);
+      problem.AddResidualBlock(PixelErrorFor(camera.model, image.points2D[o.point2D_idx].xy), &loss,
+                               pose.rotation.coeffs().data(), pose.translation.data(), point,
+                               camera.params.data());
+      continue;
+    }
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NormalizedPlaneError, 2, 4, 3, 3>(
                                  new NormalizedPlaneError(*o.bearing, o.focal_px)),
-                             &loss, pose.rotation.coeffs().data(), pose.translation.data(),
-                             reconstruction->points3D.at(o.point3D_id).xyz.data());
+                             &loss, pose.rotation.coeffs().data(), pose.translation.data(), point);
+  }
+  // Each refined camera: the parameters the options keep fixed stay constant.
+  for (auto& [camera_id, camera] : reconstruction->cameras) {
+    double* params = camera.params.data();
+    if (!problem.HasParameterBlock(params)) continue;
+    const std::vector<int> fixed = FixedIntrinsics(options, camera.model);
+    if (fixed.size() == camera.params.size()) {
+      problem.SetParameterBlockConstant(params);
+    } else if (!fixed.empty()) {
+      intrinsics_manifolds.push_back(
+          std::make_unique<ceres::SubsetManifold>(static_cast<int>(camera.params.size()), fixed));
+      problem.SetManifold(params, intrinsics_manifolds.back().get());
+    }
   }
   ceres::HuberLoss prior_loss(1.0);
   int num_priors = 0;
@@ -143,7 +246,16 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   }
   ceres::Solver::Options solver_options;
   solver_options.max_num_iterations = options.max_num_iterations;
-  solver_options.function_tolerance = options.function_tolerance;
+  const bool refines_intrinsics = std::any_of(observations.begin(), observations.end(),
+                                              [](const Observation& o) { return o.in_pixels; });
+  if (refines_intrinsics) {
+    solver_options.max_num_iterations =
+        std::max(options.max_num_iterations, options.intrinsics_max_num_iterations);
+  }
+  solver_options.function_tolerance =
+      refines_intrinsics
+          ? std::min(options.function_tolerance, options.intrinsics_function_tolerance)
+          : options.function_tolerance;
   solver_options.num_threads = options.num_threads;
   // Dense Schur is fastest while the reduced camera system is small.
   solver_options.linear_solver_type =
@@ -210,6 +322,23 @@ void BundleAdjustmentOptions::Check() const {
   }
 }
 
+bool RefinesIntrinsics(const BundleAdjustmentOptions& options, CameraModel model) {
+  const bool any =
+      options.refine_focal_length || options.refine_principal_point || options.refine_extra_params;
+  switch (model) {
+    case CameraModel::kSimplePinhole:
+    case CameraModel::kPinhole:
+    case CameraModel::kSimpleRadial:
+    case CameraModel::kRadial:
+    case CameraModel::kOpenCV:
+    case CameraModel::kFullOpenCV:
+      return any &&
+             static_cast<int>(FixedIntrinsics(options, model).size()) < NumCameraParams(model);
+    default:
+      return false;
+  }
+}
+
 Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
                                          const BundleAdjustmentOptions& options) {
   if (options.max_num_points == 0 ||
@@ -257,7 +386,7 @@ BundleAdjustmentSummary BundleAdjust(
     summary.num_priors += reconstruction->images.count(image_id);
   summary.num_images = static_cast<int>(reconstruction->images.size());
   std::vector<Observation> observations =
-      UsableObservations(bearings, focal_lengths_px, *reconstruction, options.min_bearing_z);
+      UsableObservations(bearings, focal_lengths_px, *reconstruction, options);
   summary.num_observations = static_cast<int>(observations.size());
   summary.initial_rmse_px = RmsePx(observations, *reconstruction);
   // Solve, detach what still disagrees, and solve once more without it (as COLMAP's global BA).
@@ -268,8 +397,7 @@ BundleAdjustmentSummary BundleAdjust(
     const int filtered =
         FilterObservations(observations, options.max_reprojection_error_px, reconstruction);
     summary.num_filtered_observations += filtered;
-    observations =
-        UsableObservations(bearings, focal_lengths_px, *reconstruction, options.min_bearing_z);
+    observations = UsableObservations(bearings, focal_lengths_px, *reconstruction, options);
     if (filtered == 0) break;
   }
   summary.final_rmse_px = RmsePx(observations, *reconstruction);

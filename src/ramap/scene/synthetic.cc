@@ -207,46 +207,25 @@ Eigen::Matrix3d CrossMatrix(const Eigen::Vector3d& v) {
   return m;
 }
 
-// Pinhole part of the calibration (distortion ignored), for F = K^-T E K^-1.
-Eigen::Matrix3d CalibrationMatrix(const Camera& camera) {
-  const double f = MeanFocalLength(camera);
-  const std::vector<double>& p = camera.params;
-  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
-  if (p.size() == 3 || camera.model == CameraModel::kSimpleRadial ||
-      camera.model == CameraModel::kRadial || camera.model == CameraModel::kSimpleRadialFisheye ||
-      camera.model == CameraModel::kRadialFisheye) {
-    K(0, 0) = K(1, 1) = f;
-    K(0, 2) = p[1];
-    K(1, 2) = p[2];
-  } else {
-    K(0, 0) = p[0];
-    K(1, 1) = p[1];
-    K(0, 2) = p[2];
-    K(1, 2) = p[3];
-  }
-  return K;
-}
-
 // Geometry of a pair from its relative pose, translation scaled to unit length as a two-view
 // estimate can only give it.
 TwoViewGeometry MakeGeometry(uint32_t image_id1, uint32_t image_id2, const Rigid3d& cam2_from_cam1,
-                             const Eigen::Matrix3d& K) {
+                             const Eigen::Matrix3d& K1, const Eigen::Matrix3d& K2) {
   TwoViewGeometry geometry;
   geometry.image_id1 = image_id1;
   geometry.image_id2 = image_id2;
   geometry.cam2_from_cam1 = cam2_from_cam1;
   const Eigen::Matrix3d R = cam2_from_cam1.rotation.toRotationMatrix();
-  const Eigen::Matrix3d K_inv = K.inverse();
   const double baseline = cam2_from_cam1.translation.norm();
   if (baseline > 0.0) {
     geometry.config = TwoViewConfig::kCalibrated;
     geometry.cam2_from_cam1.translation /= baseline;
     geometry.E = CrossMatrix(geometry.cam2_from_cam1.translation) * R;
-    geometry.F = K_inv.transpose() * geometry.E * K_inv;
+    geometry.F = K2.inverse().transpose() * geometry.E * K1.inverse();
   } else {
     // No baseline (a vehicle standing still): only a rotation, which COLMAP calls panoramic.
     geometry.config = TwoViewConfig::kPanoramic;
-    geometry.H = K * R * K_inv;
+    geometry.H = K2 * R * K1.inverse();
   }
   return geometry;
 }
@@ -309,6 +288,12 @@ void SyntheticSceneOptions::Check() const {
   if (camera.width == 0 || camera.height == 0) {
     throw InputError("Synthetic.camera", "image width and height must be positive");
   }
+  if (second_camera) {
+    CheckCameraParams(*second_camera, "Synthetic.second_camera");
+    if (second_camera->width != camera.width || second_camera->height != camera.height) {
+      throw InputError("Synthetic.second_camera", "must have the first camera's image size");
+    }
+  }
   if (num_points < 1) {
     throw InputError("Synthetic.num_points",
                      "must be at least 1, got " + std::to_string(num_points));
@@ -353,7 +338,11 @@ SyntheticScene BuildSyntheticScene(const SyntheticSceneOptions& options) {
   options.Check();
   Rng rng(options.seed);
   const Camera& camera = options.camera;
-  const uint32_t camera_id = 1;
+  // Image i (0-based) is taken with camera_of(i): camera 1, or camera 2 for odd i with a second.
+  auto camera_id_of = [&](size_t i) -> uint32_t { return options.second_camera && i % 2 ? 2 : 1; };
+  auto camera_of = [&](size_t i) -> const Camera& {
+    return camera_id_of(i) == 2 ? *options.second_camera : camera;
+  };
 
   const std::vector<Rigid3d> poses = MakePoses(options, rng);
   const std::vector<Eigen::Vector3d> points = MakePoints(options, poses, rng);
@@ -374,12 +363,12 @@ SyntheticScene BuildSyntheticScene(const SyntheticSceneOptions& options) {
       if (object_points && points[j].dot(centers[i] - points[j]) <= 0.0) continue;
       const Eigen::Vector3d in_camera = poses[i] * points[j];
       if (in_camera.norm() < 0.5 * options.min_depth) continue;
-      const Eigen::Vector2d projection = ProjectToPixel(camera, in_camera);
-      if (!InsideImage(camera, projection)) continue;
+      const Eigen::Vector2d projection = ProjectToPixel(camera_of(i), in_camera);
+      if (!InsideImage(camera_of(i), projection)) continue;
       const double dx = Gaussian(rng, options.pixel_noise_sigma);
       const double dy = Gaussian(rng, options.pixel_noise_sigma);
       const Eigen::Vector2d observed = projection + Eigen::Vector2d(dx, dy);
-      if (!InsideImage(camera, observed)) continue;
+      if (!InsideImage(camera_of(i), observed)) continue;
       const uint32_t point2D_idx = static_cast<uint32_t>(points2D[i].size());
       Point2D point2D;
       point2D.xy = observed;
@@ -423,10 +412,12 @@ SyntheticScene BuildSyntheticScene(const SyntheticSceneOptions& options) {
 
   SyntheticScene scene;
   FeatureDatabase& database = scene.database;
-  const Eigen::Matrix3d K = CalibrationMatrix(camera);
-  Camera stored_camera = camera;
-  stored_camera.camera_id = camera_id;
-  database.cameras[camera_id] = stored_camera;
+  for (const size_t i : {size_t{0}, size_t{1}}) {
+    if (i >= num_images) break;
+    Camera stored_camera = camera_of(i);
+    stored_camera.camera_id = camera_id_of(i);
+    database.cameras[stored_camera.camera_id] = stored_camera;
+  }
 
   // A wrong correspondence joins two keypoints that observe nothing (clutter), one-to-one.
   auto add_clutter_keypoint = [&](size_t image_index) {
@@ -461,7 +452,9 @@ SyntheticScene BuildSyntheticScene(const SyntheticSceneOptions& options) {
     std::shuffle(matches.begin(), matches.end(), rng);
     database.matches[pair_id] = std::move(matches);
     if (true_matches.size() < static_cast<size_t>(std::max(options.min_num_inliers, 1))) continue;
-    TwoViewGeometry geometry = MakeGeometry(image_id1, image_id2, poses[k] * poses[i].Inverse(), K);
+    TwoViewGeometry geometry =
+        MakeGeometry(image_id1, image_id2, poses[k] * poses[i].Inverse(),
+                     CalibrationMatrix(camera_of(i)), CalibrationMatrix(camera_of(k)));
     geometry.inlier_matches = true_matches;
     database.two_view_geometries[pair_id] = std::move(geometry);
   }
@@ -492,7 +485,8 @@ SyntheticScene BuildSyntheticScene(const SyntheticSceneOptions& options) {
     const Eigen::Quaterniond rotation = RandomRotation(rng);
     const Eigen::Vector3d translation = RandomUnitVector(rng);
     TwoViewGeometry geometry =
-        MakeGeometry(image_id1, image_id2, Rigid3d(rotation, translation), K);
+        MakeGeometry(image_id1, image_id2, Rigid3d(rotation, translation),
+                     CalibrationMatrix(camera_of(i)), CalibrationMatrix(camera_of(k)));
     geometry.inlier_matches = matches;
     database.matches[pair_id] = std::move(matches);
     database.two_view_geometries[pair_id] = std::move(geometry);
@@ -501,7 +495,7 @@ SyntheticScene BuildSyntheticScene(const SyntheticSceneOptions& options) {
 
   // Points seen twice or more become the ground-truth points3D, numbered from 1 in point order.
   Reconstruction& truth = scene.ground_truth;
-  truth.cameras[camera_id] = stored_camera;
+  truth.cameras = database.cameras;
   uint64_t next_point3D_id = 1;
   for (size_t j = 0; j < points.size(); ++j) {
     if (tracks[j].size() < 2) continue;
@@ -522,7 +516,7 @@ SyntheticScene BuildSyntheticScene(const SyntheticSceneOptions& options) {
     Image image;
     image.image_id = image_id;
     image.name = FrameName(i);
-    image.camera_id = camera_id;
+    image.camera_id = camera_id_of(i);
     database.images[image_id] = image;
 
     Keypoints keypoints;

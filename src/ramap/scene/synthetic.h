@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,9 @@ struct SyntheticSceneOptions {
   // One shared camera. Default: a VGA pinhole with a 65 degree horizontal field of view. Any
   // COLMAP model works (projection through geometry/camera_projection.h).
   Camera camera = DefaultCamera();
+  // With a second camera (id 2; its camera_id is ignored), the even-numbered images (2, 4, ...)
+  // are taken with it: two cameras of different intrinsics in one database. Same image size.
+  std::optional<Camera> second_camera;
 
   // Number of random 3D points. Sequential paths (but the orbit): each is placed in the view of a
   // random frame at a random depth in [min_depth, max_depth]; orbit and unordered: on a shell
@@ -93,10 +97,10 @@ struct SyntheticSceneOptions {
 };
 
 struct SyntheticScene {
-  // One camera (id 1), images 1..N named frame_000001.png... in order, keypoints (float32 x, y),
-  // raw matches (true and wrong, shuffled) and two-view geometries (config CALIBRATED,
-  // inlier_matches the true matches, E, F, cam2_from_cam1 with unit translation) for pairs with
-  // image_id1 < image_id2. No descriptors.
+  // One camera (id 1; two with second_camera), images 1..N named frame_000001.png... in order,
+  // keypoints (float32 x, y), raw matches (true and wrong, shuffled) and two-view geometries
+  // (config CALIBRATED, inlier_matches the true matches, E, F, cam2_from_cam1 with unit
+  // translation) for pairs with image_id1 < image_id2. No descriptors.
   FeatureDatabase database;
   // The truth: every image registered with its pose; points3D seen by at least two images with
   // their full tracks; points2D are the keypoints (in double precision) with their point3D ids.

@@ -1,0 +1,270 @@
+#include "ramap/pipeline/view_graph_calibration.h"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "ramap/geometry/camera_distortion.h"
+#include "ramap/geometry/camera_projection.h"
+#include "ramap/util/error.h"
+#include "ramap/util/statistics.h"
+#include "ramap/util/timer.h"
+
+namespace ramap {
+namespace {
+
+struct FundamentalPair {
+  uint32_t camera1 = 0;
+  uint32_t camera2 = 0;
+  Eigen::Matrix3d F;
+  int num_inliers = 0;
+};
+
+// Pairs whose stored F is meaningful: verified as a general two-view geometry (pure rotations and
+// planes leave F undetermined), finite and non-zero, with enough inliers.
+std::vector<FundamentalPair> PairsWithFundamentalMatrix(const FeatureDatabase& database,
+                                                        int min_num_inliers) {
+  std::vector<FundamentalPair> pairs;
+  for (const auto& [pair_id, geometry] : database.two_view_geometries) {
+    if (geometry.config != TwoViewConfig::kCalibrated &&
+        geometry.config != TwoViewConfig::kUncalibrated) {
+      continue;
+    }
+    if (static_cast<int>(geometry.inlier_matches.size()) < min_num_inliers) continue;
+    const double norm = geometry.F.norm();
+    if (!geometry.F.allFinite() || !(norm > 0)) continue;
+    const auto image1 = database.images.find(geometry.image_id1);
+    const auto image2 = database.images.find(geometry.image_id2);
+    if (image1 == database.images.end() || image2 == database.images.end()) continue;
+    pairs.push_back({image1->second.camera_id, image2->second.camera_id, geometry.F / norm,
+                     static_cast<int>(geometry.inlier_matches.size())});
+  }
+  return pairs;
+}
+
+double CauchyLoss(double cost, double scale) {
+  const double r = cost / scale;
+  return std::log1p(r * r);
+}
+
+// The terms of one camera's cost: its pairs (by index) and the cameras at their other ends.
+struct CameraTerms {
+  std::vector<const FundamentalPair*> pairs;
+};
+
+class FocalCost {
+ public:
+  FocalCost(const std::map<uint32_t, Camera>& cameras, const ViewGraphCalibrationOptions& options,
+            std::map<uint32_t, double>* log_scales)
+      : cameras_(cameras), options_(options), log_scales_(*log_scales) {}
+
+  double PairCost(const FundamentalPair& pair) const {
+    return EssentialMatrixCost(pair.F, K(pair.camera1), K(pair.camera2));
+  }
+
+  // Robust sum over `terms` plus the prior, with camera `camera_id` at log scale `log_scale`.
+  double Evaluate(uint32_t camera_id, const CameraTerms& terms, double log_scale) {
+    log_scales_[camera_id] = log_scale;
+    double total = 0.0;
+    for (const FundamentalPair* pair : terms.pairs) {
+      total += CauchyLoss(PairCost(*pair), options_.loss_scale);
+    }
+    const double prior = log_scale / std::log(2.0);
+    return total + options_.prior_weight * prior * prior;
+  }
+
+ private:
+  Eigen::Matrix3d K(uint32_t camera_id) const {
+    const auto scale = log_scales_.find(camera_id);
+    return CalibrationMatrix(cameras_.at(camera_id),
+                             scale == log_scales_.end() ? 1.0 : std::exp(scale->second));
+  }
+
+  const std::map<uint32_t, Camera>& cameras_;
+  const ViewGraphCalibrationOptions& options_;
+  std::map<uint32_t, double>& log_scales_;
+};
+
+// Minimises `cost(log_scale)` over [low, high]: a grid, then golden-section search around its
+// best sample. Returns the minimiser and, in `at_edge`, whether it sits on the range's boundary.
+template <typename Cost>
+double MinimiseOverLogScale(Cost&& cost, double low, double high, bool* at_edge) {
+  constexpr int kSamples = 241;
+  const double step = (high - low) / (kSamples - 1);
+  int best = 0;
+  double best_cost = cost(low);
+  for (int k = 1; k < kSamples; ++k) {
+    const double value = cost(low + k * step);
+    if (value < best_cost) {
+      best_cost = value;
+      best = k;
+    }
+  }
+  *at_edge = best == 0 || best == kSamples - 1;
+  double a = low + std::max(0, best - 1) * step;
+  double b = low + std::min(kSamples - 1, best + 1) * step;
+  const double ratio = 0.5 * (std::sqrt(5.0) - 1.0);
+  double c = b - ratio * (b - a), d = a + ratio * (b - a);
+  double fc = cost(c), fd = cost(d);
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    if (fc < fd) {
+      b = d, d = c, fd = fc;
+      c = b - ratio * (b - a);
+      fc = cost(c);
+    } else {
+      a = c, c = d, fc = fd;
+      d = a + ratio * (b - a);
+      fd = cost(d);
+    }
+  }
+  const double refined = 0.5 * (a + b);
+  return cost(refined) <= best_cost ? refined : low + best * step;
+}
+
+}  // namespace
+
+void ViewGraphCalibrationOptions::Check() const {
+  if (!(min_focal_factor > 0 && min_focal_factor < 1 && max_focal_factor > 1 &&
+        std::isfinite(max_focal_factor))) {
+    throw InputError("--ViewGraphCalibration.min_focal_factor / max_focal_factor",
+                     "must satisfy 0 < min < 1 < max");
+  }
+  if (min_num_pairs < 1) throw InputError("--ViewGraphCalibration.min_num_pairs", "must be >= 1");
+  if (min_num_inliers < 8) {
+    throw InputError("--ViewGraphCalibration.min_num_inliers", "must be >= 8");
+  }
+  if (max_pairs_per_camera < 1) {
+    throw InputError("--ViewGraphCalibration.max_pairs_per_camera", "must be >= 1");
+  }
+  if (!(loss_scale > 0)) throw InputError("--ViewGraphCalibration.loss_scale", "must be > 0");
+  if (!(prior_weight >= 0)) throw InputError("--ViewGraphCalibration.prior_weight", "must be >= 0");
+  if (num_rounds < 1) throw InputError("--ViewGraphCalibration.num_rounds", "must be >= 1");
+  if (!(max_median_cost > 0)) {
+    throw InputError("--ViewGraphCalibration.max_median_cost", "must be > 0");
+  }
+  if (!(min_cost_rise >= 0)) {
+    throw InputError("--ViewGraphCalibration.min_cost_rise", "must be >= 0");
+  }
+}
+
+double EssentialMatrixCost(const Eigen::Matrix3d& F, const Eigen::Matrix3d& K1,
+                           const Eigen::Matrix3d& K2) {
+  const Eigen::Vector3d s =
+      Eigen::JacobiSVD<Eigen::Matrix3d>(K2.transpose() * F * K1).singularValues();
+  if (!(s[0] > 0) || !std::isfinite(s[0])) return 1.0;
+  return (s[0] - s[1]) / (s[0] + s[1]);
+}
+
+ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& database,
+                                                  const ViewGraphCalibrationOptions& options,
+                                                  std::map<uint32_t, Camera>* cameras) {
+  options.Check();
+  Timer timer;
+  ViewGraphCalibrationSummary summary;
+  std::set<uint32_t> unknown;
+  for (const auto& [camera_id, camera] : *cameras) {
+    const auto stored = database.cameras.find(camera_id);
+    if (stored != database.cameras.end() && !stored->second.has_prior_focal_length &&
+        !IsFisheyeModel(camera.model)) {
+      unknown.insert(camera_id);
+    }
+  }
+  if (!options.enable || unknown.empty()) return summary;
+
+  const std::vector<FundamentalPair> all_pairs =
+      PairsWithFundamentalMatrix(database, options.min_num_inliers);
+  std::map<uint32_t, CameraTerms> terms;
+  for (const FundamentalPair& pair : all_pairs) {
+    if (!cameras->count(pair.camera1) || !cameras->count(pair.camera2)) continue;
+    for (const uint32_t id : {pair.camera1, pair.camera2}) {
+      if (unknown.count(id)) terms[id].pairs.push_back(&pair);
+      if (pair.camera1 == pair.camera2) break;
+    }
+  }
+  for (auto& [camera_id, camera_terms] : terms) {
+    std::vector<const FundamentalPair*>& pairs = camera_terms.pairs;
+    if (static_cast<int>(pairs.size()) <= options.max_pairs_per_camera) continue;
+    std::stable_sort(pairs.begin(), pairs.end(),
+                     [](const FundamentalPair* a, const FundamentalPair* b) {
+                       return a->num_inliers > b->num_inliers;
+                     });
+    pairs.resize(options.max_pairs_per_camera);
+  }
+
+  std::map<uint32_t, double> log_scales;  // unknown cameras only; absent = prior
+  FocalCost cost(*cameras, options, &log_scales);
+  const double low = std::log(options.min_focal_factor);
+  const double high = std::log(options.max_focal_factor);
+  std::map<uint32_t, bool> at_edge;
+  std::map<uint32_t, double> cost_rise;  // min over -20% / +25% of cost / minimum, minus 1
+  for (int round = 0; round < options.num_rounds; ++round) {
+    for (const auto& [camera_id, camera_terms] : terms) {
+      if (static_cast<int>(camera_terms.pairs.size()) < options.min_num_pairs) continue;
+      bool edge = false;
+      const double best = MinimiseOverLogScale(
+          [&](double log_scale) { return cost.Evaluate(camera_id, camera_terms, log_scale); }, low,
+          high, &edge);
+      const double minimum = cost.Evaluate(camera_id, camera_terms, best);
+      const double rise = std::min(cost.Evaluate(camera_id, camera_terms, best + std::log(0.8)),
+                                   cost.Evaluate(camera_id, camera_terms, best + std::log(1.25))) /
+                              std::max(minimum, 1e-12) -
+                          1.0;
+      log_scales[camera_id] = best;
+      at_edge[camera_id] = edge;
+      cost_rise[camera_id] = rise;
+    }
+  }
+
+  for (const uint32_t camera_id : unknown) {
+    Camera& camera = cameras->at(camera_id);
+    CameraCalibration result;
+    result.camera_id = camera_id;
+    result.prior_focal_px = MeanFocalLength(camera);
+    const auto found = terms.find(camera_id);
+    result.num_pairs = found == terms.end() ? 0 : static_cast<int>(found->second.pairs.size());
+    const auto scale = log_scales.find(camera_id);
+    if (scale == log_scales.end()) {
+      result.problem = result.num_pairs == 0
+                           ? "no verified pair with a fundamental matrix (only pure rotations or "
+                             "planes?)"
+                           : "only " + std::to_string(result.num_pairs) +
+                                 " pairs with a fundamental matrix (needs " +
+                                 std::to_string(options.min_num_pairs) + ")";
+    } else {
+      std::vector<double> costs;
+      for (const FundamentalPair* pair : found->second.pairs) costs.push_back(cost.PairCost(*pair));
+      result.median_cost = Median(costs);
+      result.estimated_focal_px = result.prior_focal_px * std::exp(scale->second);
+      if (!std::isfinite(result.estimated_focal_px) || !(result.estimated_focal_px > 0)) {
+        result.problem = "the estimate is not a positive number";
+      } else if (at_edge[camera_id]) {
+        result.problem = "the estimate sits at the edge of the search range (" +
+                         std::to_string(options.min_focal_factor) + " to " +
+                         std::to_string(options.max_focal_factor) + " x the prior)";
+      } else if (cost_rise[camera_id] < options.min_cost_rise) {
+        result.problem = "the pairs leave the focal length undetermined (cost within " +
+                         std::to_string(static_cast<int>(100 * cost_rise[camera_id])) +
+                         "% of its minimum 20% away: every optical axis through one point, as "
+                         "around a turntable, or too little rotation)";
+      } else if (result.median_cost > options.max_median_cost) {
+        result.problem = "the pairs disagree (median cost " + std::to_string(result.median_cost) +
+                         " > " + std::to_string(options.max_median_cost) + ")";
+      } else {
+        result.estimated = true;
+      }
+    }
+    if (result.estimated) {
+      const double factor = std::exp(scale->second);
+      camera.params[0] *= factor;
+      if (!HasSingleFocalLength(camera.model)) camera.params[1] *= factor;
+    } else {
+      log_scales.erase(camera_id);
+    }
+    summary.cameras.push_back(result);
+  }
+  summary.seconds = timer.ElapsedSeconds();
+  return summary;
+}
+
+}  // namespace ramap

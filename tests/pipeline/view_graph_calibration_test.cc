@@ -1,0 +1,198 @@
+// Self-calibration of unknown focal lengths: the view-graph estimate from fundamental matrices,
+// then bundle adjustment with the intrinsics, on synthetic scenes with exact truth.
+#include "ramap/pipeline/view_graph_calibration.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "ramap/eval/pose_metrics.h"
+#include "ramap/geometry/camera_projection.h"
+#include "ramap/pipeline/mapper.h"
+#include "ramap/scene/synthetic.h"
+
+namespace ramap {
+namespace {
+
+// Views all around an object from varied distances, so that the optical axes do not meet in one
+// point at equal distances (the configuration where F leaves the focal length undetermined).
+SyntheticSceneOptions Collection(uint64_t seed) {
+  SyntheticSceneOptions options;
+  options.layout = SyntheticLayout::kUnordered;
+  options.num_images = 16;
+  options.num_points = 3000;
+  options.pixel_noise_sigma = 0.5;
+  options.outlier_ratio = 0.1;
+  options.seed = seed;
+  return options;
+}
+
+// The database as a user without a calibration gives it: the focal lengths scaled by `factor`
+// and marked unknown.
+FeatureDatabase WithUnknownFocalLengths(FeatureDatabase database, double factor) {
+  for (auto& [camera_id, camera] : database.cameras) {
+    camera.params[0] *= factor;
+    if (camera.model == CameraModel::kPinhole || camera.model == CameraModel::kOpenCV) {
+      camera.params[1] *= factor;
+    }
+    camera.has_prior_focal_length = false;
+  }
+  return database;
+}
+
+double RelativeError(double estimate, double truth) { return std::abs(estimate / truth - 1.0); }
+
+TEST(ViewGraphCalibration, EssentialMatrixCostVanishesAtTheTrueCalibration) {
+  const SyntheticScene scene = BuildSyntheticScene(Collection(1));
+  const Eigen::Matrix3d K = CalibrationMatrix(scene.database.cameras.at(1));
+  const Eigen::Matrix3d K_off = CalibrationMatrix(scene.database.cameras.at(1), 1.3);
+  std::vector<double> off_costs;
+  for (const auto& [pair_id, geometry] : scene.database.two_view_geometries) {
+    EXPECT_LT(EssentialMatrixCost(geometry.F, K, K), 1e-9);
+    off_costs.push_back(EssentialMatrixCost(geometry.F, K_off, K_off));
+  }
+  ASSERT_GT(off_costs.size(), 20u);
+  // A focal length 30% off leaves most pairs far from an essential matrix.
+  std::sort(off_costs.begin(), off_costs.end());
+  EXPECT_GT(off_costs[off_costs.size() / 2], 1e-3);
+}
+
+class FocalPrior : public ::testing::TestWithParam<double> {};
+
+TEST_P(FocalPrior, RecoveredFromTheViewGraphAndByBundleAdjustment) {
+  const SyntheticScene scene = BuildSyntheticScene(Collection(7));
+  const double truth = scene.database.cameras.at(1).params[0];
+  const FeatureDatabase database = WithUnknownFocalLengths(scene.database, GetParam());
+
+  std::map<uint32_t, Camera> cameras = database.cameras;
+  const ViewGraphCalibrationSummary calibration =
+      CalibrateFocalLengths(database, ViewGraphCalibrationOptions(), &cameras);
+  ASSERT_EQ(calibration.cameras.size(), 1u);
+  ASSERT_TRUE(calibration.cameras[0].estimated) << calibration.cameras[0].problem;
+  EXPECT_LT(RelativeError(cameras.at(1).params[0], truth), 0.01)
+      << "view graph: " << cameras.at(1).params[0] << " for " << truth;
+
+  MapperOptions options;
+  options.refine = true;
+  const MapperResult result = RunMapper(database, options, "synthetic");
+  ASSERT_EQ(result.reconstructions.size(), 1u);
+  const Reconstruction& model = result.reconstructions[0];
+  EXPECT_EQ(model.images.size(), scene.ground_truth.images.size());
+  EXPECT_LT(RelativeError(model.cameras.at(1).params[0], truth), 0.01)
+      << "after BA: " << model.cameras.at(1).params[0] << " for " << truth;
+  const PoseEvaluation evaluation =
+      EvaluatePoses(PosesByName(model), PosesByName(scene.ground_truth), [&] {
+        std::vector<std::string> names;
+        for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
+        return names;
+      }());
+  EXPECT_LT(evaluation.rotation_error_median_deg, 0.2);
+  EXPECT_LT(evaluation.ate_rmse_over_extent, 0.01);
+  ASSERT_EQ(result.summary.cameras.size(), 1u);
+  EXPECT_TRUE(result.summary.cameras[0].view_graph.estimated);
+}
+
+INSTANTIATE_TEST_SUITE_P(PriorOff, FocalPrior, ::testing::Values(1.3, 0.7),
+                         [](const ::testing::TestParamInfo<double>& info) {
+                           return info.param > 1 ? std::string("ThirtyPercentHigh")
+                                                 : std::string("ThirtyPercentLow");
+                         });
+
+TEST(ViewGraphCalibration, TwoCamerasWithDifferentFocalLengths) {
+  SyntheticSceneOptions options = Collection(11);
+  options.num_images = 20;
+  Camera second = options.camera;
+  second.params[0] *= 1.6;
+  second.params[1] *= 1.6;
+  options.second_camera = second;
+  const SyntheticScene scene = BuildSyntheticScene(options);
+  ASSERT_EQ(scene.database.cameras.size(), 2u);
+  const FeatureDatabase database = WithUnknownFocalLengths(scene.database, 1.25);
+
+  MapperOptions mapper;
+  mapper.refine = true;
+  const MapperResult result = RunMapper(database, mapper, "synthetic");
+  ASSERT_EQ(result.reconstructions.size(), 1u);
+  for (const uint32_t camera_id : {1u, 2u}) {
+    const double truth = scene.database.cameras.at(camera_id).params[0];
+    EXPECT_LT(RelativeError(result.reconstructions[0].cameras.at(camera_id).params[0], truth), 0.01)
+        << "camera " << camera_id;
+  }
+}
+
+TEST(ViewGraphCalibration, RadialDistortionRecoveredByBundleAdjustment) {
+  SyntheticSceneOptions options = Collection(13);
+  Camera camera;
+  camera.model = CameraModel::kSimpleRadial;
+  camera.width = 640;
+  camera.height = 480;
+  camera.params = {500.0, 320.0, 240.0, -0.1};
+  options.camera = camera;
+  const SyntheticScene scene = BuildSyntheticScene(options);
+  // COLMAP's defaults for an unknown camera: 1.2 x the longest side, k = 0.
+  FeatureDatabase database = scene.database;
+  Camera& guess = database.cameras.at(1);
+  guess.params = {1.2 * 640, 320.0, 240.0, 0.0};
+  guess.has_prior_focal_length = false;
+
+  MapperOptions mapper;
+  mapper.refine = true;
+  const MapperResult result = RunMapper(database, mapper, "synthetic");
+  ASSERT_EQ(result.reconstructions.size(), 1u);
+  const std::vector<double>& refined = result.reconstructions[0].cameras.at(1).params;
+  EXPECT_LT(RelativeError(refined[0], 500.0), 0.01) << refined[0];
+  EXPECT_NEAR(refined[3], -0.1, 0.005);
+  EXPECT_EQ(result.reconstructions[0].images.size(), scene.ground_truth.images.size());
+}
+
+TEST(ViewGraphCalibration, CameraSeenOnlyInPureRotationsKeepsItsPrior) {
+  SyntheticScene scene = BuildSyntheticScene(Collection(3));
+  FeatureDatabase database = WithUnknownFocalLengths(scene.database, 1.3);
+  for (auto& [pair_id, geometry] : database.two_view_geometries) {
+    geometry.config = TwoViewConfig::kPanoramic;
+  }
+  std::map<uint32_t, Camera> cameras = database.cameras;
+  const ViewGraphCalibrationSummary calibration =
+      CalibrateFocalLengths(database, ViewGraphCalibrationOptions(), &cameras);
+  ASSERT_EQ(calibration.cameras.size(), 1u);
+  EXPECT_FALSE(calibration.cameras[0].estimated);
+  EXPECT_NE(calibration.cameras[0].problem.find("pure rotations"), std::string::npos)
+      << calibration.cameras[0].problem;
+  EXPECT_EQ(cameras.at(1).params, database.cameras.at(1).params);
+}
+
+TEST(ViewGraphCalibration, BadFundamentalMatricesFallBackToThePrior) {
+  SyntheticScene scene = BuildSyntheticScene(Collection(5));
+  FeatureDatabase database = WithUnknownFocalLengths(scene.database, 1.3);
+  int k = 0;
+  for (auto& [pair_id, geometry] : database.two_view_geometries) {
+    // NaN in some, and random matrices (no focal length fits them) in the others.
+    if (k++ % 3 == 0) {
+      geometry.F(0, 0) = std::nan("");
+    } else {
+      geometry.F = Eigen::Matrix3d::Random();
+    }
+  }
+  std::map<uint32_t, Camera> cameras = database.cameras;
+  const ViewGraphCalibrationSummary calibration =
+      CalibrateFocalLengths(database, ViewGraphCalibrationOptions(), &cameras);
+  ASSERT_EQ(calibration.cameras.size(), 1u);
+  EXPECT_FALSE(calibration.cameras[0].estimated);
+  EXPECT_FALSE(calibration.cameras[0].problem.empty());
+  EXPECT_EQ(cameras.at(1).params, database.cameras.at(1).params);
+}
+
+TEST(ViewGraphCalibration, KnownFocalLengthsAreLeftAlone) {
+  const SyntheticScene scene = BuildSyntheticScene(Collection(2));
+  FeatureDatabase database = scene.database;
+  database.cameras.at(1).has_prior_focal_length = true;
+  database.cameras.at(1).params[0] *= 1.1;
+  std::map<uint32_t, Camera> cameras = database.cameras;
+  EXPECT_TRUE(
+      CalibrateFocalLengths(database, ViewGraphCalibrationOptions(), &cameras).cameras.empty());
+  EXPECT_EQ(cameras.at(1).params, database.cameras.at(1).params);
+}
+
+}  // namespace
+}  // namespace ramap

@@ -85,43 +85,55 @@ void CheckNewDatabasePath(const std::string& option, const std::string& path,
   }
 }
 
-bool IsReplaceableModelFolder(const std::string& folder, std::string* foreign) {
+namespace {
+
+// The first entry of `folder` that `owned(entry, &inner)` does not accept (`inner`, when it names
+// something deeper, else the entry), the folder itself when it cannot be listed; empty when every
+// entry is accepted.
+template <typename Owned>
+std::string FirstForeignEntry(const std::string& folder, Owned&& owned) {
   std::error_code ec;
-  if (!fs::is_directory(folder, ec)) {
-    if (foreign != nullptr) *foreign = folder;
-    return false;
-  }
+  if (!fs::is_directory(folder, ec)) return folder;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
-    const std::string name = entry.path().filename().string();
-    const bool known = IsModelFileName(name);
-    if (!known || !entry.is_regular_file(ec)) {
-      if (foreign != nullptr) *foreign = entry.path().string();
-      return false;
-    }
+    std::string inner;
+    if (!owned(entry, &inner)) return inner.empty() ? entry.path().string() : inner;
   }
-  if (ec) {
-    if (foreign != nullptr) *foreign = folder;
-    return false;
-  }
-  return true;
+  return ec ? folder : "";
+}
+
+bool NoneForeign(const std::string& found, std::string* foreign) {
+  if (!found.empty() && foreign != nullptr) *foreign = found;
+  return found.empty();
+}
+
+}  // namespace
+
+bool IsReplaceableModelFolder(const std::string& folder, std::string* foreign) {
+  return NoneForeign(FirstForeignEntry(folder,
+                                       [](const fs::directory_entry& entry, std::string*) {
+                                         std::error_code ec;
+                                         return IsModelFileName(entry.path().filename().string()) &&
+                                                entry.is_regular_file(ec);
+                                       }),
+                     foreign);
 }
 
 bool IsReplaceableMapperOutput(const std::string& folder, std::string* foreign) {
-  std::error_code ec;
-  if (!fs::is_directory(folder, ec)) {
-    if (foreign != nullptr) *foreign = folder;
-    return false;
-  }
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
-    const std::string name = entry.path().filename().string();
-    const bool numbered = !name.empty() && std::all_of(name.begin(), name.end(),
-                                                       [](char c) { return c >= '0' && c <= '9'; });
-    if (numbered && IsReplaceableModelFolder(entry.path().string(), foreign)) continue;
-    if ((name == "summary.json" || name == "project.ini") && entry.is_regular_file(ec)) continue;
-    if (foreign != nullptr && !numbered) *foreign = entry.path().string();
-    return false;
-  }
-  return !ec;
+  return NoneForeign(
+      FirstForeignEntry(folder,
+                        [](const fs::directory_entry& entry, std::string* inner) {
+                          const std::string name = entry.path().filename().string();
+                          std::error_code ec;
+                          if (name == "summary.json" || name == "project.ini") {
+                            return entry.is_regular_file(ec);
+                          }
+                          const bool numbered =
+                              !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+                                return c >= '0' && c <= '9';
+                              });
+                          return numbered && IsReplaceableModelFolder(entry.path().string(), inner);
+                        }),
+      foreign);
 }
 
 }  // namespace ramap

@@ -129,6 +129,12 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
   app.add_option("--BundleAdjustment.refine_extra_params", o->bundle_adjustment.refine_extra_params,
                  "1: refine distortion coefficients")
       ->capture_default_str();
+  app.add_option("--Mapper.max_focal_change_in_bundle_adjustment",
+                 o->max_focal_change_in_bundle_adjustment,
+                 "average again through BA's intrinsics when it moved a focal length by more "
+                 "(fraction; 0: never)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
   ViewGraphCalibrationOptions& calibration = o->view_graph_calibration;
   app.add_option("--ViewGraphCalibration.enable", calibration.enable,
                  "1: estimate the focal length of cameras without a prior (prior_focal_length 0) "
@@ -227,7 +233,8 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
       {"Mapper",
        {{"refine", o.refine},
         {"min_component_size", o.min_component_size},
-        {"num_threads", o.num_threads}}},
+        {"num_threads", o.num_threads},
+        {"max_focal_change_in_bundle_adjustment", o.max_focal_change_in_bundle_adjustment}}},
       {"ViewGraphCalibration",
        {{"enable", o.view_graph_calibration.enable},
         {"min_num_pairs", o.view_graph_calibration.min_num_pairs},

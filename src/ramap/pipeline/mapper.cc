@@ -390,12 +390,19 @@ void MapperOptions::Check() const {
   if (num_threads < 1) {
     throw InputError("--Mapper.num_threads", "must be >= 1, got " + std::to_string(num_threads));
   }
+  if (!(max_focal_change_in_bundle_adjustment >= 0)) {
+    throw InputError("--Mapper.max_focal_change_in_bundle_adjustment", "must be >= 0");
+  }
 }
 
-MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& options,
-                       const std::string& source, std::ostream* progress,
-                       const PositionPriors& priors) {
-  options.Check();
+namespace {
+
+// Every stage once. `given_cameras` replaces the database's intrinsics (and view-graph calibration
+// is skipped) when set: the second pass of RunMapper.
+MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions& options,
+                           const std::string& source, std::ostream* progress,
+                           const PositionPriors& priors,
+                           const std::map<uint32_t, Camera>* given_cameras) {
   Timer total;
   MapperResult result;
   MapperSummary& summary = result.summary;
@@ -408,9 +415,10 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
     image_reasons[id] = "no verified pair with a usable geometry";
 
   // Stage 0: the focal lengths the database does not know, from the view graph's F matrices.
-  std::map<uint32_t, Camera> cameras = database.cameras;
+  std::map<uint32_t, Camera> cameras = given_cameras ? *given_cameras : database.cameras;
   const ViewGraphCalibrationSummary calibration =
-      CalibrateFocalLengths(database, options.view_graph_calibration, &cameras);
+      given_cameras ? ViewGraphCalibrationSummary()
+                    : CalibrateFocalLengths(database, options.view_graph_calibration, &cameras);
   if (!calibration.cameras.empty()) {
     int num_estimated = 0;
     std::ostringstream focal_lengths;
@@ -537,6 +545,66 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
                                  " images could be reconstructed");
   }
   return result;
+}
+
+// The largest relative change of a focal length between the intrinsics averaging used and those
+// bundle adjustment wrote, over the cameras of the largest model; and those cameras.
+double FocalChangeInBundleAdjustment(const MapperResult& result,
+                                     std::map<uint32_t, Camera>* refined) {
+  double change = 0.0;
+  for (const CameraIntrinsicsSummary& camera : result.summary.cameras) {
+    if (camera.final_params.empty() || camera.prior_params.empty()) continue;
+    // What averaging used: the view graph's estimate, else the database's value.
+    const double used =
+        camera.view_graph.estimated ? camera.view_graph.estimated_focal_px : camera.prior_params[0];
+    change = std::max(change, std::abs(camera.final_params[0] / used - 1.0));
+  }
+  for (const Reconstruction& reconstruction : result.reconstructions) {
+    for (const auto& [camera_id, camera] : reconstruction.cameras)
+      refined->emplace(camera_id, camera);
+  }
+  return change;
+}
+
+}  // namespace
+
+MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& options,
+                       const std::string& source, std::ostream* progress,
+                       const PositionPriors& priors) {
+  options.Check();
+  MapperResult first = RunMapperPass(database, options, source, progress, priors, nullptr);
+  if (!options.refine || !(options.max_focal_change_in_bundle_adjustment > 0)) return first;
+  std::map<uint32_t, Camera> refined = database.cameras;
+  std::map<uint32_t, Camera> written;
+  const double change = FocalChangeInBundleAdjustment(first, &written);
+  if (change <= options.max_focal_change_in_bundle_adjustment) return first;
+  for (const auto& [camera_id, camera] : written) refined[camera_id] = camera;
+  if (progress != nullptr) {
+    *progress << "[ramap] bundle adjustment moved a focal length by " << std::fixed
+              << std::setprecision(1) << 100 * change
+              << "%: averaging again through the refined intrinsics\n";
+  }
+  MapperResult second = RunMapperPass(database, options, source, progress, priors, &refined);
+  // One summary for both passes: the first pass's view-graph estimates, both passes' time.
+  for (CameraIntrinsicsSummary& camera : second.summary.cameras) {
+    for (const CameraIntrinsicsSummary& earlier : first.summary.cameras) {
+      if (earlier.camera_id != camera.camera_id) continue;
+      camera.view_graph = earlier.view_graph;
+      camera.prior_params = earlier.prior_params;
+    }
+  }
+  for (const MapperStageTiming& timing : first.summary.timings) {
+    auto it = std::find_if(second.summary.timings.begin(), second.summary.timings.end(),
+                           [&](const MapperStageTiming& t) { return t.stage == timing.stage; });
+    if (it == second.summary.timings.end()) {
+      second.summary.timings.push_back(timing);
+    } else {
+      it->seconds += timing.seconds;
+    }
+  }
+  second.summary.total_seconds += first.summary.total_seconds;
+  second.summary.num_averaging_passes = 2;
+  return second;
 }
 
 }  // namespace ramap

@@ -54,6 +54,12 @@ struct MapperOptions {
   // Final bundle adjustment ("averaging + BA").
   bool refine = false;
   BundleAdjustmentOptions bundle_adjustment;
+  // When bundle adjustment moves a focal length by more than this fraction from the value
+  // averaging used (a guess the view graph could not correct: forward motion, a turntable), the
+  // whole pipeline runs again through the refined intrinsics: averaging through a focal length 2x
+  // off bends the model more than BA can straighten (kitti07_first160 from COLMAP's guess). 0:
+  // never.
+  double max_focal_change_in_bundle_adjustment = 0.05;
   // Components with fewer images are not written (COLMAP's Mapper.min_model_size is 10; ramap
   // writes smaller ones too because small data sets are common among its users).
   int min_component_size = 3;
@@ -102,6 +108,8 @@ struct CameraIntrinsicsSummary {
 
 struct MapperSummary {
   int num_images = 0;
+  // 2 when bundle adjustment moved the intrinsics enough that averaging ran again through them.
+  int num_averaging_passes = 1;
   std::vector<CameraIntrinsicsSummary> cameras;
   int num_verified_pairs = 0;
   int num_relative_poses = 0;

@@ -59,6 +59,7 @@ TEST(OutputPolicy, ReplaceableModelAndMapperFolders) {
     std::ofstream(dir / ("out/0/" + std::string(name))) << "x";
   }
   std::ofstream(dir / "out/summary.json") << "{}";
+  std::ofstream(dir / "out/0/project.ini") << "[General]";  // COLMAP's mapper writes one
   std::string foreign;
   EXPECT_TRUE(IsReplaceableModelFolder(dir / "out/0", &foreign));
   EXPECT_TRUE(IsReplaceableMapperOutput(dir / "out", &foreign));

@@ -12,10 +12,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::array<const char*, 13> kModelFiles = {
-    "cameras.bin",  "images.bin", "points3D.bin",   "cameras.txt",        "images.txt",
-    "points3D.txt", "rigs.bin",   "frames.bin",     "trajectory_tum.txt", "geo_origin.txt",
-    "rigs.txt",     "frames.txt", "cameras.geojson"};
+// What a model folder written by ramap or COLMAP holds (COLMAP's mapper adds project.ini).
+const std::array<const char*, 14> kModelFiles = {
+    "cameras.bin",  "images.bin", "points3D.bin",    "cameras.txt",        "images.txt",
+    "points3D.txt", "rigs.bin",   "frames.bin",      "trajectory_tum.txt", "geo_origin.txt",
+    "rigs.txt",     "frames.txt", "cameras.geojson", "project.ini"};
 
 bool IsModelFileName(const std::string& name) {
   return std::any_of(kModelFiles.begin(), kModelFiles.end(),

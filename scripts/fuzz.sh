@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Fuzzes ramap's readers: builds the libFuzzer harnesses of fuzz/ (clang, AddressSanitizer and
 # UBSan) into build-fuzz/ and runs each one for SECONDS (default 20), two at a time, starting from
-# its seed corpus in tests/fuzz/<harness>/ (copied: the repository is not changed). Exits non-zero
-# on the first finding, printing the harness's log and the input that triggered it.
+# its seeds: the hand-written ones in tests/fuzz/<harness>/ and those made here from a small
+# synthetic scene by the built ramap (database, models, relative poses, trajectory; nothing binary
+# is stored in the repository). Exits non-zero on the first finding, printing the harness's log
+# and the input that triggered it.
 #   scripts/fuzz.sh [SECONDS] [HARNESS ...]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -23,10 +25,37 @@ flock -u 9
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+# Seeds from a scene ramap writes itself, in the harnesses' input formats (fuzz/fuzz_input.h: a
+# model's three files separated by "\n@@\n"; the ground-truth harness's first byte picks the format).
+make_seeds() {
+  local ramap=${RAMAP_BINARY:-$root/build/ramap} scene=$work/scene seeds=$work/seeds
+  mkdir -p "$seeds"/{database,model_bin,model_txt,relative_poses,ground_truth}
+  if [[ ! -x $ramap ]]; then
+    echo "fuzz: $ramap not built; only the hand-written seeds" >&2
+    return
+  fi
+  "$ramap" synthesize --output_path "$scene" --Synthetic.path circle --Synthetic.num_images 5 \
+    --Synthetic.num_points 300 --Synthetic.seed 2 >/dev/null
+  "$ramap" model_converter --input_path "$scene/ground_truth" --output_path "$scene/text" \
+    --output_type TXT >/dev/null
+  "$ramap" relative_poses --database_path "$scene/database.db" \
+    --output_path "$seeds/relative_poses/synthetic" >/dev/null
+  cp "$scene/database.db" "$seeds/database/synthetic.db"
+  for format in bin txt; do
+    local folder=$scene/ground_truth
+    [[ $format == txt ]] && folder=$scene/text
+    { cat "$folder/cameras.$format"; printf '\n@@\n'; cat "$folder/images.$format"
+      printf '\n@@\n'; cat "$folder/points3D.$format"; } >"$seeds/model_$format/synthetic"
+  done
+  { printf '\x00'; cat "$scene/ground_truth.txt"; } >"$seeds/ground_truth/tum"
+}
+make_seeds
 run_one() {
   local name=$1 corpus=$work/$1
   mkdir -p "$corpus" "$work/artifacts"
-  cp "$root/tests/fuzz/$name/"* "$corpus/"
+  for seeds in "$root/tests/fuzz/$name" "$work/seeds/$name"; do
+    if [[ -d $seeds ]]; then cp "$seeds"/. "$corpus/" -r; fi
+  done
   if "$build/fuzz_$name" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
     -artifact_prefix="$work/artifacts/$name-" -print_final_stats=1 "$corpus" >"$work/$name.log" 2>&1; then
     echo "fuzz $name: $(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work/$name.log" |

@@ -748,17 +748,21 @@ void WriteColmapDatabase(const FeatureDatabase& database, const std::string& pat
 
 void WriteColmapDatabaseMatches(const FeatureDatabase& database, const std::string& path) {
   CheckWritable(database, path);
-  // The images must be the database's own: pairs are stored by image id.
-  const FeatureDatabase stored = ReadColmapDatabase(path, DatabaseReadOptions{false, false});
+  Connection db(path, Connection::OpenExisting(), path);
+  db.Execute("BEGIN IMMEDIATE TRANSACTION");
+  // The images must be the file's own: pairs are stored by image id.
+  std::map<int64_t, std::string> stored;
+  {
+    Statement row(db, "SELECT image_id, name FROM images");
+    while (row.Step()) stored[row.ColumnInt64(0)] = row.ColumnText(1);
+  }
   for (const auto& [image_id, image] : database.images) {
-    const auto found = stored.images.find(image_id);
-    if (found == stored.images.end() || found->second.name != image.name) {
+    const auto found = stored.find(image_id);
+    if (found == stored.end() || found->second != image.name) {
       throw InputError(path, "cannot write the matches: image id " + std::to_string(image_id) +
                                  " (" + image.name + ") is not that image in the database");
     }
   }
-  Connection db(path, Connection::OpenExisting(), path);
-  db.Execute("BEGIN IMMEDIATE TRANSACTION");
   db.Execute("DELETE FROM matches; DELETE FROM two_view_geometries;");
   db.Execute(std::string("DROP TABLE IF EXISTS ") + kMatchConfidenceTable);
   WriteMatchRows(database, db);

@@ -92,6 +92,33 @@ std::vector<Eigen::Vector3d> Centers(const std::map<std::string, Rigid3d>& poses
   return centers;
 }
 
+// Each run's folder is replaced whole, so it may hold only an earlier run's output; checked for
+// every run before the first one starts.
+void CheckRunFolder(const std::string& output_path, const std::string& run_folder) {
+  const std::string folder = output_path + "/" + run_folder;
+  std::string foreign;
+  if (fs::exists(fs::symlink_status(folder)) && !IsReplaceableMapperOutput(folder, &foreign)) {
+    throw InputError("--output_path " + output_path,
+                     folder + " holds " + foreign +
+                         ", which is not an earlier compare run's output; choose another "
+                         "--output_path");
+  }
+  if (fs::is_directory(folder + ".log")) {
+    throw InputError("--output_path " + output_path, folder + ".log is a folder");
+  }
+}
+
+// The report is written (it says which run failed), but the comparison is incomplete.
+void ThrowIfAnyRunFailed(const Comparison& comparison, const std::string& output_path) {
+  std::string failed;
+  for (const MapperRun& run : comparison.runs) {
+    if (!run.succeeded) failed += (failed.empty() ? "" : ", ") + run.name;
+  }
+  if (!failed.empty()) {
+    throw InputError("ramap compare", failed + " failed; see the .log files in " + output_path);
+  }
+}
+
 }  // namespace
 
 int RunCompare(int argc, char** argv) {
@@ -170,21 +197,7 @@ int RunCompare(int argc, char** argv) {
            " --Mapper.refine 1" + ramap_intrinsics},
   };
 
-  // Each run's folder is replaced whole, so it may hold only an earlier run's output; checked for
-  // every run before the first one starts.
-  for (const Plan& plan : plans) {
-    const std::string folder = output_path + "/" + plan.folder;
-    std::string foreign;
-    if (fs::exists(fs::symlink_status(folder)) && !IsReplaceableMapperOutput(folder, &foreign)) {
-      throw InputError("--output_path " + output_path,
-                       folder + " holds " + foreign +
-                           ", which is not an earlier compare run's output; choose another "
-                           "--output_path");
-    }
-    if (fs::is_directory(folder + ".log")) {
-      throw InputError("--output_path " + output_path, folder + ".log is a folder");
-    }
-  }
+  for (const Plan& plan : plans) CheckRunFolder(output_path, plan.folder);
   fs::create_directories(output_path);
   fs::create_directories(images);
 
@@ -288,14 +301,7 @@ int RunCompare(int argc, char** argv) {
   const std::string markdown = ComparisonToMarkdown(comparison);
   WriteFileAtomically(output_path + "/report.md", [&](std::ostream& out) { out << markdown; });
   std::cout << "\n" << markdown;
-  std::string failed;
-  for (const MapperRun& run : comparison.runs) {
-    if (!run.succeeded) failed += (failed.empty() ? "" : ", ") + run.name;
-  }
-  if (!failed.empty()) {
-    // The report is written (it says which run failed), but the comparison is incomplete.
-    throw InputError("ramap compare", failed + " failed; see the .log files in " + output_path);
-  }
+  ThrowIfAnyRunFailed(comparison, output_path);
   return 0;
 }
 

@@ -60,6 +60,47 @@ std::vector<double> ParseThresholds(const std::string& text) {
   return thresholds;
 }
 
+// The input images (registered or not): the list, else the database's, else those the model and
+// the ground truth name.
+std::vector<std::string> InputImageNames(const std::string& image_list_path,
+                                         const std::string& database_path,
+                                         const std::map<std::string, Rigid3d>& estimated,
+                                         const GroundTruth& ground_truth,
+                                         const std::string& ground_truth_path) {
+  std::vector<std::string> input_names;
+  if (!image_list_path.empty()) {
+    input_names = ReadImageNames(image_list_path);
+  } else if (!database_path.empty()) {
+    DatabaseReadOptions read_options;
+    read_options.read_matches = false;
+    for (const auto& [image_id, image] : ReadColmapDatabase(database_path, read_options).images) {
+      input_names.push_back(image.name);
+    }
+    std::sort(input_names.begin(), input_names.end());
+  }
+
+  if (input_names.empty()) {
+    if (ground_truth.matched_by_index) {
+      // Without a list, only a model that registered every image names them all.
+      if (estimated.size() != ground_truth.poses.size()) {
+        throw InputError(ground_truth_path,
+                         "this ground truth matches poses to images by index (in name order), "
+                         "and the model registered " +
+                             std::to_string(estimated.size()) + " images for " +
+                             std::to_string(ground_truth.poses.size()) +
+                             " poses: give --image_list or --database_path");
+      }
+      for (const auto& [name, pose] : estimated) input_names.push_back(name);
+    } else {
+      std::set<std::string> names;
+      for (const GroundTruthPose& pose : ground_truth.poses) names.insert(pose.image_name);
+      for (const auto& [name, pose] : estimated) names.insert(name);
+      input_names.assign(names.begin(), names.end());
+    }
+  }
+  return input_names;
+}
+
 }  // namespace
 
 int RunEvaluate(int argc, char** argv) {
@@ -118,37 +159,8 @@ int RunEvaluate(int argc, char** argv) {
   const std::map<std::string, Rigid3d> estimated = PosesByName(model, model_path);
   const GroundTruth ground_truth = ReadGroundTruth(ground_truth_path, format);
 
-  std::vector<std::string> input_names;
-  if (!image_list_path.empty()) {
-    input_names = ReadImageNames(image_list_path);
-  } else if (!database_path.empty()) {
-    DatabaseReadOptions read_options;
-    read_options.read_matches = false;
-    for (const auto& [image_id, image] : ReadColmapDatabase(database_path, read_options).images) {
-      input_names.push_back(image.name);
-    }
-    std::sort(input_names.begin(), input_names.end());
-  }
-
-  if (input_names.empty()) {
-    if (ground_truth.matched_by_index) {
-      // Without a list, only a model that registered every image names them all.
-      if (estimated.size() != ground_truth.poses.size()) {
-        throw InputError(ground_truth_path,
-                         "this ground truth matches poses to images by index (in name order), "
-                         "and the model registered " +
-                             std::to_string(estimated.size()) + " images for " +
-                             std::to_string(ground_truth.poses.size()) +
-                             " poses: give --image_list or --database_path");
-      }
-      for (const auto& [name, pose] : estimated) input_names.push_back(name);
-    } else {
-      std::set<std::string> names;
-      for (const GroundTruthPose& pose : ground_truth.poses) names.insert(pose.image_name);
-      for (const auto& [name, pose] : estimated) names.insert(name);
-      input_names.assign(names.begin(), names.end());
-    }
-  }
+  const std::vector<std::string> input_names =
+      InputImageNames(image_list_path, database_path, estimated, ground_truth, ground_truth_path);
   const std::map<std::string, Rigid3d> gt_poses = GroundTruthByImageName(ground_truth, input_names);
 
   const PoseEvaluation evaluation = EvaluatePoses(estimated, gt_poses, input_names, options);

@@ -22,6 +22,21 @@
 
 namespace ramap::cli {
 
+namespace {
+
+void PrintLoopClosure(const LoopClosureSummary& closure, std::ostream& out) {
+  out << "[ramap] loop closure: " << closure.num_verified << " of " << closure.num_candidates
+      << " candidate pairs verified";
+  if (closure.num_bridge_pairs > 0) {
+    out << "; between models " << closure.num_bridge_pairs_verified << " verified of "
+        << closure.num_bridge_pairs_matched << " matched of " << closure.num_bridge_pairs
+        << " screened";
+  }
+  out << ", " << std::fixed << std::setprecision(2) << closure.seconds << " s\n";
+}
+
+}  // namespace
+
 int RunReconstruct(int argc, char** argv) {
   CLI::App app("Camera poses and points from a folder of images: features, matching, mapper.",
                "ramap reconstruct");
@@ -85,14 +100,7 @@ int RunReconstruct(int argc, char** argv) {
   if (close_loops && features.matching.mode == MatchingMode::kSequential) {
     closure =
         MatchLoopCandidates(result, closure_options, features.matching, &database, &std::cout);
-    std::cout << "[ramap] loop closure: " << closure.num_verified << " of "
-              << closure.num_candidates << " candidate pairs verified";
-    if (closure.num_bridge_pairs > 0) {
-      std::cout << "; between models " << closure.num_bridge_pairs_verified << " verified of "
-                << closure.num_bridge_pairs_matched << " matched of " << closure.num_bridge_pairs
-                << " screened";
-    }
-    std::cout << ", " << std::fixed << std::setprecision(2) << closure.seconds << " s\n";
+    PrintLoopClosure(closure, std::cout);
     if (closure.num_verified + closure.num_bridge_pairs_verified > 0) {
       WriteColmapDatabaseMatches(database, database_path);  // COLMAP gets the loop pairs too
       result = RunMapper(database, mapper, database_path, &std::cout, priors.priors);

@@ -35,6 +35,33 @@ std::vector<RelativePoseRecord> LoadRelativePoses(const std::string& database_pa
   return records;
 }
 
+// Edges outside the largest component were consistent, only not connected to it: they are not
+// called pruned.
+size_t NumDisconnectedEdges(const RotationAveragingResult& result) {
+  return std::count_if(
+      result.pruned_edges.begin(), result.pruned_edges.end(),
+      [](const PrunedEdge& e) { return e.reason == EdgeStatus::kPrunedDisconnected; });
+}
+
+// The rotation graph of the records, its nodes numbered by image name (`names`, by node); the first
+// edge between two images counts.
+RotationGraph GraphOfRecords(const std::vector<RelativePoseRecord>& records,
+                             std::vector<std::string>* names) {
+  std::map<std::string, uint32_t> ids;
+  auto id_of = [&](const std::string& name) {
+    auto [it, inserted] = ids.emplace(name, static_cast<uint32_t>(names->size()));
+    if (inserted) names->push_back(name);
+    return it->second;
+  };
+  RotationGraph graph;
+  for (const RelativePoseRecord& r : records) {
+    graph.edges.push_back({id_of(r.image_name1), id_of(r.image_name2), r.rotation,
+                           static_cast<double>(std::max(r.num_inliers, 1))});
+  }
+  for (uint32_t k = 0; k < names->size(); ++k) graph.node_ids.push_back(k);
+  return graph;
+}
+
 }  // namespace
 
 int RunRotationAverager(int argc, char** argv) {
@@ -61,20 +88,8 @@ int RunRotationAverager(int argc, char** argv) {
 
   const std::vector<RelativePoseRecord> records =
       LoadRelativePoses(database_path, relative_poses_path, options);
-  // Nodes are numbered by image name; the first edge between two images counts.
-  std::map<std::string, uint32_t> ids;
   std::vector<std::string> names;
-  auto id_of = [&](const std::string& name) {
-    auto [it, inserted] = ids.emplace(name, static_cast<uint32_t>(names.size()));
-    if (inserted) names.push_back(name);
-    return it->second;
-  };
-  RotationGraph graph;
-  for (const RelativePoseRecord& r : records) {
-    graph.edges.push_back({id_of(r.image_name1), id_of(r.image_name2), r.rotation,
-                           static_cast<double>(std::max(r.num_inliers, 1))});
-  }
-  for (uint32_t k = 0; k < names.size(); ++k) graph.node_ids.push_back(k);
+  const RotationGraph graph = GraphOfRecords(records, &names);
   std::vector<uint32_t> order;
   for (const size_t k : CaptureOrder(names)) order.push_back(static_cast<uint32_t>(k));
   const bool sequential = options.order == InputOrder::kSequential ||
@@ -96,11 +111,7 @@ int RunRotationAverager(int argc, char** argv) {
 
   const RotationCertificate& certificate = result.certificate;
   const RotationAveragingTimings& t = result.timings;
-  // Edges outside the largest component were consistent, only not connected to it: they are
-  // not called pruned.
-  const size_t num_disconnected = std::count_if(
-      result.pruned_edges.begin(), result.pruned_edges.end(),
-      [](const PrunedEdge& e) { return e.reason == EdgeStatus::kPrunedDisconnected; });
+  const size_t num_disconnected = NumDisconnectedEdges(result);
   std::cout << std::fixed << std::setprecision(3) << "ramap rotation_averager: " << rotations.size()
             << " of " << names.size() << " images, " << graph.edges.size() << " edges ("
             << result.pruned_edges.size() - num_disconnected << " pruned";

@@ -20,6 +20,34 @@
 
 namespace ramap::cli {
 
+namespace {
+
+// The database, the ground-truth model and its TUM trajectory in `output_path`.
+void WriteScene(const SyntheticScene& scene, const std::string& output_path, ModelFormat format) {
+  std::error_code error;
+  std::filesystem::create_directories(output_path, error);
+  if (error) throw InputError(output_path, "cannot create the folder: " + error.message());
+  WriteColmapDatabase(scene.database, output_path + "/database.db");
+  WriteColmapModel(scene.ground_truth, output_path + "/ground_truth", format);
+  WriteTumTrajectory(scene.ground_truth, output_path + "/ground_truth.txt");
+}
+
+void PrintScene(const SyntheticScene& scene, const std::string& output_path, std::ostream& out) {
+  size_t num_matches = 0;
+  for (const auto& [pair_id, matches] : scene.database.matches) num_matches += matches.size();
+  size_t num_inliers = 0;
+  for (const auto& [pair_id, geometry] : scene.database.two_view_geometries) {
+    num_inliers += geometry.inlier_matches.size();
+  }
+  out << "Synthetic scene in " << output_path << ": " << scene.ground_truth.images.size()
+      << " images, " << scene.ground_truth.points3D.size() << " points3D, "
+      << scene.database.two_view_geometries.size() << " verified pairs ("
+      << scene.outlier_pair_ids.size() << " outlier pairs), " << num_matches << " matches, "
+      << num_inliers << " inliers\n";
+}
+
+}  // namespace
+
 int RunSynthesize(int argc, char** argv) {
   CLI::App app(
       "Builds a synthetic scene with exact ground truth: a COLMAP database (keypoints, matches "
@@ -124,27 +152,10 @@ int RunSynthesize(int argc, char** argv) {
   // Removed again if writing fails or is interrupted.
   CreatedOutput created(output_path);
   CreatedOutput created_database(output_path + "/database.db");
-  std::error_code error;
-  std::filesystem::create_directories(output_path, error);
-  if (error) throw InputError(output_path, "cannot create the folder: " + error.message());
-  WriteColmapDatabase(scene.database, output_path + "/database.db");
-  WriteColmapModel(scene.ground_truth, output_path + "/ground_truth",
-                   output_type == "TXT" ? ModelFormat::kText : ModelFormat::kBinary);
-  WriteTumTrajectory(scene.ground_truth, output_path + "/ground_truth.txt");
-
-  size_t num_matches = 0;
-  for (const auto& [pair_id, matches] : scene.database.matches) num_matches += matches.size();
-  size_t num_inliers = 0;
-  for (const auto& [pair_id, geometry] : scene.database.two_view_geometries) {
-    num_inliers += geometry.inlier_matches.size();
-  }
+  WriteScene(scene, output_path, output_type == "TXT" ? ModelFormat::kText : ModelFormat::kBinary);
   created_database.Keep();
   created.Keep();
-  std::cout << "Synthetic scene in " << output_path << ": " << scene.ground_truth.images.size()
-            << " images, " << scene.ground_truth.points3D.size() << " points3D, "
-            << scene.database.two_view_geometries.size() << " verified pairs ("
-            << scene.outlier_pair_ids.size() << " outlier pairs), " << num_matches << " matches, "
-            << num_inliers << " inliers\n";
+  PrintScene(scene, output_path, std::cout);
   return 0;
 }
 

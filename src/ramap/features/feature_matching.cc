@@ -178,6 +178,77 @@ std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,
   return MatchFloatDescriptors(AsMat(descriptors1), AsMat(descriptors2), options, ratios);
 }
 
+namespace {
+
+// F on the pixels of `matches` (OpenCV USAC); the inlier mask, empty when there is no F.
+cv::Mat FundamentalInlierMask(const std::vector<FeatureMatch>& matches, const Keypoints& keypoints1,
+                              const Keypoints& keypoints2, const FeatureMatchingOptions& options,
+                              Eigen::Matrix3d* F) {
+  std::vector<cv::Point2d> pixels1, pixels2;
+  for (const FeatureMatch& match : matches) {
+    const Eigen::Vector2d xy1 = keypoints1.xy(match.point2D_idx1);
+    const Eigen::Vector2d xy2 = keypoints2.xy(match.point2D_idx2);
+    pixels1.emplace_back(xy1.x(), xy1.y());
+    pixels2.emplace_back(xy2.x(), xy2.y());
+  }
+  cv::Mat mask;
+  const cv::Mat estimate = cv::findFundamentalMat(pixels1, pixels2, cv::USAC_DEFAULT,
+                                                  options.max_error_px, options.confidence, mask);
+  if (estimate.rows != 3 || estimate.cols != 3) return cv::Mat();
+  cv::cv2eigen(estimate, *F);
+  return mask;
+}
+
+// E on undistorted normalised coordinates, and the pose it gives; the inlier mask, empty when
+// there is no single E.
+cv::Mat EssentialInlierMask(const std::vector<cv::Point2d>& points1,
+                            const std::vector<cv::Point2d>& points2, double focal,
+                            const FeatureMatchingOptions& options, cv::Mat* E, cv::Mat* R,
+                            cv::Mat* t) {
+  // OpenCV's USAC (Ivashechkin, Barath, Matas, "USAC: a universal framework for random sample
+  // consensus", 2021) rather than its plain RANSAC: the pairs of an exhaustive match that do not
+  // overlap ran plain RANSAC to its iteration cap and took 54% of the matching time. Measured
+  // (templeRing, 1081 pairs): SIFT 43.7 -> 14.1 s, ORB 62.5 -> 18.9 s, with fewer but cleaner
+  // verified pairs (the mapper's AUC@1 after BA 70.9 -> 73.7%, ORB 19.8 -> 29.9%); KITTI 07's
+  // sequential pairs equal in time and accuracy (ATE after BA: ORB 0.38 -> 0.44%, SIFT 0.51 ->
+  // 0.50% of the path).
+  cv::Mat mask;
+  *E = cv::findEssentialMat(points1, points2, 1.0, cv::Point2d(0, 0), cv::USAC_DEFAULT,
+                            options.confidence, options.max_error_px / focal, mask);
+  if (E->rows != 3 || E->cols != 3) return cv::Mat();  // none, or several stacked solutions
+  cv::Mat pose_mask = mask.clone();
+  cv::recoverPose(*E, points1, points2, *R, *t, 1.0, cv::Point2d(0, 0), pose_mask);
+  return mask;
+}
+
+// The pair's pose by ramap's own estimator on the inliers (grid-selected six points, refined on
+// all): OpenCV's minimal-sample E is poorly conditioned through long lenses (templeRing: median
+// 8.7 deg, with twisted-pair flips), and COLMAP 3.8 stores no pose at all.
+RelativePoseEstimate GridPairPose(const Camera& camera1, const Camera& camera2,
+                                  const Keypoints& keypoints1, const Keypoints& keypoints2,
+                                  const TwoViewGeometry& geometry, double focal) {
+  TwoViewCorrespondences correspondences;
+  correspondences.width1 = static_cast<int>(camera1.width);
+  correspondences.height1 = static_cast<int>(camera1.height);
+  correspondences.width2 = static_cast<int>(camera2.width);
+  correspondences.height2 = static_cast<int>(camera2.height);
+  correspondences.focal_length_px = focal;
+  for (const FeatureMatch& match : geometry.inlier_matches) {
+    const Eigen::Vector2d xy1 = keypoints1.xy(match.point2D_idx1);
+    const Eigen::Vector2d xy2 = keypoints2.xy(match.point2D_idx2);
+    correspondences.pixels1.push_back(xy1);
+    correspondences.pixels2.push_back(xy2);
+    correspondences.bearings1.push_back(PixelToBearing(camera1, xy1));
+    correspondences.bearings2.push_back(PixelToBearing(camera2, xy2));
+  }
+  // Ranked for the grid as the mapper ranks them by default (relative_poses.h).
+  correspondences.confidence =
+      SampsonErrors(geometry.F, correspondences.pixels1, correspondences.pixels2);
+  return EstimateRelativePose(correspondences, RelativePoseOptions());
+}
+
+}  // namespace
+
 TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Camera& camera1,
                               const Camera& camera2, const Keypoints& keypoints1,
                               const Keypoints& keypoints2, const std::vector<FeatureMatch>& matches,
@@ -209,35 +280,11 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
   // the guess as truth: estimate F on the pixels instead, as COLMAP does for such pairs, so that
   // the mapper's view-graph calibration can estimate the focal length from it.
   const bool calibrated = camera1.has_prior_focal_length && camera2.has_prior_focal_length;
-  cv::Mat mask;
-  if (!calibrated) {
-    std::vector<cv::Point2d> pixels1, pixels2;
-    for (const FeatureMatch& match : usable) {
-      const Eigen::Vector2d xy1 = keypoints1.xy(match.point2D_idx1);
-      const Eigen::Vector2d xy2 = keypoints2.xy(match.point2D_idx2);
-      pixels1.emplace_back(xy1.x(), xy1.y());
-      pixels2.emplace_back(xy2.x(), xy2.y());
-    }
-    const cv::Mat F = cv::findFundamentalMat(pixels1, pixels2, cv::USAC_DEFAULT,
-                                             options.max_error_px, options.confidence, mask);
-    if (F.rows != 3 || F.cols != 3) return geometry;
-    cv::cv2eigen(F, geometry.F);
-  }
   cv::Mat E, R, t;
-  if (calibrated) {
-    // OpenCV's USAC (Ivashechkin, Barath, Matas, "USAC: a universal framework for random sample
-    // consensus", 2021) rather than its plain RANSAC: the pairs of an exhaustive match that do not
-    // overlap ran plain RANSAC to its iteration cap and took 54% of the matching time. Measured
-    // (templeRing, 1081 pairs): SIFT 43.7 -> 14.1 s, ORB 62.5 -> 18.9 s, with fewer but cleaner
-    // verified pairs (the mapper's AUC@1 after BA 70.9 -> 73.7%, ORB 19.8 -> 29.9%); KITTI 07's
-    // sequential pairs equal in time and accuracy (ATE after BA: ORB 0.38 -> 0.44%, SIFT 0.51 ->
-    // 0.50% of the path).
-    E = cv::findEssentialMat(points1, points2, 1.0, cv::Point2d(0, 0), cv::USAC_DEFAULT,
-                             options.confidence, options.max_error_px / focal, mask);
-    if (E.rows != 3 || E.cols != 3) return geometry;  // none, or several stacked solutions
-    cv::Mat pose_mask = mask.clone();
-    cv::recoverPose(E, points1, points2, R, t, 1.0, cv::Point2d(0, 0), pose_mask);
-  }
+  const cv::Mat mask =
+      calibrated ? EssentialInlierMask(points1, points2, focal, options, &E, &R, &t)
+                 : FundamentalInlierMask(usable, keypoints1, keypoints2, options, &geometry.F);
+  if (mask.empty()) return geometry;
   for (size_t k = 0; k < usable.size(); ++k) {
     if (!mask.at<uchar>(static_cast<int>(k))) continue;
     geometry.inlier_matches.push_back(usable[k]);
@@ -256,28 +303,8 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
   } else {
     geometry.config = TwoViewConfig::kUncalibrated;
   }
-  // The pair's pose by ramap's own estimator on the inliers (grid-selected six points, refined on
-  // all): OpenCV's minimal-sample E is poorly conditioned through long lenses (templeRing: median
-  // 8.7 deg, with twisted-pair flips), and COLMAP 3.8 stores no pose at all.
-  TwoViewCorrespondences correspondences;
-  correspondences.width1 = static_cast<int>(camera1.width);
-  correspondences.height1 = static_cast<int>(camera1.height);
-  correspondences.width2 = static_cast<int>(camera2.width);
-  correspondences.height2 = static_cast<int>(camera2.height);
-  correspondences.focal_length_px = focal;
-  for (const FeatureMatch& match : geometry.inlier_matches) {
-    const Eigen::Vector2d xy1 = keypoints1.xy(match.point2D_idx1);
-    const Eigen::Vector2d xy2 = keypoints2.xy(match.point2D_idx2);
-    correspondences.pixels1.push_back(xy1);
-    correspondences.pixels2.push_back(xy2);
-    correspondences.bearings1.push_back(PixelToBearing(camera1, xy1));
-    correspondences.bearings2.push_back(PixelToBearing(camera2, xy2));
-  }
-  // Ranked for the grid as the mapper ranks them by default (relative_poses.h).
-  correspondences.confidence =
-      SampsonErrors(geometry.F, correspondences.pixels1, correspondences.pixels2);
   const RelativePoseEstimate estimate =
-      EstimateRelativePose(correspondences, RelativePoseOptions());
+      GridPairPose(camera1, camera2, keypoints1, keypoints2, geometry, focal);
   if (estimate.success) {
     geometry.cam2_from_cam1 = Rigid3d(estimate.rotation, estimate.translation);
   } else if (calibrated) {

@@ -111,6 +111,59 @@ std::vector<std::string> ListImages(const std::string& image_path,
   return names;
 }
 
+namespace {
+
+// One image read and its features extracted, or why not.
+struct ImageResult {
+  std::string problem;  // empty when read
+  int width = 0, height = 0;
+  std::optional<double> exif_focal_px;
+  std::optional<GeodeticPoint> exif_gps;
+  ImageFeatures features;
+};
+
+ImageResult ReadImageFeatures(const std::string& path, const ImageReaderOptions& reader,
+                              const FeatureExtractionOptions& extraction) {
+  ImageResult result;
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) {
+    result.problem = "no such file";
+    return result;
+  }
+  if (fs::file_size(path, error) == 0) {
+    result.problem = "empty file";
+    return result;
+  }
+  const cv::Mat grey = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  if (grey.empty()) {
+    result.problem = "not an image OpenCV can read";
+    return result;
+  }
+  result.width = grey.cols;
+  result.height = grey.rows;
+  // Smaller than a feature's support region: no detector finds anything there, and OpenCV's
+  // pyramids throw on it.
+  constexpr int kMinImageSide = 16;
+  if (grey.cols < kMinImageSide || grey.rows < kMinImageSide) {
+    result.problem = "too small (" + std::to_string(grey.cols) + "x" + std::to_string(grey.rows) +
+                     " pixels; at least " + std::to_string(kMinImageSide) + " on each side)";
+    return result;
+  }
+  try {
+    result.features = ExtractFeatures(grey, extraction);
+  } catch (const cv::Exception& exception) {
+    result.problem = std::string("OpenCV cannot extract features: ") + exception.what();
+    return result;
+  }
+  if (reader.camera_params.empty()) {
+    result.exif_focal_px = ExifFocalLengthPx(path, grey.cols, grey.rows);
+  }
+  result.exif_gps = ExifGpsPosition(path);
+  return result;
+}
+
+}  // namespace
+
 FeatureDatabase ExtractImageFeatures(const std::string& image_path,
                                      const std::vector<std::string>& names,
                                      const ImageReaderOptions& reader,
@@ -119,53 +172,11 @@ FeatureDatabase ExtractImageFeatures(const std::string& image_path,
   reader.Check();
   extraction.Check();
   Timer timer;
-  struct Result {
-    std::string problem;  // empty when read
-    int width = 0, height = 0;
-    std::optional<double> exif_focal_px;
-    std::optional<GeodeticPoint> exif_gps;
-    ImageFeatures features;
-  };
-  std::vector<Result> results(names.size());
+  std::vector<ImageResult> results(names.size());
   ParallelFor(
       names.size(), reader.num_threads,
       [&](size_t k) {
-        const std::string path = image_path + "/" + names[k];
-        std::error_code error;
-        if (!fs::is_regular_file(path, error)) {
-          results[k].problem = "no such file";
-          return;
-        }
-        if (fs::file_size(path, error) == 0) {
-          results[k].problem = "empty file";
-          return;
-        }
-        const cv::Mat grey = cv::imread(path, cv::IMREAD_GRAYSCALE);
-        if (grey.empty()) {
-          results[k].problem = "not an image OpenCV can read";
-          return;
-        }
-        results[k].width = grey.cols;
-        results[k].height = grey.rows;
-        // Smaller than a feature's support region: no detector finds anything there, and OpenCV's
-        // pyramids throw on it.
-        constexpr int kMinImageSide = 16;
-        if (grey.cols < kMinImageSide || grey.rows < kMinImageSide) {
-          results[k].problem = "too small (" + std::to_string(grey.cols) + "x" +
-                               std::to_string(grey.rows) + " pixels; at least " +
-                               std::to_string(kMinImageSide) + " on each side)";
-          return;
-        }
-        try {
-          results[k].features = ExtractFeatures(grey, extraction);
-        } catch (const cv::Exception& error) {
-          results[k].problem = std::string("OpenCV cannot extract features: ") + error.what();
-          return;
-        }
-        if (reader.camera_params.empty()) {
-          results[k].exif_focal_px = ExifFocalLengthPx(path, grey.cols, grey.rows);
-        }
-        results[k].exif_gps = ExifGpsPosition(path);
+        results[k] = ReadImageFeatures(image_path + "/" + names[k], reader, extraction);
       },
       progress, "feature extraction", "images");
 
@@ -174,7 +185,7 @@ FeatureDatabase ExtractImageFeatures(const std::string& image_path,
   uint32_t next_image_id = 1;
   *summary = ExtractionSummary();
   for (size_t k = 0; k < names.size(); ++k) {
-    Result& result = results[k];
+    ImageResult& result = results[k];
     if (!result.problem.empty()) {
       summary->skipped_images.push_back(names[k] + ": " + result.problem);
       continue;

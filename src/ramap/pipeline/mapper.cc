@@ -107,6 +107,50 @@ PriorAlignment GeoregisterPositions(const MapperContext& context,
   }
 }
 
+// Bundle adjustment on the best-connected points, then every track triangulated again with the
+// refined poses (and, when BA refined them, through the refined intrinsics: they change every
+// bearing of the component's images). `triangulate(poses, bearings, cameras, what)` rebuilds
+// `reconstruction`.
+template <typename Triangulate>
+void RefineComponent(const MapperContext& context, bool georegistered,
+                     const Triangulate& triangulate, PriorAlignment* georegistration,
+                     MapperComponentSummary* component, Reconstruction* reconstruction) {
+  const MapperOptions& options = context.options;
+  Reconstruction adjusted = PointsForBundleAdjustment(*reconstruction, options.bundle_adjustment);
+  const bool use_priors = georegistered && options.georegistration.use_in_bundle_adjustment;
+  component->bundle_adjustment =
+      BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, &adjusted,
+                   options.bundle_adjustment,
+                   use_priors ? georegistration->inliers : std::map<uint32_t, PositionPrior>());
+  georegistration->summary.used_in_bundle_adjustment = use_priors;
+  const BundleAdjustmentSummary& ba = component->bundle_adjustment;
+  context.log.Record("bundle adjustment", ba.seconds,
+                     std::to_string(ba.num_points) + " points, RMSE " +
+                         std::to_string(ba.initial_rmse_px) + " -> " +
+                         std::to_string(ba.final_rmse_px) + " px, " +
+                         std::to_string(ba.num_iterations) + " iterations");
+  std::map<uint32_t, Rigid3d> refined;
+  std::vector<uint32_t> image_ids;
+  for (const auto& [id, image] : adjusted.images) {
+    refined[id] = image.cam_from_world;
+    image_ids.push_back(id);
+  }
+  const bool intrinsics_refined =
+      std::any_of(adjusted.cameras.begin(), adjusted.cameras.end(), [&](const auto& entry) {
+        return RefinesIntrinsics(options.bundle_adjustment, entry.second.model);
+      });
+  if (!intrinsics_refined) {
+    triangulate(refined, context.bearings, context.cameras, "again with the refined poses: ");
+    return;
+  }
+  std::map<uint32_t, Camera> refined_cameras = context.cameras;
+  for (const auto& [camera_id, camera] : adjusted.cameras) refined_cameras[camera_id] = camera;
+  const ImageBearings refined_bearings =
+      ComputeBearings(context.database, refined_cameras, "bundle adjustment", image_ids);
+  triangulate(refined, refined_bearings, refined_cameras,
+              "again with the refined poses and intrinsics: ");
+}
+
 // Stages 2-6 for one connected component of the view graph. Returns false (with reasons recorded)
 // when the component cannot be reconstructed.
 bool ReconstructComponent(const MapperContext& context, const RotationGraph& graph,
@@ -254,42 +298,8 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
   triangulate(poses, context.bearings, context.cameras, "");
 
   if (options.refine) {
-    // Bundle adjustment on the best-connected points, then every track triangulated again with
-    // the refined poses.
-    Reconstruction adjusted = PointsForBundleAdjustment(*reconstruction, options.bundle_adjustment);
-    const bool use_priors = georegistered && options.georegistration.use_in_bundle_adjustment;
-    component.bundle_adjustment =
-        BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, &adjusted,
-                     options.bundle_adjustment,
-                     use_priors ? georegistration.inliers : std::map<uint32_t, PositionPrior>());
-    georegistration.summary.used_in_bundle_adjustment = use_priors;
-    const BundleAdjustmentSummary& ba = component.bundle_adjustment;
-    context.log.Record("bundle adjustment", ba.seconds,
-                       std::to_string(ba.num_points) + " points, RMSE " +
-                           std::to_string(ba.initial_rmse_px) + " -> " +
-                           std::to_string(ba.final_rmse_px) + " px, " +
-                           std::to_string(ba.num_iterations) + " iterations");
-    std::map<uint32_t, Rigid3d> refined;
-    std::vector<uint32_t> image_ids;
-    for (const auto& [id, image] : adjusted.images) {
-      refined[id] = image.cam_from_world;
-      image_ids.push_back(id);
-    }
-    // Refined intrinsics change every bearing of the component's images.
-    std::map<uint32_t, Camera> refined_cameras = context.cameras;
-    for (const auto& [camera_id, camera] : adjusted.cameras) refined_cameras[camera_id] = camera;
-    const bool intrinsics_refined =
-        std::any_of(adjusted.cameras.begin(), adjusted.cameras.end(), [&](const auto& entry) {
-          return RefinesIntrinsics(options.bundle_adjustment, entry.second.model);
-        });
-    if (intrinsics_refined) {
-      const ImageBearings refined_bearings =
-          ComputeBearings(database, refined_cameras, "bundle adjustment", image_ids);
-      triangulate(refined, refined_bearings, refined_cameras,
-                  "again with the refined poses and intrinsics: ");
-    } else {
-      triangulate(refined, context.bearings, context.cameras, "again with the refined poses: ");
-    }
+    RefineComponent(context, georegistered, triangulate, &georegistration, &component,
+                    reconstruction);
   }
   if (georegistered) {
     MeasurePriorErrors(*reconstruction, context.priors, georegistration.inliers,
@@ -397,6 +407,40 @@ void MapperOptions::Check() const {
 
 namespace {
 
+// The models largest first, the component summaries in the same order.
+void SortLargestFirst(MapperResult* result) {
+  std::vector<size_t> by_size(result->reconstructions.size());
+  for (size_t k = 0; k < by_size.size(); ++k) by_size[k] = k;
+  std::stable_sort(by_size.begin(), by_size.end(), [&](size_t a, size_t b) {
+    return result->reconstructions[a].images.size() > result->reconstructions[b].images.size();
+  });
+  std::vector<Reconstruction> reconstructions;
+  std::vector<MapperComponentSummary> components;
+  for (const size_t k : by_size) {
+    reconstructions.push_back(std::move(result->reconstructions[k]));
+    components.push_back(result->summary.components[k]);
+  }
+  result->reconstructions = std::move(reconstructions);
+  result->summary.components = std::move(components);
+}
+
+// One line for the view-graph calibration: each unknown camera's guess and estimate.
+void LogViewGraphCalibration(const ViewGraphCalibrationSummary& calibration, StageLog* log) {
+  if (calibration.cameras.empty()) return;
+  int num_estimated = 0;
+  std::ostringstream focal_lengths;
+  for (const CameraCalibration& camera : calibration.cameras) {
+    num_estimated += camera.estimated;
+    if (focal_lengths.tellp() > 0) focal_lengths << ", ";
+    focal_lengths << std::fixed << std::setprecision(1) << camera.prior_focal_px << " -> "
+                  << (camera.estimated ? camera.estimated_focal_px : camera.prior_focal_px)
+                  << " px";
+  }
+  log->Record("view-graph calibration", calibration.seconds,
+              std::to_string(num_estimated) + " of " + std::to_string(calibration.cameras.size()) +
+                  " uncalibrated cameras estimated (" + focal_lengths.str() + ")");
+}
+
 // Every stage once. `given_cameras` replaces the database's intrinsics (and view-graph calibration
 // is skipped) when set: the second pass of RunMapper.
 MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions& options,
@@ -419,20 +463,7 @@ MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions&
   const ViewGraphCalibrationSummary calibration =
       given_cameras ? ViewGraphCalibrationSummary()
                     : CalibrateFocalLengths(database, options.view_graph_calibration, &cameras);
-  if (!calibration.cameras.empty()) {
-    int num_estimated = 0;
-    std::ostringstream focal_lengths;
-    for (const CameraCalibration& camera : calibration.cameras) {
-      num_estimated += camera.estimated;
-      if (focal_lengths.tellp() > 0) focal_lengths << ", ";
-      focal_lengths << std::fixed << std::setprecision(1) << camera.prior_focal_px << " -> "
-                    << (camera.estimated ? camera.estimated_focal_px : camera.prior_focal_px)
-                    << " px";
-    }
-    log.Record("view-graph calibration", calibration.seconds,
-               std::to_string(num_estimated) + " of " + std::to_string(calibration.cameras.size()) +
-                   " uncalibrated cameras estimated (" + focal_lengths.str() + ")");
-  }
+  LogViewGraphCalibration(calibration, &log);
 
   Timer timer;
   const ImageBearings bearings = ComputeBearings(database, cameras, source);
@@ -511,22 +542,7 @@ MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions&
       result.reconstructions.push_back(std::move(reconstruction));
     }
   }
-  // Largest first, the component summaries in the same order.
-  std::vector<size_t> by_size(result.reconstructions.size());
-  for (size_t k = 0; k < by_size.size(); ++k) by_size[k] = k;
-  std::stable_sort(by_size.begin(), by_size.end(), [&](size_t a, size_t b) {
-    return result.reconstructions[a].images.size() > result.reconstructions[b].images.size();
-  });
-  {
-    std::vector<Reconstruction> reconstructions;
-    std::vector<MapperComponentSummary> components;
-    for (const size_t k : by_size) {
-      reconstructions.push_back(std::move(result.reconstructions[k]));
-      components.push_back(summary.components[k]);
-    }
-    result.reconstructions = std::move(reconstructions);
-    summary.components = std::move(components);
-  }
+  SortLargestFirst(&result);
   for (const MapperComponentSummary& component : summary.components) {
     if (component.georegistration.georegistered) result.geodetic_origin = priors.origin;
   }

@@ -12,6 +12,33 @@
 namespace ramap {
 namespace fs = std::filesystem;
 
+namespace {
+
+// Each camera: as given, as the view graph estimated it (or why not), as written.
+nlohmann::json CamerasToJson(const std::vector<CameraIntrinsicsSummary>& summaries) {
+  nlohmann::json cameras = nlohmann::json::array();
+  for (const CameraIntrinsicsSummary& camera : summaries) {
+    nlohmann::json entry = {{"camera_id", camera.camera_id},
+                            {"model", camera.model},
+                            {"prior_focal_length_known", camera.prior_focal_length_known},
+                            {"prior_params", camera.prior_params},
+                            {"final_params", camera.final_params}};
+    const CameraCalibration& estimate = camera.view_graph;
+    if (estimate.camera_id != 0) {
+      entry["view_graph_calibration"] = {{"estimated", estimate.estimated},
+                                         {"prior_focal_px", estimate.prior_focal_px},
+                                         {"estimated_focal_px", estimate.estimated_focal_px},
+                                         {"num_pairs", estimate.num_pairs},
+                                         {"median_cost", estimate.median_cost},
+                                         {"problem", estimate.problem}};
+    }
+    cameras.push_back(entry);
+  }
+  return cameras;
+}
+
+}  // namespace
+
 nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
   nlohmann::json json;
   json["num_images"] = summary.num_images;
@@ -76,24 +103,7 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
     }
     json["components"].push_back(component);
   }
-  json["cameras"] = nlohmann::json::array();
-  for (const CameraIntrinsicsSummary& camera : summary.cameras) {
-    nlohmann::json entry = {{"camera_id", camera.camera_id},
-                            {"model", camera.model},
-                            {"prior_focal_length_known", camera.prior_focal_length_known},
-                            {"prior_params", camera.prior_params},
-                            {"final_params", camera.final_params}};
-    const CameraCalibration& estimate = camera.view_graph;
-    if (estimate.camera_id != 0) {
-      entry["view_graph_calibration"] = {{"estimated", estimate.estimated},
-                                         {"prior_focal_px", estimate.prior_focal_px},
-                                         {"estimated_focal_px", estimate.estimated_focal_px},
-                                         {"num_pairs", estimate.num_pairs},
-                                         {"median_cost", estimate.median_cost},
-                                         {"problem", estimate.problem}};
-    }
-    json["cameras"].push_back(entry);
-  }
+  json["cameras"] = CamerasToJson(summary.cameras);
   json["dropped_images"] = nlohmann::json::array();
   for (const DroppedItem& item : summary.dropped_images) {
     json["dropped_images"].push_back({{"image", item.what}, {"reason", item.reason}});

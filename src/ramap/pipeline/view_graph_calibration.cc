@@ -49,7 +49,7 @@ double CauchyLoss(double cost, double scale) {
   return std::log1p(r * r);
 }
 
-// The terms of one camera's cost: its pairs (by index) and the cameras at their other ends.
+// The terms of one camera's cost: the pairs that see it.
 struct CameraTerms {
   std::vector<const FundamentalPair*> pairs;
 };
@@ -169,96 +169,156 @@ double EssentialMatrixCost(const Eigen::Matrix3d& F, const Eigen::Matrix3d& K1,
   return (s[0] - s[1]) / (s[0] + s[1]);
 }
 
-ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& database,
-                                                  const ViewGraphCalibrationOptions& options,
-                                                  std::map<uint32_t, Camera>* cameras) {
-  options.Check();
-  Timer timer;
-  ViewGraphCalibrationSummary summary;
+namespace {
+
+// The cameras the database marks unknown (prior_focal_length 0), fisheye models aside.
+std::set<uint32_t> UnknownCameras(const FeatureDatabase& database,
+                                  const std::map<uint32_t, Camera>& cameras) {
   std::set<uint32_t> unknown;
-  for (const auto& [camera_id, camera] : *cameras) {
+  for (const auto& [camera_id, camera] : cameras) {
     const auto stored = database.cameras.find(camera_id);
     if (stored != database.cameras.end() && !stored->second.has_prior_focal_length &&
         !IsFisheyeModel(camera.model)) {
       unknown.insert(camera_id);
     }
   }
-  if (!options.enable || unknown.empty()) return summary;
+  return unknown;
+}
 
-  const std::vector<FundamentalPair> all_pairs =
-      PairsWithFundamentalMatrix(database, options.min_num_inliers);
+// The pairs of each unknown camera, at most max_pairs_per_camera (those with the most inliers).
+std::map<uint32_t, CameraTerms> TermsOfUnknownCameras(const std::vector<FundamentalPair>& pairs,
+                                                      const std::set<uint32_t>& unknown,
+                                                      const std::map<uint32_t, Camera>& cameras,
+                                                      const ViewGraphCalibrationOptions& options) {
   std::map<uint32_t, CameraTerms> terms;
-  for (const FundamentalPair& pair : all_pairs) {
-    if (!cameras->count(pair.camera1) || !cameras->count(pair.camera2)) continue;
+  for (const FundamentalPair& pair : pairs) {
+    if (!cameras.count(pair.camera1) || !cameras.count(pair.camera2)) continue;
     for (const uint32_t id : {pair.camera1, pair.camera2}) {
       if (unknown.count(id)) terms[id].pairs.push_back(&pair);
       if (pair.camera1 == pair.camera2) break;
     }
   }
   for (auto& [camera_id, camera_terms] : terms) {
-    std::vector<const FundamentalPair*>& pairs = camera_terms.pairs;
-    if (static_cast<int>(pairs.size()) <= options.max_pairs_per_camera) continue;
-    std::stable_sort(pairs.begin(), pairs.end(),
+    std::vector<const FundamentalPair*>& camera_pairs = camera_terms.pairs;
+    if (static_cast<int>(camera_pairs.size()) <= options.max_pairs_per_camera) continue;
+    std::stable_sort(camera_pairs.begin(), camera_pairs.end(),
                      [](const FundamentalPair* a, const FundamentalPair* b) {
                        return a->num_inliers > b->num_inliers;
                      });
-    pairs.resize(options.max_pairs_per_camera);
+    camera_pairs.resize(options.max_pairs_per_camera);
   }
+  return terms;
+}
 
-  std::map<uint32_t, double> log_scales;  // unknown cameras only; absent = prior
-  FocalCost cost(*cameras, options, &log_scales);
+// How a camera's cost behaves at its estimate (the estimate itself is in the cost's log scales).
+struct EstimateShape {
+  bool at_edge = false;    // the minimum sits on the search range's boundary
+  double cost_rise = 0.0;  // min(cost at -20%, cost at +25%) / minimum - 1
+};
+
+// Minimises the cost over the log scales of the cameras in `estimable` (each with at least
+// min_num_pairs pairs): first one common factor for all of them, then camera by camera.
+std::map<uint32_t, EstimateShape> EstimateLogScales(
+    const std::map<uint32_t, const CameraTerms*>& estimable,
+    const ViewGraphCalibrationOptions& options, FocalCost* cost,
+    std::map<uint32_t, double>* log_scales) {
   const double low = std::log(options.min_focal_factor);
   const double high = std::log(options.max_focal_factor);
-  std::map<uint32_t, bool> at_edge;
-  std::map<uint32_t, double> cost_rise;  // min over -20% / +25% of cost / minimum, minus 1
-  // First one common factor for all the unknown cameras: their guesses follow one rule (1.2 x the
-  // longest side), so they tend to be off alike, and camera-by-camera rounds alone, each camera
-  // answering the others' wrong values, stay near a jointly wrong start (measured: Herz-Jesus-P8
-  // with a camera per image, 3392-3746 px for a truth of 2760 without it).
-  std::vector<uint32_t> estimable;
-  std::set<const FundamentalPair*> linked;
-  for (const auto& [camera_id, camera_terms] : terms) {
-    if (static_cast<int>(camera_terms.pairs.size()) < options.min_num_pairs) continue;
-    estimable.push_back(camera_id);
-    linked.insert(camera_terms.pairs.begin(), camera_terms.pairs.end());
-  }
+  // The guesses follow one rule (1.2 x the longest side), so they tend to be off alike, and
+  // camera-by-camera rounds alone, each camera answering the others' wrong values, stay near a
+  // jointly wrong start (measured: Herz-Jesus-P8 with a camera per image, 3392-3746 px for a truth
+  // of 2760 without the common start).
   if (estimable.size() > 1) {
+    std::vector<uint32_t> ids;
+    std::set<const FundamentalPair*> linked;
+    for (const auto& [camera_id, terms] : estimable) {
+      ids.push_back(camera_id);
+      linked.insert(terms->pairs.begin(), terms->pairs.end());
+    }
     const std::vector<const FundamentalPair*> linked_pairs(linked.begin(), linked.end());
     bool edge = false;
     const double common = MinimiseOverLogScale(
-        [&](double log_scale) { return cost.EvaluateCommon(estimable, linked_pairs, log_scale); },
-        low, high, &edge);
-    for (const uint32_t camera_id : estimable) log_scales[camera_id] = common;
+        [&](double log_scale) { return cost->EvaluateCommon(ids, linked_pairs, log_scale); }, low,
+        high, &edge);
+    for (const uint32_t camera_id : ids) (*log_scales)[camera_id] = common;
   }
+  std::map<uint32_t, EstimateShape> shapes;
   for (int round = 0; round < options.num_rounds; ++round) {
-    for (const auto& [camera_id, camera_terms] : terms) {
-      if (static_cast<int>(camera_terms.pairs.size()) < options.min_num_pairs) continue;
-      bool edge = false;
-      const double best = MinimiseOverLogScale(
-          [&](double log_scale) { return cost.Evaluate(camera_id, camera_terms, log_scale); }, low,
-          high, &edge);
-      const double minimum = cost.Evaluate(camera_id, camera_terms, best);
-      const double rise = std::min(cost.Evaluate(camera_id, camera_terms, best + std::log(0.8)),
-                                   cost.Evaluate(camera_id, camera_terms, best + std::log(1.25))) /
-                              std::max(minimum, 1e-12) -
-                          1.0;
-      log_scales[camera_id] = best;
-      at_edge[camera_id] = edge;
-      cost_rise[camera_id] = rise;
+    for (const auto& [camera_id, terms] : estimable) {
+      auto at = [&, id = camera_id, t = terms](double log_scale) {
+        return cost->Evaluate(id, *t, log_scale);
+      };
+      EstimateShape& shape = shapes[camera_id];
+      const double best = MinimiseOverLogScale(at, low, high, &shape.at_edge);
+      const double minimum = at(best);
+      shape.cost_rise =
+          std::min(at(best + std::log(0.8)), at(best + std::log(1.25))) / std::max(minimum, 1e-12) -
+          1.0;
+      (*log_scales)[camera_id] = best;
     }
   }
+  return shapes;
+}
+
+// Why an estimate is not to be trusted; empty when it is.
+std::string EstimateProblem(const CameraCalibration& result, const EstimateShape& shape,
+                            const ViewGraphCalibrationOptions& options) {
+  if (!std::isfinite(result.estimated_focal_px) || !(result.estimated_focal_px > 0)) {
+    return "the estimate is not a positive number";
+  }
+  if (shape.at_edge) {
+    return "the estimate sits at the edge of the search range (" +
+           std::to_string(options.min_focal_factor) + " to " +
+           std::to_string(options.max_focal_factor) + " x the prior)";
+  }
+  if (shape.cost_rise < options.min_cost_rise) {
+    return "the pairs leave the focal length undetermined (cost within " +
+           std::to_string(static_cast<int>(100 * shape.cost_rise)) +
+           "% of its minimum 20% away: every optical axis through one point, as around a "
+           "turntable, or too little rotation)";
+  }
+  if (result.median_cost > options.max_median_cost) {
+    return "the pairs disagree (median cost " + std::to_string(result.median_cost) + " > " +
+           std::to_string(options.max_median_cost) + ")";
+  }
+  return "";
+}
+
+}  // namespace
+
+ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& database,
+                                                  const ViewGraphCalibrationOptions& options,
+                                                  std::map<uint32_t, Camera>* cameras) {
+  options.Check();
+  Timer timer;
+  ViewGraphCalibrationSummary summary;
+  const std::set<uint32_t> unknown = UnknownCameras(database, *cameras);
+  if (!options.enable || unknown.empty()) return summary;
+
+  const std::vector<FundamentalPair> pairs =
+      PairsWithFundamentalMatrix(database, options.min_num_inliers);
+  const std::map<uint32_t, CameraTerms> terms =
+      TermsOfUnknownCameras(pairs, unknown, *cameras, options);
+  std::map<uint32_t, const CameraTerms*> estimable;
+  for (const auto& [camera_id, camera_terms] : terms) {
+    if (static_cast<int>(camera_terms.pairs.size()) >= options.min_num_pairs) {
+      estimable[camera_id] = &camera_terms;
+    }
+  }
+  std::map<uint32_t, double> log_scales;  // estimable cameras only; absent = prior
+  FocalCost cost(*cameras, options, &log_scales);
+  const std::map<uint32_t, EstimateShape> shapes =
+      EstimateLogScales(estimable, options, &cost, &log_scales);
 
   // Every camera is judged at the joint estimate first; the parameters change only afterwards (the
   // cost reads them).
   for (const uint32_t camera_id : unknown) {
-    const Camera& camera = cameras->at(camera_id);
     CameraCalibration result;
     result.camera_id = camera_id;
-    result.prior_focal_px = MeanFocalLength(camera);
+    result.prior_focal_px = MeanFocalLength(cameras->at(camera_id));
     const auto found = terms.find(camera_id);
     result.num_pairs = found == terms.end() ? 0 : static_cast<int>(found->second.pairs.size());
-    const auto scale = log_scales.find(camera_id);
-    if (scale == log_scales.end()) {
+    if (!estimable.count(camera_id)) {
       result.problem = result.num_pairs == 0
                            ? "no verified pair with a fundamental matrix (only pure rotations or "
                              "planes?)"
@@ -269,24 +329,9 @@ ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& databas
       std::vector<double> costs;
       for (const FundamentalPair* pair : found->second.pairs) costs.push_back(cost.PairCost(*pair));
       result.median_cost = Median(costs);
-      result.estimated_focal_px = result.prior_focal_px * std::exp(scale->second);
-      if (!std::isfinite(result.estimated_focal_px) || !(result.estimated_focal_px > 0)) {
-        result.problem = "the estimate is not a positive number";
-      } else if (at_edge[camera_id]) {
-        result.problem = "the estimate sits at the edge of the search range (" +
-                         std::to_string(options.min_focal_factor) + " to " +
-                         std::to_string(options.max_focal_factor) + " x the prior)";
-      } else if (cost_rise[camera_id] < options.min_cost_rise) {
-        result.problem = "the pairs leave the focal length undetermined (cost within " +
-                         std::to_string(static_cast<int>(100 * cost_rise[camera_id])) +
-                         "% of its minimum 20% away: every optical axis through one point, as "
-                         "around a turntable, or too little rotation)";
-      } else if (result.median_cost > options.max_median_cost) {
-        result.problem = "the pairs disagree (median cost " + std::to_string(result.median_cost) +
-                         " > " + std::to_string(options.max_median_cost) + ")";
-      } else {
-        result.estimated = true;
-      }
+      result.estimated_focal_px = result.prior_focal_px * std::exp(log_scales.at(camera_id));
+      result.problem = EstimateProblem(result, shapes.at(camera_id), options);
+      result.estimated = result.problem.empty();
     }
     summary.cameras.push_back(result);
   }

@@ -180,6 +180,43 @@ double RmsePx(const std::vector<Observation>& observations, const Reconstruction
   return std::sqrt(sum / observations.size());
 }
 
+// Each camera in `problem`: the parameters the options keep fixed stay constant (the manifolds
+// are kept in `manifolds`, which must outlive the problem).
+void HoldFixedIntrinsics(const BundleAdjustmentOptions& options, Reconstruction* reconstruction,
+                         ceres::Problem* problem,
+                         std::vector<std::unique_ptr<ceres::SubsetManifold>>* manifolds) {
+  for (auto& [camera_id, camera] : reconstruction->cameras) {
+    double* params = camera.params.data();
+    if (!problem->HasParameterBlock(params)) continue;
+    const std::vector<int> fixed = FixedIntrinsics(options, camera.model);
+    if (fixed.size() == camera.params.size()) {
+      problem->SetParameterBlockConstant(params);
+    } else if (!fixed.empty()) {
+      manifolds->push_back(
+          std::make_unique<ceres::SubsetManifold>(static_cast<int>(camera.params.size()), fixed));
+      problem->SetManifold(params, manifolds->back().get());
+    }
+  }
+}
+
+ceres::Solver::Options SolverOptions(const BundleAdjustmentOptions& options,
+                                     bool refines_intrinsics, size_t num_images) {
+  ceres::Solver::Options solver_options;
+  solver_options.max_num_iterations = options.max_num_iterations;
+  solver_options.function_tolerance = options.function_tolerance;
+  if (refines_intrinsics) {
+    solver_options.max_num_iterations =
+        std::max(options.max_num_iterations, options.intrinsics_max_num_iterations);
+    solver_options.function_tolerance =
+        std::min(options.function_tolerance, options.intrinsics_function_tolerance);
+  }
+  solver_options.num_threads = options.num_threads;
+  // Dense Schur is fastest while the reduced camera system is small.
+  solver_options.linear_solver_type = num_images <= 50 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
+  solver_options.logging_type = ceres::SILENT;
+  return solver_options;
+}
+
 // One Ceres solve over `observations`; the first image observed is held fixed (gauge) unless
 // three or more centre priors fix it.
 ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
@@ -208,19 +245,7 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
                                  new NormalizedPlaneError(*o.bearing, o.focal_px)),
                              &loss, pose.rotation.coeffs().data(), pose.translation.data(), point);
   }
-  // Each refined camera: the parameters the options keep fixed stay constant.
-  for (auto& [camera_id, camera] : reconstruction->cameras) {
-    double* params = camera.params.data();
-    if (!problem.HasParameterBlock(params)) continue;
-    const std::vector<int> fixed = FixedIntrinsics(options, camera.model);
-    if (fixed.size() == camera.params.size()) {
-      problem.SetParameterBlockConstant(params);
-    } else if (!fixed.empty()) {
-      intrinsics_manifolds.push_back(
-          std::make_unique<ceres::SubsetManifold>(static_cast<int>(camera.params.size()), fixed));
-      problem.SetManifold(params, intrinsics_manifolds.back().get());
-    }
-  }
+  HoldFixedIntrinsics(options, reconstruction, &problem, &intrinsics_manifolds);
   ceres::HuberLoss prior_loss(1.0);
   int num_priors = 0;
   for (const auto& [image_id, prior] : priors) {
@@ -244,23 +269,10 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
       gauge_fixed = true;
     }
   }
-  ceres::Solver::Options solver_options;
-  solver_options.max_num_iterations = options.max_num_iterations;
   const bool refines_intrinsics = std::any_of(observations.begin(), observations.end(),
                                               [](const Observation& o) { return o.in_pixels; });
-  if (refines_intrinsics) {
-    solver_options.max_num_iterations =
-        std::max(options.max_num_iterations, options.intrinsics_max_num_iterations);
-  }
-  solver_options.function_tolerance =
-      refines_intrinsics
-          ? std::min(options.function_tolerance, options.intrinsics_function_tolerance)
-          : options.function_tolerance;
-  solver_options.num_threads = options.num_threads;
-  // Dense Schur is fastest while the reduced camera system is small.
-  solver_options.linear_solver_type =
-      reconstruction->images.size() <= 50 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
-  solver_options.logging_type = ceres::SILENT;
+  const ceres::Solver::Options solver_options =
+      SolverOptions(options, refines_intrinsics, reconstruction->images.size());
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options, &problem, &summary);
   for (auto& [image_id, image] : reconstruction->images) image.cam_from_world.rotation.normalize();

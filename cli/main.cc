@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstring>
 #include <exception>
+#include <glog/logging.h>
 #include <iostream>
 
 #include "commands.h"
@@ -29,6 +30,10 @@ int main(int argc, char** argv) {
     return argc < 2 ? 1 : 0;
   }
   ramap::InstallInterruptCleanup();
+  // Ceres reports a failed linear solve inside a step it then retries as a glog WARNING; the
+  // solver recovers, so only errors reach the user.
+  google::InitGoogleLogging(argv[0]);
+  FLAGS_minloglevel = google::GLOG_ERROR;
   const std::string name = argv[1];
   for (const ramap::cli::Command& command : ramap::cli::AllCommands()) {
     if (command.name != name) continue;

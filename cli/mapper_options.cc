@@ -135,6 +135,11 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
                  "(fraction; 0: never)")
       ->capture_default_str()
       ->check(AtLeast(0));
+  app.add_option("--Mapper.calibration_num_points", o->calibration_num_points,
+                 "points of the first BA when a focal length is still unknown after the view "
+                 "graph (a second pass follows; 0: all)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
   ViewGraphCalibrationOptions& calibration = o->view_graph_calibration;
   app.add_option("--ViewGraphCalibration.enable", calibration.enable,
                  "1: estimate the focal length of cameras without a prior (prior_focal_length 0) "
@@ -234,7 +239,8 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
        {{"refine", o.refine},
         {"min_component_size", o.min_component_size},
         {"num_threads", o.num_threads},
-        {"max_focal_change_in_bundle_adjustment", o.max_focal_change_in_bundle_adjustment}}},
+        {"max_focal_change_in_bundle_adjustment", o.max_focal_change_in_bundle_adjustment},
+        {"calibration_num_points", o.calibration_num_points}}},
       {"ViewGraphCalibration",
        {{"enable", o.view_graph_calibration.enable},
         {"min_num_pairs", o.view_graph_calibration.min_num_pairs},

@@ -146,6 +146,60 @@ TEST(ViewGraphCalibration, RadialDistortionRecoveredByBundleAdjustment) {
   EXPECT_EQ(result.reconstructions[0].images.size(), scene.ground_truth.images.size());
 }
 
+// Views fixating the origin from one distance: every pair's optical axes meet at equal distances,
+// where F leaves the focal length free. The elevations vary (not one orbit, a critical motion for
+// BA too), so the views together fix it.
+std::vector<Rigid3d> FixatingViews(int num_views, double distance) {
+  std::vector<Rigid3d> poses;
+  for (int i = 0; i < num_views; ++i) {
+    const double azimuth = 2.0 * M_PI * i / num_views;
+    const double elevation = 0.35 * std::sin(4.0 * azimuth);
+    const Eigen::Vector3d center =
+        distance * Eigen::Vector3d(std::cos(elevation) * std::sin(azimuth), -std::sin(elevation),
+                                   std::cos(elevation) * std::cos(azimuth));
+    const Eigen::Vector3d z = -center.normalized();
+    const Eigen::Vector3d x = Eigen::Vector3d::UnitY().cross(z).normalized();
+    Eigen::Matrix3d rotation;
+    rotation << x.transpose(), z.cross(x).transpose(), z.transpose();
+    const Eigen::Quaterniond q(rotation);
+    poses.emplace_back(q, -(q * center));
+  }
+  return poses;
+}
+
+TEST(ViewGraphCalibration, FocalLengthTheViewGraphCannotFixFoundByACalibrationPass) {
+  SyntheticSceneOptions options;
+  options.path = SyntheticPath::kGiven;
+  options.given_poses = FixatingViews(36, 10.0);
+  options.num_images = 0;
+  options.overlap = 6;
+  options.num_points = 3000;
+  options.min_depth = 7.0;
+  options.max_depth = 13.0;
+  options.seed = 17;
+  const SyntheticScene scene = BuildSyntheticScene(options);
+  const double truth = scene.database.cameras.at(1).params[0];
+  const FeatureDatabase database = WithUnknownFocalLengths(scene.database, 0.5);
+
+  MapperOptions mapper;
+  mapper.refine = true;
+  const MapperResult result = RunMapper(database, mapper, "synthetic");
+  ASSERT_EQ(result.summary.cameras.size(), 1u);
+  const CameraCalibration& view_graph = result.summary.cameras[0].view_graph;
+  EXPECT_FALSE(view_graph.estimated) << view_graph.estimated_focal_px;
+  EXPECT_NE(view_graph.problem.find("undetermined"), std::string::npos) << view_graph.problem;
+  EXPECT_TRUE(result.summary.calibration_pass);
+  EXPECT_EQ(result.summary.num_averaging_passes, 2);
+  ASSERT_EQ(result.reconstructions.size(), 1u);
+  const Reconstruction& model = result.reconstructions[0];
+  EXPECT_EQ(model.images.size(), scene.ground_truth.images.size());
+  EXPECT_LT(RelativeError(model.cameras.at(1).params[0], truth), 0.01)
+      << model.cameras.at(1).params[0] << " for " << truth;
+  // The final BA adjusts every point, not the calibration pass's subset.
+  EXPECT_GT(result.summary.components[0].bundle_adjustment.num_points,
+            mapper.calibration_num_points);
+}
+
 TEST(ViewGraphCalibration, CameraSeenOnlyInPureRotationsKeepsItsPrior) {
   SyntheticScene scene = BuildSyntheticScene(Collection(3));
   FeatureDatabase database = WithUnknownFocalLengths(scene.database, 1.3);

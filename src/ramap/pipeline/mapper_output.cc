@@ -43,6 +43,7 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
   nlohmann::json json;
   json["num_images"] = summary.num_images;
   json["num_averaging_passes"] = summary.num_averaging_passes;
+  json["first_pass_only_calibrated"] = summary.calibration_pass;
   json["num_registered_images"] = summary.num_registered_images;
   json["num_verified_pairs"] = summary.num_verified_pairs;
   json["num_relative_poses"] = summary.num_relative_poses;

@@ -66,13 +66,18 @@ class FocalCost {
 
   // Robust sum over `terms` plus the prior, with camera `camera_id` at log scale `log_scale`.
   double Evaluate(uint32_t camera_id, const CameraTerms& terms, double log_scale) {
+    const double prior = log_scale / std::log(2.0);
+    return PairsCost(camera_id, terms, log_scale) + options_.prior_weight * prior * prior;
+  }
+
+  // The robust sum over `terms` alone.
+  double PairsCost(uint32_t camera_id, const CameraTerms& terms, double log_scale) {
     log_scales_[camera_id] = log_scale;
     double total = 0.0;
     for (const FundamentalPair* pair : terms.pairs) {
       total += CauchyLoss(PairCost(*pair), options_.loss_scale);
     }
-    const double prior = log_scale / std::log(2.0);
-    return total + options_.prior_weight * prior * prior;
+    return total;
   }
 
   // The same with every camera of `camera_ids` at one common log scale, over `pairs`.
@@ -86,6 +91,8 @@ class FocalCost {
     const double prior = log_scale / std::log(2.0);
     return total + options_.prior_weight * camera_ids.size() * prior * prior;
   }
+
+  double loss_scale() const { return options_.loss_scale; }
 
  private:
   Eigen::Matrix3d K(uint32_t camera_id) const {
@@ -211,9 +218,23 @@ std::map<uint32_t, CameraTerms> TermsOfUnknownCameras(const std::vector<Fundamen
 }
 
 // How a camera's cost behaves at its estimate (the estimate itself is in the cost's log scales).
+// How well the pairs alone (the prior's curvature aside) fix a camera's focal length: the rise
+// of their cost 20% below and 25% above the minimum, relative to the minimum. The minimum is
+// floored at a per-pair cost of 0.002 (a small fraction of what noisy matches leave), so that
+// pairs that fit every focal length exactly (a noise-free turntable) count as flat, not as an
+// infinite rise over zero.
+double CostRise(FocalCost* cost, uint32_t camera_id, const CameraTerms& terms, double best) {
+  auto at = [&](double log_scale) { return cost->PairsCost(camera_id, terms, log_scale); };
+  const double floor = terms.pairs.size() * CauchyLoss(0.002, cost->loss_scale());
+  const double minimum = std::max(at(best), floor);
+  const double rise = std::min(at(best + std::log(0.8)), at(best + std::log(1.25))) - minimum;
+  at(best);  // leave the camera at its minimum
+  return rise / minimum;
+}
+
 struct EstimateShape {
   bool at_edge = false;    // the minimum sits on the search range's boundary
-  double cost_rise = 0.0;  // min(cost at -20%, cost at +25%) / minimum - 1
+  double cost_rise = 0.0;  // CostRise
 };
 
 // Minimises the cost over the log scales of the cameras in `estimable` (each with at least
@@ -250,10 +271,7 @@ std::map<uint32_t, EstimateShape> EstimateLogScales(
       };
       EstimateShape& shape = shapes[camera_id];
       const double best = MinimiseOverLogScale(at, low, high, &shape.at_edge);
-      const double minimum = at(best);
-      shape.cost_rise =
-          std::min(at(best + std::log(0.8)), at(best + std::log(1.25))) / std::max(minimum, 1e-12) -
-          1.0;
+      shape.cost_rise = CostRise(cost, camera_id, *terms, best);
       (*log_scales)[camera_id] = best;
     }
   }

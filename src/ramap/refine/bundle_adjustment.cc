@@ -209,6 +209,13 @@ ceres::Solver::Options SolverOptions(const BundleAdjustmentOptions& options,
         std::max(options.max_num_iterations, options.intrinsics_max_num_iterations);
     solver_options.function_tolerance =
         std::min(options.function_tolerance, options.intrinsics_function_tolerance);
+    // A focal length far from its start moves along a narrow valley (it trades off against depth):
+    // Levenberg-Marquardt crawls along it. Dogleg steps with non-monotonic acceptance reach the
+    // same minimum in fewer, cheaper steps (measured from COLMAP's guess, calibration pass + final
+    // BA: kitti07_first160 46 -> 26 s, fountain-P11 13.6 -> 7.3 s, the same focal length within
+    // 0.2% and AUC@3 within 1.4 points on the five unknown-intrinsics sets).
+    solver_options.trust_region_strategy_type = ceres::DOGLEG;
+    solver_options.use_nonmonotonic_steps = true;
   }
   solver_options.num_threads = options.num_threads;
   // Dense Schur is fastest while the reduced camera system is small.

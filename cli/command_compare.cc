@@ -190,7 +190,8 @@ int RunCompare(int argc, char** argv) {
            " --Mapper.num_threads " + threads + intrinsics},
       {"ramap", "ramap",
        Quote(self) + " mapper --database_path " + Quote(database_path) + " --output_path " +
-           Quote(output_path + "/ramap") + " --Mapper.num_threads " + threads},
+           Quote(output_path + "/ramap") + " --Mapper.num_threads " + threads +
+           " --Mapper.refine 0"},
       {"ramap+BA", "ramap_ba",
        Quote(self) + " mapper --database_path " + Quote(database_path) + " --output_path " +
            Quote(output_path + "/ramap_ba") + " --Mapper.num_threads " + threads +

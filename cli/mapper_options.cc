@@ -105,7 +105,8 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
                  o->structure.min_triangulation_angle_deg)
       ->capture_default_str()
       ->check(AtLeast(0, 90));
-  app.add_option("--Mapper.refine", o->refine, "1: bundle adjustment after averaging")
+  app.add_option("--Mapper.refine", o->refine,
+                 "1: bundle adjustment after averaging; 0: averaging alone (faster)")
       ->capture_default_str();
   app.add_option("--BundleAdjustment.max_num_iterations", o->bundle_adjustment.max_num_iterations)
       ->capture_default_str()

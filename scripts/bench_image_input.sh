@@ -1,16 +1,28 @@
 #!/usr/bin/env bash
-# From images to a model, timed end to end on the same images with the same known intrinsics:
-# COLMAP (feature_extractor + matcher + mapper, CPU) vs `ramap reconstruct` with ORB and with SIFT.
+# From images to a model, timed end to end on the same images: COLMAP (feature_extractor + matcher
+# + mapper, CPU) vs `ramap reconstruct` with ORB and SIFT, with and without bundle adjustment.
 # Each result is evaluated against the ground truth with `ramap evaluate`; the table is printed.
 #
 #   scripts/bench_image_input.sh [NAME ...]     (default: templeRing kitti07_first160)
 #
+# RAMAP_INTRINSICS=known (default): one PINHOLE camera with the data set's intrinsics, fixed in
+# COLMAP's mapper; ramap with --FeatureExtraction.max_num_features RAMAP_MAX_NUM_FEATURES.
+# RAMAP_INTRINSICS=unknown: as a user without a calibration runs them, one camera per data set and
+# nothing else: COLMAP's defaults (SIMPLE_RADIAL, focal guessed, refined by its mapper) and
+# ramap's defaults (`ramap reconstruct --image_path --output_path`, + the fast options); the table
+# gains the focal length error against the calibration.
 # Settings: RAMAP_DATA_DIR (default ../shared/data), RAMAP_BENCH_DIR (default build/bench),
-# RAMAP_MAX_IMAGE_SIZE (default 1600), RAMAP_MAX_NUM_FEATURES (ramap, default 4000).
+# RAMAP_MAX_IMAGE_SIZE (COLMAP's SIFT, default 1600, ramap's default too),
+# RAMAP_MAX_NUM_FEATURES (ramap with known intrinsics, default 4000).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 data_dir=${RAMAP_DATA_DIR:-$root/../shared/data}
-bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench}/image_input
+intrinsics=${RAMAP_INTRINSICS:-known}
+[[ $intrinsics == known || $intrinsics == unknown ]] ||
+  { echo "bench_image_input: RAMAP_INTRINSICS must be known or unknown" >&2; exit 2; }
+suffix=""
+[[ $intrinsics == unknown ]] && suffix="-unknown-intrinsics"
+bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench}/image_input$suffix
 ramap=$root/build/ramap
 max_image_size=${RAMAP_MAX_IMAGE_SIZE:-1600}
 max_num_features=${RAMAP_MAX_NUM_FEATURES:-4000}
@@ -26,61 +38,91 @@ seconds_of() {  # runs "$@" quietly, prints its wall time in seconds (or "failed
   awk -v a="$start" -v b="$end" 'BEGIN { printf "%.1f", (b - a) / 1e9 }'
 }
 
-row() {  # name variant seconds model
-  local model=$4 report=$bench_dir/$1/$2.eval.json
+row() {  # name variant seconds model database (the data set's $params and $camera_model)
+  local model=$4 report=$bench_dir/$1/$(echo "$2" | tr -c 'a-zA-Z0-9' _).eval.json
   if [[ ! -f $model/images.bin ]]; then
     echo "| $1 | $2 | failed | | | | | $3 |"
     return
   fi
   "$ramap" evaluate --model_path "$model" --ground_truth "$data_dir/$gt" \
     --ground_truth_format "$gt_format" --database_path "$5" --output_path "$report" >/dev/null
-  python3 - "$report" "$1" "$2" "$3" <<'PY'
-import json, sys
-r = json.load(open(sys.argv[1]))
+  python3 - "$report" "$1" "$2" "$3" "$model/cameras.bin" "$params" "$camera_model" \
+    "$intrinsics" <<'PY'
+import json, struct, sys
+report, name, variant, seconds, cameras, known, known_model, intrinsics = sys.argv[1:9]
+r = json.load(open(report))
 auc = r["relative"]["auc_by_threshold_deg"]
-print(f"| {sys.argv[2]} | {sys.argv[3]} | {r['num_registered']} / {r['num_images']} "
-      f"| {100 * auc['1']:.1f} | {100 * auc['5']:.1f} | {r['rotation_error_deg']['median']:.3f} "
-      f"| {100 * r['ate']['rmse_over_path_length']:.2f}% | {sys.argv[4]} |")
+cells = [name, variant]
+if intrinsics == "unknown":
+    # cameras.bin: the first camera's first parameter(s) are its focal length(s)
+    # (SIMPLE_* and RADIAL: f; PINHOLE, OPENCV: fx, fy).
+    with open(cameras, "rb") as f:
+        f.read(8)
+        _, model_id, _, _ = struct.unpack("<iiQQ", f.read(24))
+        first = struct.unpack("<dd", f.read(16))
+    focal = (first[0] + first[1]) / 2 if model_id in (1, 4, 5, 6) else first[0]
+    p = [float(v) for v in known.split(",")]
+    truth = (p[0] + p[1]) / 2 if known_model in ("PINHOLE", "OPENCV", "FULL_OPENCV") else p[0]
+    cells.append(f"{100 * (focal / truth - 1):+.2f}%")
+cells += [f"{r['num_registered']} / {r['num_images']}", f"{100 * auc['1']:.1f}",
+          f"{100 * auc['3']:.1f}", f"{100 * auc['5']:.1f}",
+          f"{r['rotation_error_deg']['median']:.3f}",
+          f"{100 * r['ate']['rmse_over_path_length']:.2f}%", seconds]
+print("| " + " | ".join(cells) + " |")
 PY
 }
 
-echo "| data set | pipeline | registered | AUC@1 | AUC@5 | rot. err. median (deg) | ATE / path | images to model (s) |"
-echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
+focal_header="" && focal_rule=""
+[[ $intrinsics == unknown ]] && focal_header=" focal error |" && focal_rule=" --- |"
+echo "| data set | pipeline |$focal_header registered | AUC@1 | AUC@3 | AUC@5 | rot. err. median (deg) | ATE / path | images to model (s) |"
+echo "| --- | --- |$focal_rule --- | --- | --- | --- | --- | --- | --- |"
 for entry in "${RAMAP_DATASETS[@]}"; do
-  IFS='|' read -r name images model params matcher gt gt_format <<<"$entry"
+  IFS='|' read -r name images camera_model params matcher gt gt_format <<<"$entry"
   [[ " ${names[*]} " == *" $name "* ]] || continue
   [[ -d $data_dir/$images ]] || { echo "bench_image_input: $name: no images, skipped" >&2; continue; }
+  [[ -n $gt ]] || { echo "bench_image_input: $name: no ground truth, skipped" >&2; continue; }
   out=$bench_dir/$name
   rm -rf "$out" && mkdir -p "$out/images" "$out/colmap_sparse"
   find "$data_dir/$images" -maxdepth 1 -type f \( -iname '*.png' -o -iname '*.jpg' \) \
     -exec ln -s {} "$out/images/" \;
   mode=exhaustive
   [[ $matcher == sequential ]] && mode=sequential
+  # The camera as the user gives it: the calibration, or nothing (both tools guess).
+  colmap_camera=(--ImageReader.single_camera 1)
+  colmap_fixed=()
+  ramap_camera=(--ImageReader.single_camera 1)
+  if [[ $intrinsics == known ]]; then
+    colmap_camera+=(--ImageReader.camera_model "$camera_model" --ImageReader.camera_params "$params")
+    colmap_fixed=(--Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0
+      --Mapper.ba_refine_extra_params 0)
+    ramap_camera+=(--ImageReader.camera_model "$camera_model" --ImageReader.camera_params "$params"
+      --FeatureExtraction.max_num_features "$max_num_features"
+      --FeatureExtraction.max_image_size "$max_image_size")
+  fi
   colmap_pipeline() {
     colmap feature_extractor --database_path "$out/colmap.db" --image_path "$out/images" \
-      --ImageReader.single_camera 1 --ImageReader.camera_model "$model" \
-      --ImageReader.camera_params "$params" --SiftExtraction.use_gpu 0 \
+      "${colmap_camera[@]}" --SiftExtraction.use_gpu 0 \
       --SiftExtraction.max_image_size "$max_image_size" &&
       colmap "${matcher}_matcher" --database_path "$out/colmap.db" --SiftMatching.use_gpu 0 &&
       colmap mapper --database_path "$out/colmap.db" --image_path "$out/images" \
-        --output_path "$out/colmap_sparse" --Mapper.num_threads 2 \
-        --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0 \
-        --Mapper.ba_refine_extra_params 0
+        --output_path "$out/colmap_sparse" --Mapper.num_threads 2 "${colmap_fixed[@]}"
   }
   seconds=$(seconds_of colmap_pipeline)
   row "$name" "COLMAP (SIFT, $matcher)" "$seconds" "$out/colmap_sparse/0" "$out/colmap.db"
-  for type in orb sift; do
-    for refine in 0 1; do
-      variant="ramap reconstruct ($type, $mode)"
-      if [[ $refine == 1 ]]; then variant="ramap reconstruct ($type, $mode, +BA)"; fi
-      dir=$out/ramap_${type}_$refine
-      seconds=$(seconds_of "$ramap" reconstruct --image_path "$out/images" --output_path "$dir" \
-        --ImageReader.single_camera 1 --ImageReader.camera_model "$model" \
-        --ImageReader.camera_params "$params" --FeatureExtraction.type "$type" \
-        --FeatureExtraction.max_image_size "$max_image_size" \
-        --FeatureExtraction.max_num_features "$max_num_features" --Matching.mode "$mode" \
-        --Mapper.refine "$refine")
-      row "$name" "$variant" "$seconds" "$dir/sparse/0" "$dir/database.db"
-    done
+  # ramap's defaults are SIFT with BA; the others are the options to pass.
+  for variant in "sift 1" "sift 0" "orb 1" "orb 0"; do
+    read -r type refine <<<"$variant"
+    label="ramap reconstruct ($type, $mode"
+    [[ $refine == 1 ]] && label+=", +BA"
+    label+=")"
+    [[ $variant == "sift 1" ]] && label+=" (defaults)"
+    options=()
+    [[ $type == sift ]] || options+=(--FeatureExtraction.type "$type")
+    [[ $refine == 1 ]] || options+=(--Mapper.refine 0)
+    [[ $mode == exhaustive ]] || options+=(--Matching.mode "$mode")
+    dir=$out/ramap_${type}_$refine
+    seconds=$(seconds_of "$ramap" reconstruct --image_path "$out/images" --output_path "$dir" \
+      "${ramap_camera[@]}" "${options[@]}")
+    row "$name" "$label" "$seconds" "$dir/sparse/0" "$dir/database.db"
   done
 done

@@ -164,6 +164,12 @@ std::string CachedColmapModel(const ColmapRun& run) {
   return model;
 }
 
+MapperOptions AveragingOnly() {
+  MapperOptions options;
+  options.refine = false;
+  return options;
+}
+
 Camera VgaPinholeCamera(double fx, double fy) {
   Camera camera;
   camera.camera_id = 1;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "ramap/pipeline/mapper.h"
 #include "ramap/scene/camera.h"
 
 namespace ramap::test {
@@ -48,6 +49,10 @@ std::string CachedColmapModel(const ColmapRun& run);
 
 // Camera 1: a 640 x 480 PINHOLE camera with focal lengths fx, fy and the principal point at the
 // image centre.
+// The mapper's options without bundle adjustment, for tests of the averaging stages (the
+// default refines).
+MapperOptions AveragingOnly();
+
 Camera VgaPinholeCamera(double fx = 500, double fy = 500);
 
 // A fresh folder under the system's temporary folder, removed with its contents at scope end.

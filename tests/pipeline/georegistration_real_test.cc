@@ -31,7 +31,8 @@ TEST(GeoregistrationRealData, Kitti07FromNoisyGpsToMetricModel) {
   reader.camera_params = "707.0912,707.0912,601.8873,183.1104";
   reader.single_camera = true;
   FeatureExtractionOptions extraction;
-  extraction.max_num_features = 2000;  // keeps the test's matching short
+  extraction.type = FeatureType::kOrb;  // ORB and 2000 features keep the test short
+  extraction.max_num_features = 2000;
   ExtractionSummary extracted;
   FeatureDatabase database =
       ExtractImageFeatures(folder + "/image_0", names, reader, extraction, &extracted);
@@ -82,7 +83,7 @@ TEST(GeoregistrationRealData, Kitti07FromNoisyGpsToMetricModel) {
       << priors.warnings[0];
 
   const MapperResult result =
-      RunMapper(database, MapperOptions(), "kitti07", nullptr, priors.priors);
+      RunMapper(database, test::AveragingOnly(), "kitti07", nullptr, priors.priors);
   ASSERT_FALSE(result.reconstructions.empty());
   const Reconstruction& model = result.reconstructions.front();
   EXPECT_EQ(model.images.size(), 160u);

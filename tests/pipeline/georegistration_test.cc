@@ -10,6 +10,7 @@
 #include "ramap/eval/pose_metrics.h"
 #include "ramap/pipeline/mapper.h"
 #include "ramap/scene/synthetic.h"
+#include "test_support.h"
 
 namespace ramap {
 namespace {
@@ -196,8 +197,8 @@ TEST(GeoregisteredMapper, PriorsThatCannotGeoregisterLeaveTheModelAsWithout) {
   for (const auto& [id, image] : scene.ground_truth.images)
     identical.by_image[id] = {Eigen::Vector3d(4, 4, 4), Eigen::Vector3d::Ones()};
   const MapperResult with =
-      RunMapper(scene.database, MapperOptions(), "synthetic", nullptr, identical);
-  const MapperResult without = RunMapper(scene.database, MapperOptions(), "synthetic");
+      RunMapper(scene.database, test::AveragingOnly(), "synthetic", nullptr, identical);
+  const MapperResult without = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
   ASSERT_EQ(with.reconstructions.size(), 1u);
   EXPECT_FALSE(with.summary.components.front().georegistration.georegistered);
   EXPECT_NE(with.summary.components.front().georegistration.problem.find("coincide"),

@@ -9,6 +9,7 @@
 
 #include "ramap/eval/pose_metrics.h"
 #include "ramap/scene/synthetic.h"
+#include "test_support.h"
 
 namespace ramap {
 namespace {
@@ -100,7 +101,7 @@ TEST(LoopClosure, VerifiedLoopsEnterTheSecondSolve) {
     return EvaluatePoses(PosesByName(result.reconstructions.front()),
                          PosesByName(scene.ground_truth), names);
   };
-  const MapperResult first = RunMapper(scene.database, MapperOptions(), "synthetic");
+  const MapperResult first = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
   ASSERT_EQ(first.summary.num_registered_images, 80);
   FeatureMatchingOptions matching;
   const LoopClosureSummary closure =
@@ -108,7 +109,7 @@ TEST(LoopClosure, VerifiedLoopsEnterTheSecondSolve) {
   EXPECT_GT(closure.num_candidates, 0);
   EXPECT_GE(closure.num_verified, 3);
   EXPECT_EQ(closure.loops.size(), static_cast<size_t>(closure.num_verified));
-  const MapperResult second = RunMapper(scene.database, MapperOptions(), "synthetic");
+  const MapperResult second = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
   // The pose graph's loop edges (between keyframe windows) gain the revisits.
   EXPECT_GE(second.summary.num_loop_edges, first.summary.num_loop_edges + closure.num_verified);
   const PoseEvaluation before = evaluate(first), after = evaluate(second);
@@ -132,7 +133,7 @@ TEST(LoopClosure, PairsBetweenModelsJoinThem) {
     if (across) scene.database.matches.erase(it->first);
     it = across ? scene.database.two_view_geometries.erase(it) : std::next(it);
   }
-  const MapperResult first = RunMapper(scene.database, MapperOptions(), "synthetic");
+  const MapperResult first = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
   ASSERT_EQ(first.reconstructions.size(), 2u);
   const LoopClosureSummary closure = MatchLoopCandidates(first, LoopClosureOptions(),
                                                          FeatureMatchingOptions(), &scene.database);
@@ -140,7 +141,7 @@ TEST(LoopClosure, PairsBetweenModelsJoinThem) {
   EXPECT_GT(closure.num_bridge_pairs, 100);
   EXPECT_LE(closure.num_bridge_pairs, 400);
   EXPECT_GE(closure.num_bridge_pairs_verified, 2);
-  const MapperResult second = RunMapper(scene.database, MapperOptions(), "synthetic");
+  const MapperResult second = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
   EXPECT_EQ(second.reconstructions.size(), 1u);
   EXPECT_EQ(second.summary.num_registered_images, 80);
   LoopClosureOptions off;

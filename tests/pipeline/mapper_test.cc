@@ -7,12 +7,13 @@
 #include "ramap/eval/pose_metrics.h"
 #include "ramap/scene/synthetic.h"
 #include "ramap/util/error.h"
+#include "test_support.h"
 
 namespace ramap {
 namespace {
 
 PoseEvaluation MapAndEvaluate(const SyntheticScene& scene, MapperResult* result_out = nullptr) {
-  const MapperResult result = RunMapper(scene.database, MapperOptions(), "synthetic");
+  const MapperResult result = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
   std::vector<std::string> names;
   for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
   EXPECT_FALSE(result.reconstructions.empty());
@@ -90,7 +91,7 @@ TEST(Mapper, EveryConnectedComponentIsReconstructed) {
     const bool crosses = (it->second.image_id1 <= 18) != (it->second.image_id2 <= 18);
     it = crosses ? scene.database.two_view_geometries.erase(it) : std::next(it);
   }
-  const MapperResult result = RunMapper(scene.database, MapperOptions(), "synthetic");
+  const MapperResult result = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
   ASSERT_EQ(result.reconstructions.size(), 2u);
   EXPECT_EQ(result.reconstructions[0].images.size(), 18u);
   EXPECT_EQ(result.reconstructions[1].images.size(), 12u);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "ramap/geometry/rotation.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/pipeline/relative_poses.h"
@@ -24,10 +25,6 @@ double Percentile(std::vector<double> values, double q) {
   if (values.empty()) return NAN;
   std::sort(values.begin(), values.end());
   return values[std::min(values.size() - 1, static_cast<size_t>(q * values.size()))];
-}
-
-double AngleDeg(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
-  return Eigen::AngleAxisd(a.inverse() * b).angle() * 180.0 / M_PI;
 }
 
 void BenchDataset(const std::string& name, const std::string& database_path,
@@ -79,11 +76,11 @@ void BenchDataset(const std::string& name, const std::string& database_path,
       const auto t2 = truth.find(database.images.at(edge.image_id2).name);
       if (t1 == truth.end() || t2 == truth.end()) continue;
       const Rigid3d cam2_from_cam1 = t2->second * t1->second.Inverse();
-      rotation_errors.push_back(AngleDeg(edge.estimate.rotation, cam2_from_cam1.rotation));
+      rotation_errors.push_back(RotationAngleDeg(edge.estimate.rotation, cam2_from_cam1.rotation));
       if (edge.estimate.translation.norm() > 0 && cam2_from_cam1.translation.norm() > 0) {
         const double c =
             edge.estimate.translation.normalized().dot(cam2_from_cam1.translation.normalized());
-        translation_errors.push_back(std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / M_PI);
+        translation_errors.push_back(std::acos(std::clamp(c, -1.0, 1.0)) * kRadToDeg);
       }
     }
     std::printf("| %s | %s | %zu | %d | %.3f | %.3f | %.2f | %.2f | %.2f |\n", name.c_str(),

@@ -20,6 +20,7 @@
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/pipeline/image_order.h"
+#include "ramap/pipeline/stage_log.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
@@ -68,10 +69,7 @@ std::vector<std::pair<std::string, double>> StageSeconds(const std::string& summ
   if (!in) return stages;
   const nlohmann::json summary = nlohmann::json::parse(in, nullptr, false);
   if (summary.is_discarded() || !summary.contains("stage_seconds")) return stages;
-  static const std::vector<std::string> order = {"bearings",           "relative poses",
-                                                 "rotation averaging", "translation averaging",
-                                                 "triangulation",      "bundle adjustment"};
-  for (const std::string& stage : order) {
+  for (const std::string& stage : TimedMapperStages()) {
     if (summary["stage_seconds"].contains(stage)) {
       stages.push_back({stage, summary["stage_seconds"][stage].get<double>()});
     }

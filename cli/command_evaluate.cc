@@ -11,7 +11,6 @@
 //   poses: pose k belongs to the k-th input image in name order.
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <fstream>
 #include <iostream>
 #include <set>
 #include <sstream>
@@ -22,27 +21,13 @@
 #include "ramap/eval/pose_metrics.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/colmap_model.h"
+#include "ramap/io/image_list.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 
 namespace ramap::cli {
 namespace {
-
-std::vector<std::string> ReadImageNames(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot open the image list");
-  std::vector<std::string> names;
-  std::string line;
-  while (std::getline(in, line)) {
-    const size_t begin = line.find_first_not_of(" \t\r");
-    if (begin == std::string::npos) continue;
-    const size_t end = line.find_last_not_of(" \t\r");
-    names.push_back(line.substr(begin, end - begin + 1));
-  }
-  if (names.empty()) throw InputError(path, "the image list names no image");
-  return names;
-}
 
 std::vector<double> ParseThresholds(const std::string& text) {
   std::vector<double> thresholds;
@@ -69,7 +54,7 @@ std::vector<std::string> InputImageNames(const std::string& image_list_path,
                                          const std::string& ground_truth_path) {
   std::vector<std::string> input_names;
   if (!image_list_path.empty()) {
-    input_names = ReadImageNames(image_list_path);
+    input_names = ReadImageList(image_list_path);
   } else if (!database_path.empty()) {
     DatabaseReadOptions read_options;
     read_options.read_matches = false;

@@ -10,6 +10,7 @@
 #include "ramap/io/point_colors.h"
 #include "ramap/pipeline/mapper.h"
 #include "ramap/pipeline/mapper_output.h"
+#include "ramap/pipeline/stage_log.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/timer.h"
@@ -106,9 +107,8 @@ int RunMapper(int argc, char** argv) {
                         colors.unreadable_images.end());
     }
     if (log_level > 0) {
-      std::cout << "[ramap] " << std::left << std::setw(22) << "point colours" << std::right
-                << std::fixed << std::setprecision(3) << std::setw(8) << timer.ElapsedSeconds()
-                << " s  from " << num_read << " images in " << image_path << "\n";
+      PrintStageLine(std::cout, "point colours", timer.ElapsedSeconds(),
+                     "from " + std::to_string(num_read) + " images in " + image_path);
     }
     for (const std::string& name : unreadable) {
       std::cerr << "ramap mapper: warning: cannot read " << image_path << "/" << name

@@ -10,10 +10,13 @@
 
 namespace ramap::cli {
 
-void MatchAndReport(FeatureDatabase* database, const FeatureOptions& options) {
-  const MatchingSummary summary = MatchDatabase(database, options.matching, &std::cout);
+void MatchAndReport(FeatureDatabase* database, FeatureOptions* options) {
+  // The mode auto stands for, so that what follows (reconstruct's loop closure) knows it.
+  options->matching.mode = ResolveMatchingMode(options->matching, *database);
+  options->mode = MatchingModeName(options->matching.mode);
+  const MatchingSummary summary = MatchDatabase(database, options->matching, &std::cout);
   std::cout << "[ramap] matching: " << summary.num_verified_pairs << " of " << summary.num_pairs
-            << " pairs verified (" << options.mode;
+            << " pairs verified (" << options->mode;
   if (summary.num_preemptive_pairs > 0) {
     std::cout << ", " << summary.num_pairs << " of " << summary.num_preemptive_pairs
               << " kept by preemptive matching";
@@ -35,7 +38,7 @@ int RunMatcher(int argc, char** argv) {
   read_options.read_descriptors = true;
   read_options.read_matches = false;
   FeatureDatabase database = ReadColmapDatabase(database_path, read_options);
-  MatchAndReport(&database, options);
+  MatchAndReport(&database, &options);
   WriteColmapDatabaseMatches(database, database_path);
   std::cout << "Wrote " << database_path << "\n";
   return 0;

@@ -89,7 +89,7 @@ int RunReconstruct(int argc, char** argv) {
   CreatedOutput created_database(database_path);
 
   FeatureDatabase database = ExtractAndReport(image_path, image_list, features);
-  MatchAndReport(&database, features);
+  MatchAndReport(&database, &features);
   std::filesystem::create_directories(output_path);
   WriteColmapDatabase(database, database_path);
   // EXIF GPS went into the database's prior positions (as COLMAP's ImageReader does).

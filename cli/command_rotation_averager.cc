@@ -92,8 +92,7 @@ int RunRotationAverager(int argc, char** argv) {
   const RotationGraph graph = GraphOfRecords(records, &names);
   std::vector<uint32_t> order;
   for (const size_t k : CaptureOrder(names)) order.push_back(static_cast<uint32_t>(k));
-  const bool sequential = options.order == InputOrder::kSequential ||
-                          (options.order == InputOrder::kAuto && LooksSequential(names));
+  const bool sequential = IsSequentialInput(options.order, names);
 
   Timer timer;
   const RotationStageResult stage = AverageViewGraphRotations(

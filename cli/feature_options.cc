@@ -29,7 +29,13 @@ void AddExtractionOptions(CLI::App& app, FeatureOptions* o) {
 }
 
 void AddMatchingOptions(CLI::App& app, FeatureOptions* o) {
-  app.add_option("--Matching.mode", o->mode, "sequential|exhaustive")->capture_default_str();
+  app.add_option("--Matching.mode", o->mode,
+                 "auto (exhaustive up to --Matching.auto_exhaustive_max_images images, else "
+                 "sequential for frame-numbered names)|sequential|exhaustive")
+      ->capture_default_str();
+  app.add_option("--Matching.auto_exhaustive_max_images", o->matching.auto_exhaustive_max_images)
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--Matching.overlap", o->matching.overlap,
                  "sequential: each image with its next N")
       ->capture_default_str()

@@ -14,8 +14,8 @@ struct FeatureOptions {
   ImageReaderOptions reader;
   FeatureExtractionOptions extraction;
   FeatureMatchingOptions matching;
-  std::string type = "orb";
-  std::string mode = "sequential";
+  std::string type = FeatureTypeName(FeatureExtractionOptions().type);
+  std::string mode = MatchingModeName(FeatureMatchingOptions().mode);
 };
 
 void AddExtractionOptions(CLI::App& app, FeatureOptions* options);
@@ -27,6 +27,7 @@ void FinishFeatureOptions(FeatureOptions* options);
 // ExtractAndReport throws InputError when no image could be read.
 FeatureDatabase ExtractAndReport(const std::string& image_path, const std::string& image_list,
                                  const FeatureOptions& options);
-void MatchAndReport(FeatureDatabase* database, const FeatureOptions& options);
+// Resolves --Matching.mode auto for `database` in `options` first.
+void MatchAndReport(FeatureDatabase* database, FeatureOptions* options);
 
 }  // namespace ramap::cli

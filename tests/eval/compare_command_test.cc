@@ -9,8 +9,8 @@
 #include <regex>
 #include <sstream>
 
-#include "ramap/eval/alignment.h"
 #include "ramap/eval/pose_metrics.h"
+#include "ramap/geometry/alignment.h"
 #include "ramap/io/colmap_model.h"
 #include "test_support.h"
 

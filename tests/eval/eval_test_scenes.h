@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "ramap/eval/alignment.h"
+#include "ramap/geometry/alignment.h"
 #include "ramap/scene/rigid3.h"
 
 namespace ramap::test {

@@ -6,9 +6,9 @@
 
 #include <random>
 
-#include "ramap/eval/alignment.h"
 #include "ramap/features/feature_matching.h"
 #include "ramap/features/image_reader.h"
+#include "ramap/geometry/alignment.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/pipeline/mapper.h"

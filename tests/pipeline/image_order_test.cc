@@ -18,5 +18,13 @@ TEST(ImageOrder, MixedPrefixesOrNamesWithoutNumbersAreUnordered) {
   EXPECT_EQ(CaptureOrder(names), (std::vector<size_t>{1, 2, 0}));
 }
 
+TEST(ImageOrder, TheOrderOptionOverridesWhatTheNamesSuggest) {
+  const std::vector<std::string> frames = {"f_1.png", "f_2.png"}, photos = {"a.jpg", "b.jpg"};
+  EXPECT_TRUE(IsSequentialInput(InputOrder::kAuto, frames));
+  EXPECT_FALSE(IsSequentialInput(InputOrder::kAuto, photos));
+  EXPECT_TRUE(IsSequentialInput(InputOrder::kSequential, photos));
+  EXPECT_FALSE(IsSequentialInput(InputOrder::kUnordered, frames));
+}
+
 }  // namespace
 }  // namespace ramap

@@ -4,17 +4,20 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "ramap/geometry/rotation.h"
+#include "ramap/util/option_check.h"
+
 namespace ramap {
 
 void PairDirectionOptions::Check() const {
-  if (!(min_ray_angle_deg >= 0)) throw std::invalid_argument("min_ray_angle_deg must be >= 0");
-  if (num_reweighting_rounds < 0)
-    throw std::invalid_argument("num_reweighting_rounds must be >= 0");
-  if (!(residual_scale_deg > 0)) throw std::invalid_argument("residual_scale_deg must be > 0");
-  if (min_num_matches < 2) throw std::invalid_argument("min_num_matches must be >= 2");
-  if (!(min_cheirality_ratio > 0.5 && min_cheirality_ratio <= 1.0)) {
-    throw std::invalid_argument("min_cheirality_ratio must be in (0.5, 1]");
-  }
+  const std::string s = "--PairDirection.";
+  CheckOption(min_ray_angle_deg >= 0, s + "min_ray_angle_deg", ">= 0", min_ray_angle_deg);
+  CheckOption(num_reweighting_rounds >= 0, s + "num_reweighting_rounds", ">= 0",
+              num_reweighting_rounds);
+  CheckOption(residual_scale_deg > 0, s + "residual_scale_deg", "> 0", residual_scale_deg);
+  CheckOption(min_num_matches >= 2, s + "min_num_matches", ">= 2", min_num_matches);
+  CheckOption(min_cheirality_ratio > 0.5 && min_cheirality_ratio <= 1.0,
+              s + "min_cheirality_ratio", "in (0.5, 1]", min_cheirality_ratio);
 }
 
 std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& rotation1,
@@ -22,7 +25,7 @@ std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& r
                                                      const std::vector<Eigen::Vector3d>& bearings1,
                                                      const std::vector<Eigen::Vector3d>& bearings2,
                                                      const PairDirectionOptions& options) {
-  const double min_sin = std::sin(options.min_ray_angle_deg * M_PI / 180.0);
+  const double min_sin = std::sin(options.min_ray_angle_deg * kDegToRad);
   const Eigen::Quaterniond world_from_cam1 = rotation1.conjugate();
   const Eigen::Quaterniond world_from_cam2 = rotation2.conjugate();
   std::vector<Eigen::Vector3d> normals, rays1, rays2;
@@ -38,7 +41,7 @@ std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& r
   if (static_cast<int>(normals.size()) < options.min_num_matches) return std::nullopt;
 
   // The direction minimises sum w (n . t)^2: the eigenvector of the smallest eigenvalue.
-  const double scale = std::sin(options.residual_scale_deg * M_PI / 180.0);
+  const double scale = std::sin(options.residual_scale_deg * kDegToRad);
   std::vector<double> weights(normals.size(), 1.0);
   Eigen::Vector3d direction = Eigen::Vector3d::Zero();
   for (int round = 0; round <= options.num_reweighting_rounds; ++round) {

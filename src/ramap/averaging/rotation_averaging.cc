@@ -11,14 +11,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ramap/geometry/rotation.h"
 #include "ramap/graph/fiedler.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
-constexpr double kRadToDeg = 180.0 / M_PI;
 
 Eigen::Vector3d LogQ(const Eigen::Quaterniond& q) {
   double w = q.w();

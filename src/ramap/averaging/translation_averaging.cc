@@ -12,12 +12,13 @@
 #include <unordered_map>
 
 #include "ramap/averaging/block_normal_equations.h"
+#include "ramap/geometry/rotation.h"
+#include "ramap/util/option_check.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
 
 uint64_t PairKey(uint32_t a, uint32_t b) {
   return (static_cast<uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
@@ -377,28 +378,27 @@ Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
 }  // namespace
 
 void TranslationAveragingOptions::Check() const {
-  if (!(min_triangulation_angle_deg > 0 && min_triangulation_angle_deg < 90)) {
-    throw std::invalid_argument("min_triangulation_angle_deg must be in (0, 90)");
-  }
-  if (max_observations_per_track < 2) throw std::invalid_argument("max_observations_per_track < 2");
-  if (max_num_tracks < 1) throw std::invalid_argument("max_num_tracks must be >= 1");
-  if (!(admm_rho > 0)) throw std::invalid_argument("admm_rho must be > 0");
-  if (!(prior_weight > 0)) throw std::invalid_argument("prior_weight must be > 0");
-  if (!(prior_huber_sigmas > 0)) throw std::invalid_argument("prior_huber_sigmas must be > 0");
-  if (!(pair_constraint_weight > 0)) {
-    throw std::invalid_argument("pair_constraint_weight must be > 0");
-  }
-  if (!(admm_relaxation > 0 && admm_relaxation < 2)) {
-    throw std::invalid_argument("admm_relaxation must be in (0, 2)");
-  }
-  if (max_irls_iterations < 0) throw std::invalid_argument("max_irls_iterations must be >= 0");
-  if (!(irls_tolerance > 0)) throw std::invalid_argument("irls_tolerance must be > 0");
-  if (!(irls_min_residual > 0)) throw std::invalid_argument("irls_min_residual must be > 0");
-  if (max_admm_iterations < 0) throw std::invalid_argument("max_admm_iterations must be >= 0");
-  if (!(admm_tolerance > 0)) throw std::invalid_argument("admm_tolerance must be > 0");
-  if (!(admm_cost_tolerance >= 0)) throw std::invalid_argument("admm_cost_tolerance must be >= 0");
-  if (!(admm_relative_tolerance >= 0))
-    throw std::invalid_argument("admm_relative_tolerance must be >= 0");
+  const std::string s = "--TranslationAveraging.";
+  CheckOption(min_triangulation_angle_deg > 0 && min_triangulation_angle_deg < 90,
+              s + "min_triangulation_angle_deg", "in (0, 90)", min_triangulation_angle_deg);
+  CheckOption(max_observations_per_track >= 2, s + "max_observations_per_track", ">= 2",
+              max_observations_per_track);
+  CheckOption(max_num_tracks >= 1, s + "max_num_tracks", ">= 1", max_num_tracks);
+  CheckOption(admm_rho > 0, s + "admm_rho", "> 0", admm_rho);
+  CheckOption(prior_weight > 0, s + "prior_weight", "> 0", prior_weight);
+  CheckOption(prior_huber_sigmas > 0, s + "prior_huber_sigmas", "> 0", prior_huber_sigmas);
+  CheckOption(pair_constraint_weight > 0, s + "pair_constraint_weight", "> 0",
+              pair_constraint_weight);
+  CheckOption(admm_relaxation > 0 && admm_relaxation < 2, s + "admm_relaxation", "in (0, 2)",
+              admm_relaxation);
+  CheckOption(max_irls_iterations >= 0, s + "max_irls_iterations", ">= 0", max_irls_iterations);
+  CheckOption(irls_tolerance > 0, s + "irls_tolerance", "> 0", irls_tolerance);
+  CheckOption(irls_min_residual > 0, s + "irls_min_residual", "> 0", irls_min_residual);
+  CheckOption(max_admm_iterations >= 0, s + "max_admm_iterations", ">= 0", max_admm_iterations);
+  CheckOption(admm_tolerance > 0, s + "admm_tolerance", "> 0", admm_tolerance);
+  CheckOption(admm_cost_tolerance >= 0, s + "admm_cost_tolerance", ">= 0", admm_cost_tolerance);
+  CheckOption(admm_relative_tolerance >= 0, s + "admm_relative_tolerance", ">= 0",
+              admm_relative_tolerance);
 }
 
 TranslationAveragingResult AverageTranslations(

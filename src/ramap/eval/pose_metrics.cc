@@ -8,6 +8,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "ramap/geometry/rotation.h"
 #include "ramap/util/error.h"
 #include "ramap/util/staged_output.h"
 
@@ -16,7 +17,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kRadToDeg = 180.0 / M_PI;
 
 double Median(std::vector<double> values) {
   if (values.empty()) return kNaN;
@@ -44,11 +44,6 @@ double Rms(const std::vector<double>& values) {
   double sum_sq = 0.0;
   for (double v : values) sum_sq += v * v;
   return std::sqrt(sum_sq / static_cast<double>(values.size()));
-}
-
-double VectorAngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  // atan2 of |a x b| and a . b stays accurate for nearly (anti)parallel vectors, unlike acos.
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * kRadToDeg;
 }
 
 nlohmann::json Number(double value) {
@@ -88,15 +83,9 @@ PairPoseError RelativePoseError(const Rigid3d& est_i, const Rigid3d& est_j, cons
   } else if (rel_est.translation.norm() == 0.0) {
     error.translation_deg = 180.0;  // the estimate has no direction at all: worst case
   } else {
-    error.translation_deg = VectorAngleDeg(rel_est.translation, rel_gt.translation);
+    error.translation_deg = AngleBetween(rel_est.translation, rel_gt.translation) * kRadToDeg;
   }
   return error;
-}
-
-double RotationAngleDeg(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
-  const Eigen::Quaterniond d = (a.conjugate() * b).normalized();
-  // 2 atan2(|v|, |w|) is the angle in [0, pi], accurate near 0 where 2 acos(|w|) is not.
-  return 2.0 * std::atan2(d.vec().norm(), std::abs(d.w())) * kRadToDeg;
 }
 
 std::map<std::string, Rigid3d> PosesByName(const Reconstruction& reconstruction,

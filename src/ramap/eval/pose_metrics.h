@@ -14,8 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "ramap/eval/alignment.h"
 #include "ramap/eval/auc.h"
+#include "ramap/geometry/alignment.h"
+#include "ramap/geometry/rotation.h"
 #include "ramap/scene/reconstruction.h"
 #include "ramap/scene/rigid3.h"
 
@@ -123,9 +124,6 @@ PairPoseError RelativePoseError(const Rigid3d& est_cam_i_from_world,
                                 const Rigid3d& est_cam_j_from_world,
                                 const Rigid3d& gt_cam_i_from_world,
                                 const Rigid3d& gt_cam_j_from_world, double min_baseline = 0.0);
-
-// Angle in degrees of the rotation taking `a` to `b` (of a^-1 b), in [0, 180].
-double RotationAngleDeg(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b);
 
 // The evaluation as JSON (NaN and infinities as null); per-image rows when `with_images`.
 nlohmann::json PoseEvaluationToJson(const PoseEvaluation& evaluation, bool with_images = true);

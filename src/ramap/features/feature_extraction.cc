@@ -5,6 +5,7 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "ramap/geometry/rotation.h"
 #include "ramap/util/error.h"
 
 namespace ramap {
@@ -54,7 +55,7 @@ ImageFeatures ExtractFeatures(const cv::Mat& grey, const FeatureExtractionOption
     features.keypoints.data.push_back(static_cast<float>((k.pt.x + 0.5) / scale));
     features.keypoints.data.push_back(static_cast<float>((k.pt.y + 0.5) / scale));
     features.keypoints.data.push_back(static_cast<float>(k.size / scale));
-    features.keypoints.data.push_back(static_cast<float>(k.angle * M_PI / 180.0));
+    features.keypoints.data.push_back(static_cast<float>(k.angle * kDegToRad));
   }
   features.descriptors.num_cols = descriptors.cols;
   if (descriptors.empty()) {

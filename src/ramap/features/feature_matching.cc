@@ -13,6 +13,7 @@
 #include "ramap/geometry/relative_pose.h"
 #include "ramap/pipeline/image_order.h"
 #include "ramap/util/error.h"
+#include "ramap/util/option_check.h"
 #include "ramap/util/parallel.h"
 #include "ramap/util/timer.h"
 
@@ -144,9 +145,33 @@ std::vector<FeatureMatch> MatchFloatDescriptors(const cv::Mat& d1, const cv::Mat
 }  // namespace
 
 MatchingMode MatchingModeFromName(const std::string& name) {
+  if (name == "auto") return MatchingMode::kAuto;
   if (name == "sequential") return MatchingMode::kSequential;
   if (name == "exhaustive") return MatchingMode::kExhaustive;
-  throw InputError("--Matching.mode", "'" + name + "' is not sequential or exhaustive");
+  throw InputError("--Matching.mode", "'" + name + "' is not auto, sequential or exhaustive");
+}
+
+std::string MatchingModeName(MatchingMode mode) {
+  switch (mode) {
+    case MatchingMode::kAuto:
+      return "auto";
+    case MatchingMode::kSequential:
+      return "sequential";
+    case MatchingMode::kExhaustive:
+      return "exhaustive";
+  }
+  return "auto";
+}
+
+MatchingMode ResolveMatchingMode(const FeatureMatchingOptions& options,
+                                 const FeatureDatabase& database) {
+  if (options.mode != MatchingMode::kAuto) return options.mode;
+  if (static_cast<int>(database.images.size()) <= options.auto_exhaustive_max_images) {
+    return MatchingMode::kExhaustive;
+  }
+  std::vector<std::string> names;
+  for (const auto& [id, image] : database.images) names.push_back(image.name);
+  return LooksSequential(names) ? MatchingMode::kSequential : MatchingMode::kExhaustive;
 }
 
 void FeatureMatchingOptions::Check() const {
@@ -157,6 +182,8 @@ void FeatureMatchingOptions::Check() const {
     throw InputError("--Matching.confidence", "not in (0, 1)");
   }
   if (min_num_inliers < 5) throw InputError("--Matching.min_num_inliers", "must be >= 5");
+  CheckOption(auto_exhaustive_max_images >= 0, "--Matching.auto_exhaustive_max_images", ">= 0",
+              auto_exhaustive_max_images);
   if (preemptive_num_features < 0) {
     throw InputError("--Matching.preemptive_num_features", "must be >= 0");
   }
@@ -321,10 +348,11 @@ MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOp
                               std::ostream* progress) {
   options.Check();
   Timer timer;
+  const MatchingMode mode = ResolveMatchingMode(options, *database);
   const std::vector<uint32_t> ordered = ImageIdsInCaptureOrder(*database);
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
   for (size_t a = 0; a < ordered.size(); ++a) {
-    const size_t last = options.mode == MatchingMode::kExhaustive
+    const size_t last = mode == MatchingMode::kExhaustive
                             ? ordered.size()
                             : std::min(ordered.size(), a + 1 + options.overlap);
     for (size_t b = a + 1; b < last; ++b) {
@@ -333,7 +361,7 @@ MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOp
   }
   const int num_screened = static_cast<int>(pairs.size());
   const bool preemptive =
-      options.mode == MatchingMode::kExhaustive && options.preemptive_num_features > 0;
+      mode == MatchingMode::kExhaustive && options.preemptive_num_features > 0;
   if (preemptive) pairs = ScreenPairsPreemptively(*database, pairs, options, progress);
   database->matches.clear();
   database->two_view_geometries.clear();

@@ -13,13 +13,23 @@
 
 namespace ramap {
 
-enum class MatchingMode { kSequential, kExhaustive };
+enum class MatchingMode {
+  kAuto,        // exhaustive for small collections, sequential for long sequences
+  kSequential,  // each image with the next `overlap` in capture order
+  kExhaustive,  // every pair (screened preemptively)
+};
 
-// "sequential" or "exhaustive"; throws InputError naming --Matching.mode otherwise.
+// "auto", "sequential" or "exhaustive"; throws InputError naming --Matching.mode otherwise.
 MatchingMode MatchingModeFromName(const std::string& name);
+std::string MatchingModeName(MatchingMode mode);
 
 struct FeatureMatchingOptions {
-  MatchingMode mode = MatchingMode::kSequential;
+  MatchingMode mode = MatchingMode::kAuto;
+  // Auto mode: exhaustive up to this many images (COLMAP's automatic reconstructor also matches
+  // small collections exhaustively: it finds every overlapping pair, whatever the order of the
+  // photos), beyond it sequential when the names are frame numbers of one sequence, else
+  // exhaustive.
+  int auto_exhaustive_max_images = 200;
   // Sequential mode: each image is matched with the next `overlap` images in capture order
   // (COLMAP's SequentialMatching.overlap default, 10).
   int overlap = 10;
@@ -42,6 +52,10 @@ struct FeatureMatchingOptions {
 
   void Check() const;  // throws InputError naming the option
 };
+
+// The mode `options.mode` means for `database`: kAuto resolved, the others as they are.
+MatchingMode ResolveMatchingMode(const FeatureMatchingOptions& options,
+                                 const FeatureDatabase& database);
 
 // Putative matches of two descriptor sets (Hamming distance for 32-byte binary descriptors, L2
 // otherwise), after the ratio test and, if asked, the cross check. With `ratios`, also each

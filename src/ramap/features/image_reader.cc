@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
@@ -11,6 +10,7 @@
 
 #include "ramap/geometry/camera_projection.h"
 #include "ramap/io/exif.h"
+#include "ramap/io/image_list.h"
 #include "ramap/util/error.h"
 #include "ramap/util/parallel.h"
 #include "ramap/util/timer.h"
@@ -83,19 +83,8 @@ void ImageReaderOptions::Check() const {
 
 std::vector<std::string> ListImages(const std::string& image_path,
                                     const std::string& image_list_path) {
+  if (!image_list_path.empty()) return ReadImageList(image_list_path);
   std::vector<std::string> names;
-  if (!image_list_path.empty()) {
-    std::ifstream in(image_list_path);
-    if (!in) throw InputError(image_list_path, "cannot open the image list");
-    std::string line;
-    while (std::getline(in, line)) {
-      const size_t begin = line.find_first_not_of(" \t\r");
-      if (begin == std::string::npos || line[begin] == '#') continue;
-      names.push_back(line.substr(begin, line.find_last_not_of(" \t\r") - begin + 1));
-    }
-    if (names.empty()) throw InputError(image_list_path, "the image list names no image");
-    return names;
-  }
   std::error_code error;
   if (!fs::is_directory(image_path, error)) {
     throw InputError(image_path, "not a folder of images");

@@ -15,25 +15,19 @@
 #include <opengv/sac_problems/relative_pose/CentralRelativePoseSacProblem.hpp>
 #include <sstream>
 
+#include "ramap/geometry/rotation.h"
 #include "ramap/util/error.h"
 
 namespace ramap {
 namespace {
 
 constexpr int kNumSamples = 6;
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDegToRad = kPi / 180.0;
 
 RelativePoseEstimate Reject(const std::string& reason) {
   RelativePoseEstimate estimate;
   estimate.success = false;
   estimate.reason = reason;
   return estimate;
-}
-
-double AngleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  // atan2 form: accurate for tiny angles, unlike acos of the dot product.
-  return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
 double Median(std::vector<double> values) {
@@ -427,7 +421,7 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
       estimate.num_inliers = static_cast<int>(inliers.size());
       std::vector<double> inlier_parallax;
       for (int k : inliers) inlier_parallax.push_back(AngleBetween(R * f1[k], f2[k]));
-      estimate.median_parallax_deg = Median(inlier_parallax) / kDegToRad;
+      estimate.median_parallax_deg = Median(inlier_parallax) * kRadToDeg;
       estimate.median_residual = Median(inlier_parallax);
       estimate.cheirality_ratio = 1.0;
       estimate.flags = kRelativePosePureRotation;
@@ -529,7 +523,7 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
   // the epipolar constraint resolved by cheirality.
   t = TranslationFromRotation(f1, f2, inliers, R);
   const Eigen::Matrix3d R_refined = R;
-  const Eigen::Matrix3d R_twisted = Eigen::AngleAxisd(kPi, t).toRotationMatrix() * R;
+  const Eigen::Matrix3d R_twisted = Eigen::AngleAxisd(M_PI, t).toRotationMatrix() * R;
   int best_in_front = -1;
   Eigen::Matrix3d R_final = R;
   Eigen::Vector3d t_final = t;
@@ -556,7 +550,7 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
     parallax.push_back(AngleBetween(R_final * f1[k], f2[k]));
   }
   estimate.median_residual = Median(residuals);
-  estimate.median_parallax_deg = Median(parallax) / kDegToRad;
+  estimate.median_parallax_deg = Median(parallax) * kRadToDeg;
   estimate.cheirality_ratio = static_cast<double>(best_in_front) / inliers.size();
   if (Median(parallax) < parallax_threshold) {
     estimate.flags |= kRelativePosePureRotation;

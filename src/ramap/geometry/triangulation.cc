@@ -1,4 +1,6 @@
+#include "ramap/geometry/rotation.h"
 #include "ramap/geometry/triangulation.h"
+#include "ramap/util/option_check.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -34,12 +36,12 @@ double AngularError(const RayObservation& o, const Eigen::Vector3d& X) {
 }  // namespace
 
 void TriangulationOptions::Check() const {
-  if (!(max_angular_error_rad > 0))
-    throw std::invalid_argument("max_angular_error_rad must be > 0");
-  if (!(min_triangulation_angle_deg >= 0)) {
-    throw std::invalid_argument("min_triangulation_angle_deg must be >= 0");
-  }
-  if (min_num_observations < 2) throw std::invalid_argument("min_num_observations must be >= 2");
+  CheckOption(max_angular_error_rad > 0, "TriangulationOptions.max_angular_error_rad", "> 0",
+              max_angular_error_rad);
+  CheckOption(min_triangulation_angle_deg >= 0, "--Triangulation.min_triangulation_angle_deg",
+              ">= 0", min_triangulation_angle_deg);
+  CheckOption(min_num_observations >= 2, "TriangulationOptions.min_num_observations", ">= 2",
+              min_num_observations);
 }
 
 std::optional<TriangulatedPoint> TriangulatePoint(const std::vector<RayObservation>& observations,
@@ -85,7 +87,7 @@ std::optional<TriangulatedPoint> TriangulatePoint(const std::vector<RayObservati
         max_angle = std::max(max_angle, std::acos(std::clamp(ray_a.dot(ray_b), -1.0, 1.0)));
       }
     }
-    point.max_triangulation_angle_deg = max_angle * 180.0 / M_PI;
+    point.max_triangulation_angle_deg = max_angle * kRadToDeg;
     if (point.max_triangulation_angle_deg < options.min_triangulation_angle_deg)
       return std::nullopt;
     return point;

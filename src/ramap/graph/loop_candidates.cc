@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "ramap/geometry/rotation.h"
 #include "ramap/scene/features.h"
 #include "ramap/util/error.h"
 #include "ramap/util/statistics.h"
@@ -50,7 +51,7 @@ std::vector<LoopCandidate> FindLoopCandidates(const Reconstruction& reconstructi
   const double baseline = Median(steps);
   if (!(baseline > 0)) return candidates;  // not moving: nothing is a revisit
   const double max_distance = options.max_distance_baselines * baseline;
-  const double min_cos = std::cos(options.max_view_angle_deg * M_PI / 180.0);
+  const double min_cos = std::cos(options.max_view_angle_deg * kDegToRad);
   // Quadratic in the registered images, cheap next to matching even one pair for a few thousand.
   for (size_t a = 0; a < views.size(); ++a) {
     for (size_t b = a + 1; b < views.size(); ++b) {
@@ -62,7 +63,7 @@ std::vector<LoopCandidate> FindLoopCandidates(const Reconstruction& reconstructi
       const uint32_t id2 = std::max(views[a].id, views[b].id);
       if (matched_pair_ids.count(ImagePairToPairId(id1, id2))) continue;
       candidates.push_back({id1, id2, distance / baseline,
-                            std::acos(std::clamp(cos_angle, -1.0, 1.0)) * 180.0 / M_PI});
+                            std::acos(std::clamp(cos_angle, -1.0, 1.0)) * kRadToDeg});
     }
   }
   std::sort(candidates.begin(), candidates.end(),

@@ -1,3 +1,4 @@
+#include "ramap/geometry/rotation.h"
 #include "ramap/graph/synthetic_rotation_graph.h"
 
 #include <Eigen/SVD>
@@ -10,7 +11,6 @@
 namespace ramap {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
 
 Eigen::Quaterniond RandomSmallRotation(std::mt19937& rng, double sigma_rad) {
   std::normal_distribution<double> normal(0.0, sigma_rad);
@@ -114,7 +114,7 @@ std::vector<double> AlignedRotationErrorsDeg(
       if (!used(k)) continue;
       const Eigen::Quaterniond d = estimated_rotations[k].conjugate() * true_rotations[k] * G;
       const double angle = 2.0 * std::atan2(d.vec().norm(), std::abs(d.w()));
-      errors.push_back(angle * 180.0 / M_PI);
+      errors.push_back(angle * kRadToDeg);
       weights[k] = 1.0 / std::max(angle, 1e-9);  // L1-like reweighting against outlying nodes
     }
   }

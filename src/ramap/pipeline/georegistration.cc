@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "ramap/geometry/rotation.h"
 #include "ramap/util/error.h"
 #include "ramap/util/statistics.h"
 
@@ -55,7 +56,7 @@ PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& c
   const bool coincident = CheckPointSpread(target, AlignmentOptions().min_spread_ratio) ==
                           AlignmentStatus::kCoincidentPoints;
   const double uncertainty_deg =
-      sigma / (spread * std::sqrt(static_cast<double>(target.size()))) * 180.0 / M_PI;
+      sigma / (spread * std::sqrt(static_cast<double>(target.size()))) * kRadToDeg;
   if (uncertainty_deg > options.max_fit_uncertainty_deg && !coincident) {
     std::ostringstream problem;
     problem << std::fixed << std::setprecision(2) << "the priors spread over " << spread

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "ramap/averaging/translation_averaging.h"
-#include "ramap/eval/alignment.h"
+#include "ramap/geometry/alignment.h"
 #include "ramap/scene/position_prior.h"
 #include "ramap/scene/reconstruction.h"
 

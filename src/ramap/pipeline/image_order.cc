@@ -45,6 +45,11 @@ std::vector<size_t> CaptureOrder(const std::vector<std::string>& names) {
   return order;
 }
 
+bool IsSequentialInput(InputOrder order, const std::vector<std::string>& names) {
+  return order == InputOrder::kSequential ||
+         (order == InputOrder::kAuto && LooksSequential(names));
+}
+
 bool LooksSequential(const std::vector<std::string>& names) {
   std::set<std::string> prefixes;
   for (const std::string& name : names) {

@@ -12,42 +12,17 @@
 #include "ramap/pipeline/image_order.h"
 #include "ramap/pipeline/relative_poses.h"
 #include "ramap/pipeline/rotation_stage.h"
+#include "ramap/pipeline/stage_log.h"
 #include "ramap/util/error.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
 namespace {
 
-// Accumulates stage times (a stage may run once per component) and prints one line per stage.
-class StageLog {
- public:
-  StageLog(MapperSummary* summary, std::ostream* progress)
-      : summary_(summary), progress_(progress) {}
-
-  void Record(const std::string& stage, double seconds, const std::string& message) {
-    auto it = std::find_if(summary_->timings.begin(), summary_->timings.end(),
-                           [&](const MapperStageTiming& t) { return t.stage == stage; });
-    if (it == summary_->timings.end()) {
-      summary_->timings.push_back({stage, seconds});
-    } else {
-      it->seconds += seconds;
-    }
-    if (progress_ != nullptr) {
-      *progress_ << "[ramap] " << std::left << std::setw(22) << stage << std::right << std::fixed
-                 << std::setprecision(3) << std::setw(8) << seconds << " s  " << message << "\n"
-                 << std::flush;
-    }
-  }
-
- private:
-  MapperSummary* summary_;
-  std::ostream* progress_;
-};
-
-bool DatabaseLooksSequential(const FeatureDatabase& database) {
+std::vector<std::string> ImageNames(const FeatureDatabase& database) {
   std::vector<std::string> names;
   for (const auto& [id, image] : database.images) names.push_back(image.name);
-  return LooksSequential(names);
+  return names;
 }
 
 std::string PairName(const FeatureDatabase& database, uint32_t id1, uint32_t id2) {
@@ -124,7 +99,7 @@ void RefineComponent(const MapperContext& context, bool georegistered,
                    use_priors ? georegistration->inliers : std::map<uint32_t, PositionPrior>());
   georegistration->summary.used_in_bundle_adjustment = use_priors;
   const BundleAdjustmentSummary& ba = component->bundle_adjustment;
-  context.log.Record("bundle adjustment", ba.seconds,
+  context.log.Record(stage::kBundleAdjustment, ba.seconds,
                      std::to_string(ba.num_points) + " points, RMSE " +
                          std::to_string(ba.initial_rmse_px) + " -> " +
                          std::to_string(ba.final_rmse_px) + " px, " +
@@ -192,7 +167,7 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
   component.certificate_bound_deg = rotations.certificate.bound_deg;
   component.max_rotation_residual_deg = rotations.certificate.max_robust_residual_deg;
   context.log.Record(
-      "rotation averaging", timer.ElapsedSeconds(),
+      stage::kRotationAveraging, timer.ElapsedSeconds(),
       std::to_string(world_rotations.size()) + " rotations, " +
           std::to_string(rotations.pruned_edges.size()) + " edges pruned, " +
           (rotations.certificate.certified ? "certified globally optimal" : "not certified"));
@@ -238,7 +213,7 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
                                     options.translation_averaging);
   } catch (const std::runtime_error& error) {
     for (const auto& [id, rotation] : world_rotations) context.image_reasons[id] = error.what();
-    context.log.Record("translation averaging", timer.ElapsedSeconds(), error.what());
+    context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(), error.what());
     return false;
   }
   for (const uint32_t id : positions.unconstrained_images) {
@@ -248,7 +223,7 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
 
   component.num_translation_constraints = positions.num_constraints;
   component.num_solver_iterations = positions.num_solver_iterations;
-  context.log.Record("translation averaging", timer.ElapsedSeconds(),
+  context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(),
                      std::to_string(positions.centers.size()) + " positions from " +
                          std::to_string(directions.size()) + " pair directions and " +
                          std::to_string(positions.num_tracks_used) + " tracks, " +
@@ -262,7 +237,7 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
         GeoregisterPositions(context, world_rotations, directions, translation_tracks, &positions);
     const GeoregistrationSummary& geo = georegistration.summary;
     context.log.Record(
-        "georegistration", georegistration_timer.ElapsedSeconds(),
+        stage::kGeoregistration, georegistration_timer.ElapsedSeconds(),
         geo.georegistered
             ? std::to_string(geo.num_inliers) + " of " + std::to_string(geo.num_priors) +
                   " priors within " + Metres(geo.threshold_m) + ", RMSE " + Metres(geo.rmse_m) +
@@ -290,7 +265,7 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
     component.num_points = structure.num_points;
     component.num_observations = structure.num_observations;
     component.mean_reprojection_error_px = structure.mean_reprojection_error_px;
-    context.log.Record("triangulation", structure_timer.ElapsedSeconds(),
+    context.log.Record(stage::kTriangulation, structure_timer.ElapsedSeconds(),
                        what + std::to_string(structure.num_points) + " points of " +
                            std::to_string(tracks.size()) + " tracks, mean reprojection error " +
                            std::to_string(structure.mean_reprojection_error_px) + " px");
@@ -440,7 +415,7 @@ void LogViewGraphCalibration(const ViewGraphCalibrationSummary& calibration, Sta
                   << (camera.estimated ? camera.estimated_focal_px : camera.prior_focal_px)
                   << " px";
   }
-  log->Record("view-graph calibration", calibration.seconds,
+  log->Record(stage::kViewGraphCalibration, calibration.seconds,
               std::to_string(num_estimated) + " of " + std::to_string(calibration.cameras.size()) +
                   " uncalibrated cameras estimated (" + focal_lengths.str() + ")");
 }
@@ -495,7 +470,7 @@ MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions&
 
   Timer timer;
   const ImageBearings bearings = ComputeBearings(database, cameras, source);
-  log.Record("bearings", timer.ElapsedSeconds(),
+  log.Record(stage::kBearings, timer.ElapsedSeconds(),
              std::to_string(bearings.bearings.size()) + " images");
 
   // Stage 1: relative rotations of every verified pair.
@@ -524,7 +499,7 @@ MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions&
   }
   graph.node_ids.assign(nodes.begin(), nodes.end());
   summary.num_relative_poses = static_cast<int>(graph.edges.size());
-  log.Record("relative poses", timer.ElapsedSeconds(),
+  log.Record(stage::kRelativePoses, timer.ElapsedSeconds(),
              std::to_string(graph.edges.size()) + " of " + std::to_string(view_edges.size()) +
                  " verified pairs (" + CorrespondenceSamplerName(options.relative_pose.sampler) +
                  " sampler)");
@@ -537,8 +512,7 @@ MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions&
   }
 
   // Stage 2: the pose graph, one reconstruction per connected component.
-  summary.sequential = options.order == InputOrder::kSequential ||
-                       (options.order == InputOrder::kAuto && DatabaseLooksSequential(database));
+  summary.sequential = IsSequentialInput(options.order, ImageNames(database));
   const std::vector<uint32_t> order = ImageIdsInCaptureOrder(database);
   const std::vector<int> labels = ConnectedComponents(graph);
   const int num_components =

@@ -25,6 +25,7 @@
 #include "ramap/geometry/relative_pose.h"
 #include "ramap/graph/keyframes.h"
 #include "ramap/pipeline/georegistration.h"
+#include "ramap/pipeline/image_order.h"
 #include "ramap/pipeline/structure.h"
 #include "ramap/pipeline/view_graph_calibration.h"
 #include "ramap/refine/bundle_adjustment.h"
@@ -32,12 +33,6 @@
 #include "ramap/scene/reconstruction.h"
 
 namespace ramap {
-
-enum class InputOrder {
-  kAuto,        // sequential when image names end in increasing frame numbers
-  kSequential,  // frames in name order, keyframe windows
-  kUnordered,   // one global view graph
-};
 
 struct MapperOptions {
   // Focal lengths of uncalibrated cameras (prior_focal_length 0) from the view graph, first.

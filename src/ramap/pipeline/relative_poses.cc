@@ -1,5 +1,6 @@
 #include "ramap/pipeline/relative_poses.h"
 
+#include "ramap/pipeline/stage_log.h"
 #include "ramap/util/parallel.h"
 
 namespace ramap {
@@ -61,7 +62,7 @@ std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database
       [&](size_t k) {
         edges[k].estimate = EstimateRelativePose(edges[k].correspondences, options);
       },
-      progress, "relative poses", "pairs");
+      progress, stage::kRelativePoses, "pairs");
   return edges;
 }
 

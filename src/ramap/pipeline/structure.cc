@@ -3,14 +3,15 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "ramap/util/option_check.h"
+
 namespace ramap {
 
 void StructureOptions::Check() const {
-  if (!(max_reprojection_error_px > 0))
-    throw std::invalid_argument("max_reprojection_error_px must be > 0");
-  if (!(min_triangulation_angle_deg >= 0)) {
-    throw std::invalid_argument("min_triangulation_angle_deg must be >= 0");
-  }
+  CheckOption(max_reprojection_error_px > 0, "--Triangulation.max_reprojection_error_px", "> 0",
+              max_reprojection_error_px);
+  CheckOption(min_triangulation_angle_deg >= 0, "--Triangulation.min_triangulation_angle_deg",
+              ">= 0", min_triangulation_angle_deg);
 }
 
 Reconstruction BuildReconstruction(const FeatureDatabase& database,

@@ -45,10 +45,12 @@ struct ViewGraphCalibrationOptions {
   // any focal length: a wrong camera model, or matches of a moving scene).
   double max_median_cost = 0.1;
   // An estimate is trusted only when the cost is well determined: at focal lengths 20% below and
-  // 25% above it, the camera's robust cost must be at least (1 + min_cost_rise) times its minimum.
-  // Measured: Herz-Jesus-P8 and fountain-P11 rise 2.4-4x; templeRing (a turntable: every optical
-  // axis through one point at one distance, where F leaves the focal length undetermined) 1.08x.
-  double min_cost_rise = 0.5;
+  // 25% above it, the pairs' robust cost must be at least (1 + min_cost_rise) times its minimum.
+  // Measured rises: COLMAP's F on Herz-Jesus-P8 and fountain-P11 2.4-4 (estimates -1.0% and
+  // -4.5%), on kitti07_first160 0.17 (-2.7%); ramap's own F on Herz-Jesus-P8 0.18 (-1.9%);
+  // templeRing (a turntable: every optical axis through one point at one distance, where F leaves
+  // the focal length undetermined) 0.04 (-80%), a noise-free synthetic turntable 0.
+  double min_cost_rise = 0.1;
 
   void Check() const;
 };

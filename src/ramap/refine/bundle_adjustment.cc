@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "ramap/geometry/camera_distortion.h"
+#include "ramap/util/option_check.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
@@ -327,18 +328,22 @@ int FilterObservations(const std::vector<Observation>& observations, double max_
 }  // namespace
 
 void BundleAdjustmentOptions::Check() const {
-  if (max_num_iterations < 0) throw std::invalid_argument("max_num_iterations must be >= 0");
-  if (!(function_tolerance >= 0)) throw std::invalid_argument("function_tolerance must be >= 0");
-  if (!(loss_scale_px > 0)) throw std::invalid_argument("loss_scale_px must be > 0");
-  if (!(min_bearing_z > 0 && min_bearing_z < 1))
-    throw std::invalid_argument("min_bearing_z in (0,1)");
-  if (num_threads < 1) throw std::invalid_argument("num_threads must be >= 1");
-  if (!(max_reprojection_error_px > 0))
-    throw std::invalid_argument("max_reprojection_error_px > 0");
-  if (max_num_points < 0) throw std::invalid_argument("max_num_points must be >= 0");
-  if (min_observations_per_image < 0) {
-    throw std::invalid_argument("min_observations_per_image must be >= 0");
-  }
+  const std::string s = "--BundleAdjustment.";
+  CheckOption(max_num_iterations >= 0, s + "max_num_iterations", ">= 0", max_num_iterations);
+  CheckOption(function_tolerance >= 0, s + "function_tolerance", ">= 0", function_tolerance);
+  CheckOption(loss_scale_px > 0, s + "loss_scale_px", "> 0", loss_scale_px);
+  CheckOption(min_bearing_z > 0 && min_bearing_z < 1, s + "min_bearing_z", "in (0, 1)",
+              min_bearing_z);
+  CheckOption(num_threads >= 1, s + "num_threads", ">= 1", num_threads);
+  CheckOption(max_reprojection_error_px > 0, s + "max_reprojection_error_px", "> 0",
+              max_reprojection_error_px);
+  CheckOption(max_num_points >= 0, s + "max_num_points", ">= 0", max_num_points);
+  CheckOption(min_observations_per_image >= 0, s + "min_observations_per_image", ">= 0",
+              min_observations_per_image);
+  CheckOption(intrinsics_function_tolerance >= 0, s + "intrinsics_function_tolerance", ">= 0",
+              intrinsics_function_tolerance);
+  CheckOption(intrinsics_max_num_iterations >= 0, s + "intrinsics_max_num_iterations", ">= 0",
+              intrinsics_max_num_iterations);
 }
 
 bool RefinesIntrinsics(const BundleAdjustmentOptions& options, CameraModel model) {

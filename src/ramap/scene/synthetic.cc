@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "ramap/geometry/camera_projection.h"
+#include "ramap/geometry/rotation.h"
 #include "ramap/util/error.h"
 
 namespace ramap {
@@ -17,7 +18,6 @@ namespace {
 
 using Rng = std::mt19937_64;
 
-constexpr double kDegToRad = M_PI / 180.0;
 
 double Uniform(Rng& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);

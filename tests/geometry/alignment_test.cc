@@ -1,4 +1,4 @@
-#include "ramap/eval/alignment.h"
+#include "ramap/geometry/alignment.h"
 
 #include <gtest/gtest.h>
 

@@ -35,6 +35,49 @@ void PrintLoopClosure(const LoopClosureSummary& closure, std::ostream& out) {
   out << ", " << std::fixed << std::setprecision(2) << closure.seconds << " s\n";
 }
 
+void AddLoopClosureOptions(CLI::App& app, bool* close_loops, LoopClosureOptions* options) {
+  LoopCandidateOptions& loops = options->candidates;
+  app.add_option("--LoopClosure.enable", *close_loops,
+                 "1: after sequential matching, match the pairs a first solve puts close, solve "
+                 "again")
+      ->capture_default_str();
+  app.add_option("--LoopClosure.max_distance_baselines", loops.max_distance_baselines,
+                 "candidate centres within this many median frame-to-frame baselines")
+      ->capture_default_str()
+      ->check(Above(0));
+  app.add_option("--LoopClosure.max_view_angle_deg", loops.max_view_angle_deg)
+      ->capture_default_str()
+      ->check(NumberCheck(0, true, 180, false));
+  app.add_option("--LoopClosure.min_frame_gap", loops.min_frame_gap,
+                 "candidates are at least this many frames apart")
+      ->capture_default_str()
+      ->check(AtLeast(2));
+  app.add_option("--LoopClosure.max_candidates_per_image", loops.max_candidates_per_image)
+      ->capture_default_str()
+      ->check(AtLeast(1));
+  app.add_option("--LoopClosure.max_bridge_pairs", options->max_bridge_pairs,
+                 "when the first solve splits, pairs between two models screened to join them "
+                 "(0: off)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
+}
+
+nlohmann::json LoopClosureJson(bool enable, const LoopClosureOptions& options,
+                               const LoopClosureSummary& closure) {
+  const LoopCandidateOptions& loops = options.candidates;
+  return {{"enable", enable},
+          {"max_distance_baselines", loops.max_distance_baselines},
+          {"max_view_angle_deg", loops.max_view_angle_deg},
+          {"min_frame_gap", loops.min_frame_gap},
+          {"num_candidates", closure.num_candidates},
+          {"num_verified", closure.num_verified},
+          {"max_bridge_pairs", options.max_bridge_pairs},
+          {"num_bridge_pairs", closure.num_bridge_pairs},
+          {"num_bridge_pairs_matched", closure.num_bridge_pairs_matched},
+          {"num_bridge_pairs_verified", closure.num_bridge_pairs_verified},
+          {"loops", closure.loops}};
+}
+
 }  // namespace
 
 int RunReconstruct(int argc, char** argv) {
@@ -54,30 +97,7 @@ int RunReconstruct(int argc, char** argv) {
   AddPosePriorOptions(app, &prior_text, &mapper.georegistration, /*with_uses=*/true);
   bool close_loops = true;
   LoopClosureOptions closure_options;
-  LoopCandidateOptions& loops = closure_options.candidates;
-  app.add_option("--LoopClosure.enable", close_loops,
-                 "1: after sequential matching, match the pairs a first solve puts close, solve "
-                 "again")
-      ->capture_default_str();
-  app.add_option("--LoopClosure.max_distance_baselines", loops.max_distance_baselines,
-                 "candidate centres within this many median frame-to-frame baselines")
-      ->capture_default_str()
-      ->check(Above(0));
-  app.add_option("--LoopClosure.max_view_angle_deg", loops.max_view_angle_deg)
-      ->capture_default_str()
-      ->check(NumberCheck(0, true, 180, false));
-  app.add_option("--LoopClosure.min_frame_gap", loops.min_frame_gap,
-                 "candidates are at least this many frames apart")
-      ->capture_default_str()
-      ->check(AtLeast(2));
-  app.add_option("--LoopClosure.max_candidates_per_image", loops.max_candidates_per_image)
-      ->capture_default_str()
-      ->check(AtLeast(1));
-  app.add_option("--LoopClosure.max_bridge_pairs", closure_options.max_bridge_pairs,
-                 "when the first solve splits, pairs between two models screened to join them "
-                 "(0: off)")
-      ->capture_default_str()
-      ->check(AtLeast(0));
+  AddLoopClosureOptions(app, &close_loops, &closure_options);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   FinishFeatureOptions(&features);
   FinishMapperOptions(text, &mapper);
@@ -117,18 +137,7 @@ int RunReconstruct(int argc, char** argv) {
       {"matching_mode", features.mode},
       {"options", MapperOptionsToJson(mapper)},
       {"pose_priors", PosePriorOptionsToJson(prior_text, mapper.georegistration)},
-      {"loop_closure",
-       {{"enable", close_loops},
-        {"max_distance_baselines", loops.max_distance_baselines},
-        {"max_view_angle_deg", loops.max_view_angle_deg},
-        {"min_frame_gap", loops.min_frame_gap},
-        {"num_candidates", closure.num_candidates},
-        {"num_verified", closure.num_verified},
-        {"max_bridge_pairs", closure_options.max_bridge_pairs},
-        {"num_bridge_pairs", closure.num_bridge_pairs},
-        {"num_bridge_pairs_matched", closure.num_bridge_pairs_matched},
-        {"num_bridge_pairs_verified", closure.num_bridge_pairs_verified},
-        {"loops", closure.loops}}}};
+      {"loop_closure", LoopClosureJson(close_loops, closure_options, closure)}};
   WriteMapperOutput(result, output_path + "/sparse", ModelFormat::kBinary, run);
   created_database.Keep();
   created_folder.Keep();

@@ -68,10 +68,10 @@ void AddRotationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptionTe
   app.add_option("--RotationAveraging.certificate", ra.compute_certificate)->capture_default_str();
 }
 
-void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
-  AddRelativePoseOptions(app, o, text);
-  AddRotationAveragingOptions(app, o, text);
-  // Translation averaging (stage 4).
+namespace {
+
+// Translation averaging (stage 4).
+void AddTranslationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
   TranslationAveragingOptions& ta = o->translation_averaging;
   app.add_option("--TranslationAveraging.min_triangulation_angle_deg",
                  ta.min_triangulation_angle_deg)
@@ -96,7 +96,10 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
       ->check(Above(0));
   app.add_option("--TranslationAveraging.admm_adaptive_rho", ta.admm_adaptive_rho)
       ->capture_default_str();
-  // Structure (stage 5) and refinement (stage 6).
+}
+
+// Structure (stage 5).
+void AddTriangulationOptions(CLI::App& app, MapperOptions* o) {
   app.add_option("--Triangulation.max_reprojection_error_px",
                  o->structure.max_reprojection_error_px)
       ->capture_default_str()
@@ -105,31 +108,39 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
                  o->structure.min_triangulation_angle_deg)
       ->capture_default_str()
       ->check(AtLeast(0, 90));
+}
+
+// Refinement (stage 6): bundle adjustment, with the intrinsics.
+void AddBundleAdjustmentOptions(CLI::App& app, MapperOptions* o) {
+  BundleAdjustmentOptions& ba = o->bundle_adjustment;
   app.add_option("--Mapper.refine", o->refine,
                  "1: bundle adjustment after averaging; 0: averaging alone (faster)")
       ->capture_default_str();
-  app.add_option("--BundleAdjustment.max_num_iterations", o->bundle_adjustment.max_num_iterations)
+  app.add_option("--BundleAdjustment.max_num_iterations", ba.max_num_iterations)
       ->capture_default_str()
       ->check(AtLeast(0));
-  app.add_option("--BundleAdjustment.loss_scale_px", o->bundle_adjustment.loss_scale_px)
+  app.add_option("--BundleAdjustment.loss_scale_px", ba.loss_scale_px)
       ->capture_default_str()
       ->check(Above(0));
-  app.add_option("--BundleAdjustment.function_tolerance", o->bundle_adjustment.function_tolerance)
+  app.add_option("--BundleAdjustment.function_tolerance", ba.function_tolerance)
       ->capture_default_str()
       ->check(AtLeast(0));
-  app.add_option("--BundleAdjustment.max_num_points", o->bundle_adjustment.max_num_points,
+  app.add_option("--BundleAdjustment.max_num_points", ba.max_num_points,
                  "points adjusted at most (0: all); every track is triangulated again after")
       ->capture_default_str()
       ->check(AtLeast(0));
-  app.add_option("--BundleAdjustment.refine_focal_length", o->bundle_adjustment.refine_focal_length,
+  app.add_option("--BundleAdjustment.refine_focal_length", ba.refine_focal_length,
                  "1: refine each camera's focal length")
       ->capture_default_str();
-  app.add_option("--BundleAdjustment.refine_principal_point",
-                 o->bundle_adjustment.refine_principal_point)
+  app.add_option("--BundleAdjustment.refine_principal_point", ba.refine_principal_point)
       ->capture_default_str();
-  app.add_option("--BundleAdjustment.refine_extra_params", o->bundle_adjustment.refine_extra_params,
+  app.add_option("--BundleAdjustment.refine_extra_params", ba.refine_extra_params,
                  "1: refine distortion coefficients")
       ->capture_default_str();
+}
+
+// Self-calibration: the view graph before averaging, and the passes through BA's intrinsics.
+void AddCalibrationOptions(CLI::App& app, MapperOptions* o) {
   app.add_option("--Mapper.max_focal_change_in_bundle_adjustment",
                  o->max_focal_change_in_bundle_adjustment,
                  "average again through BA's intrinsics when it moved a focal length by more "
@@ -152,6 +163,17 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
   app.add_option("--ViewGraphCalibration.max_median_cost", calibration.max_median_cost)
       ->capture_default_str()
       ->check(Above(0, 1));
+}
+
+}  // namespace
+
+void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
+  AddRelativePoseOptions(app, o, text);
+  AddRotationAveragingOptions(app, o, text);
+  AddTranslationAveragingOptions(app, o, text);
+  AddTriangulationOptions(app, o);
+  AddBundleAdjustmentOptions(app, o);
+  AddCalibrationOptions(app, o);
   app.add_option("--Mapper.min_component_size", o->min_component_size)
       ->capture_default_str()
       ->check(AtLeast(2));

@@ -205,6 +205,23 @@ Eigen::VectorXd SoftThreshold(const Eigen::VectorXd& v, double kappa) {
   return (v.array() - kappa).max(0.0) - (-v.array() - kappa).max(0.0);
 }
 
+using SparseCholesky = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>;
+
+// Factorises matrix + shift I (its pattern analysed already), the shift growing from 1e-10 of the
+// largest diagonal entry until the factorisation succeeds: a camera constrained only along a
+// line, or IRLS weights spanning many orders of magnitude, leave the matrix numerically
+// semidefinite (measured: kitti07_first160 from ORB with a focal length guessed 2x too long
+// failed here at an absolute shift of 1e-10 and lost the whole model).
+void FactorizeWithRidge(const Eigen::SparseMatrix<double>& matrix, SparseCholesky* solver) {
+  const double scale = std::max(1.0, matrix.diagonal().cwiseAbs().maxCoeff());
+  for (const double relative_shift : {1e-10, 1e-8, 1e-6, 1e-4}) {
+    solver->setShift(relative_shift * scale);
+    solver->factorize(matrix);
+    if (solver->info() == Eigen::Success) return;
+  }
+  throw std::runtime_error("translation averaging: factorisation failed");
+}
+
 Eigen::VectorXd ProjectScales(Eigen::VectorXd v, const StackedSystem& system) {
   v.segment(system.num_position_cols, system.num_pair_scales) =
       v.segment(system.num_position_cols, system.num_pair_scales).cwiseMax(system.scale_bound);
@@ -224,10 +241,10 @@ Eigen::VectorXd SolveByAdmm(const StackedSystem& system, Eigen::VectorXd x,
   const Eigen::SparseMatrix<double> normal = B.transpose() * B;
   // ADMM on min ||z||_1 + [scales >= 1](x) s.t. z = B y, x = y (scaled form; Boyd et al. 2011).
   // The y-update's matrix B^T B + I does not depend on rho, so it is factored once.
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> admm_step(normal + ridge);
-  if (admm_step.info() != Eigen::Success) {
-    throw std::runtime_error("translation averaging: factorisation failed");
-  }
+  const Eigen::SparseMatrix<double> admm_matrix = normal + ridge;
+  SparseCholesky admm_step;
+  admm_step.analyzePattern(admm_matrix);
+  FactorizeWithRidge(admm_matrix, &admm_step);
   Eigen::VectorXd y = x;
   Eigen::VectorXd z = B * y;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(num_rows);
@@ -317,7 +334,7 @@ Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
   const BlockNormalEquations equations(B, scale_column_ids);
   std::vector<double> held_values(num_scales, system.scale_bound);
   for (int k = system.num_pair_scales; k < num_scales; ++k) held_values[k] = 1.0;
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver;
+  SparseCholesky solver;
   solver.analyzePattern(equations.pattern());
   Eigen::VectorXd block_weights(num_blocks);
   Eigen::SparseMatrix<double> normal;
@@ -331,12 +348,7 @@ Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
       block_weights(b) = 1.0 / std::max(residuals.segment<3>(3 * b).norm(), floor);
     }
     equations.Assemble(block_weights, held, held_values, &normal, &rhs);
-    // A tiny ridge keeps the factorisation defined where a camera is only weakly constrained.
-    solver.setShift(1e-10);
-    solver.factorize(normal);
-    if (solver.info() != Eigen::Success) {
-      throw std::runtime_error("translation averaging: factorisation failed");
-    }
+    FactorizeWithRidge(normal, &solver);
     Eigen::VectorXd next = solver.solve(rhs);
     // Active set: a free scale below the bound is held; a held scale is released when its pair
     // row alone (the only row it appears in) would put it above the bound.
@@ -560,14 +572,9 @@ TranslationAveragingResult AverageTranslations(
     const Eigen::SparseMatrix<double> B_c = B.leftCols(num_position_cols);
     const Eigen::SparseMatrix<double> B_s = B.rightCols(system.num_extra_cols());
     Eigen::SparseMatrix<double> normal_c = B_c.transpose() * B_c;
-    Eigen::SparseMatrix<double> ridge_c(num_position_cols, num_position_cols);
-    ridge_c.setIdentity();
-    // A tiny ridge keeps the factorisation defined where a camera is only weakly constrained.
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> least_squares(normal_c +
-                                                                           1e-10 * ridge_c);
-    if (least_squares.info() != Eigen::Success) {
-      throw std::runtime_error("translation averaging: factorisation failed");
-    }
+    SparseCholesky least_squares;
+    least_squares.analyzePattern(normal_c);
+    FactorizeWithRidge(normal_c, &least_squares);
     x.head(num_position_cols) = least_squares.solve(
         -(B_c.transpose() * (B_s * Eigen::VectorXd::Ones(system.num_extra_cols()))));
     for (size_t k = 0; k < pairs.size(); ++k) {

@@ -443,6 +443,79 @@ MapperOptions OptionsForThisPass(const MapperOptions& options,
   return pass;
 }
 
+// Stage 1's graph: the pairs whose relative pose was accepted, as rotation-graph edges
+// (`graph_to_view_edge` maps each to its view edge); the rejected pairs and the images they leave
+// without an edge go to `summary` and `image_reasons`.
+RotationGraph AcceptedPoseGraph(const FeatureDatabase& database,
+                                const std::vector<ViewGraphEdge>& view_edges,
+                                std::vector<size_t>* graph_to_view_edge, MapperSummary* summary,
+                                std::map<uint32_t, std::string>* image_reasons) {
+  RotationGraph graph;
+  std::set<uint32_t> nodes;
+  for (size_t k = 0; k < view_edges.size(); ++k) {
+    const ViewGraphEdge& edge = view_edges[k];
+    if (!edge.estimate.success) {
+      summary->dropped_edges.push_back({PairName(database, edge.image_id1, edge.image_id2),
+                                        "relative pose rejected: " + edge.estimate.reason});
+      for (const uint32_t id : {edge.image_id1, edge.image_id2}) {
+        if (!nodes.count(id))
+          (*image_reasons)[id] = "every relative pose rejected (" + edge.estimate.reason + ")";
+      }
+      continue;
+    }
+    graph.edges.push_back({edge.image_id1, edge.image_id2, edge.estimate.rotation,
+                           static_cast<double>(edge.estimate.num_inliers)});
+    graph_to_view_edge->push_back(k);
+    nodes.insert({edge.image_id1, edge.image_id2});
+  }
+  graph.node_ids.assign(nodes.begin(), nodes.end());
+  return graph;
+}
+
+// The component of `graph` whose nodes carry `label`, reconstructed; none when it is smaller than
+// min_component_size (its images get the reason) or cannot be reconstructed.
+std::optional<Reconstruction> ReconstructLabelledComponent(
+    const MapperContext& context, const RotationGraph& graph,
+    const std::vector<size_t>& graph_to_view_edge, const std::vector<int>& labels, int label) {
+  const int size = static_cast<int>(std::count(labels.begin(), labels.end(), label));
+  const int min_size = context.options.min_component_size;
+  if (size < min_size) {
+    for (size_t k = 0; k < graph.node_ids.size(); ++k) {
+      if (labels[k] != label) continue;
+      context.image_reasons[graph.node_ids[k]] =
+          "in a component of " + std::to_string(size) + " images (< Mapper.min_component_size " +
+          std::to_string(min_size) + ")";
+    }
+    return std::nullopt;
+  }
+  const std::unordered_map<uint32_t, int> index = NodeIndex(graph);
+  std::vector<bool> keep(graph.edges.size());
+  for (size_t e = 0; e < graph.edges.size(); ++e)
+    keep[e] = labels[index.at(graph.edges[e].i)] == label;
+  std::vector<size_t> edge_map;
+  const RotationGraph component_graph = Subgraph(graph, keep, &edge_map);
+  std::vector<size_t> component_to_view_edge;
+  for (const size_t e : edge_map) component_to_view_edge.push_back(graph_to_view_edge[e]);
+  Reconstruction reconstruction;
+  if (!ReconstructComponent(context, component_graph, component_to_view_edge, &reconstruction)) {
+    return std::nullopt;
+  }
+  return reconstruction;
+}
+
+// Counts the registered images and lists every other one with its reason.
+void ListUnregisteredImages(const FeatureDatabase& database,
+                            const std::vector<Reconstruction>& reconstructions,
+                            std::map<uint32_t, std::string>* image_reasons,
+                            MapperSummary* summary) {
+  for (const Reconstruction& reconstruction : reconstructions) {
+    summary->num_registered_images += static_cast<int>(reconstruction.images.size());
+    for (const auto& [id, image] : reconstruction.images) image_reasons->erase(id);
+  }
+  for (const auto& [id, reason] : *image_reasons)
+    summary->dropped_images.push_back({database.images.at(id).name, reason});
+}
+
 // Every stage once. `given_cameras` replaces the database's intrinsics (and view-graph calibration
 // is skipped) when set: the second pass of RunMapper.
 MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions& options,
@@ -478,26 +551,9 @@ MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions&
   const std::vector<ViewGraphEdge> view_edges =
       EstimateRelativePoses(database, bearings, options.relative_pose, options.num_threads);
   summary.num_verified_pairs = static_cast<int>(view_edges.size());
-  RotationGraph graph;
   std::vector<size_t> graph_to_view_edge;
-  std::set<uint32_t> nodes;
-  for (size_t k = 0; k < view_edges.size(); ++k) {
-    const ViewGraphEdge& edge = view_edges[k];
-    if (!edge.estimate.success) {
-      summary.dropped_edges.push_back({PairName(database, edge.image_id1, edge.image_id2),
-                                       "relative pose rejected: " + edge.estimate.reason});
-      for (const uint32_t id : {edge.image_id1, edge.image_id2}) {
-        if (!nodes.count(id))
-          image_reasons[id] = "every relative pose rejected (" + edge.estimate.reason + ")";
-      }
-      continue;
-    }
-    graph.edges.push_back({edge.image_id1, edge.image_id2, edge.estimate.rotation,
-                           static_cast<double>(edge.estimate.num_inliers)});
-    graph_to_view_edge.push_back(k);
-    nodes.insert({edge.image_id1, edge.image_id2});
-  }
-  graph.node_ids.assign(nodes.begin(), nodes.end());
+  const RotationGraph graph =
+      AcceptedPoseGraph(database, view_edges, &graph_to_view_edge, &summary, &image_reasons);
   summary.num_relative_poses = static_cast<int>(graph.edges.size());
   log.Record(stage::kRelativePoses, timer.ElapsedSeconds(),
              std::to_string(graph.edges.size()) + " of " + std::to_string(view_edges.size()) +
@@ -521,41 +577,15 @@ MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions&
                         order,              summary.sequential, log, summary, image_reasons,
                         priors};
   for (int label = 0; label < num_components; ++label) {
-    std::vector<bool> keep(graph.edges.size());
-    const std::unordered_map<uint32_t, int> index = NodeIndex(graph);
-    int size = static_cast<int>(std::count(labels.begin(), labels.end(), label));
-    for (size_t e = 0; e < graph.edges.size(); ++e)
-      keep[e] = labels[index.at(graph.edges[e].i)] == label;
-    if (size < options.min_component_size) {
-      for (size_t k = 0; k < graph.node_ids.size(); ++k) {
-        if (labels[k] == label) {
-          image_reasons[graph.node_ids[k]] = "in a component of " + std::to_string(size) +
-                                             " images (< Mapper.min_component_size " +
-                                             std::to_string(options.min_component_size) + ")";
-        }
-      }
-      continue;
-    }
-    std::vector<size_t> edge_map;
-    const RotationGraph component_graph = Subgraph(graph, keep, &edge_map);
-    std::vector<size_t> component_to_view_edge;
-    for (const size_t e : edge_map) component_to_view_edge.push_back(graph_to_view_edge[e]);
-    Reconstruction reconstruction;
-    if (ReconstructComponent(context, component_graph, component_to_view_edge, &reconstruction)) {
-      result.reconstructions.push_back(std::move(reconstruction));
-    }
+    std::optional<Reconstruction> reconstruction =
+        ReconstructLabelledComponent(context, graph, graph_to_view_edge, labels, label);
+    if (reconstruction) result.reconstructions.push_back(std::move(*reconstruction));
   }
   SortLargestFirst(&result);
   for (const MapperComponentSummary& component : summary.components) {
     if (component.georegistration.georegistered) result.geodetic_origin = priors.origin;
   }
-
-  for (const Reconstruction& reconstruction : result.reconstructions) {
-    summary.num_registered_images += static_cast<int>(reconstruction.images.size());
-    for (const auto& [id, image] : reconstruction.images) image_reasons.erase(id);
-  }
-  for (const auto& [id, reason] : image_reasons)
-    summary.dropped_images.push_back({database.images.at(id).name, reason});
+  ListUnregisteredImages(database, result.reconstructions, &image_reasons, &summary);
   summary.cameras = SummariseIntrinsics(database, calibration, result.reconstructions);
   summary.total_seconds = total.ElapsedSeconds();
   if (result.reconstructions.empty()) {

@@ -207,12 +207,17 @@ Eigen::VectorXd SoftThreshold(const Eigen::VectorXd& v, double kappa) {
 
 using SparseCholesky = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>;
 
-// Factorises matrix + shift I (its pattern analysed already), the shift growing from 1e-10 of the
-// largest diagonal entry until the factorisation succeeds: a camera constrained only along a
-// line, or IRLS weights spanning many orders of magnitude, leave the matrix numerically
-// semidefinite (measured: kitti07_first160 from ORB with a focal length guessed 2x too long
-// failed here at an absolute shift of 1e-10 and lost the whole model).
+// Factorises matrix + shift I (its pattern analysed already) with a tiny shift of 1e-10, which
+// keeps a weakly constrained camera defined without moving the solution. When that fails (a
+// camera constrained only along a line, IRLS weights spanning many orders of magnitude: measured
+// on kitti07_first160 from ORB with a focal length guessed 2x too long, which lost its whole
+// model), the shift grows from 1e-10 of the largest diagonal entry until the factorisation
+// succeeds. Not relative from the start: exact position priors weigh ~1e8 and a relative shift
+// would pull every camera by millimetres.
 void FactorizeWithRidge(const Eigen::SparseMatrix<double>& matrix, SparseCholesky* solver) {
+  solver->setShift(1e-10);
+  solver->factorize(matrix);
+  if (solver->info() == Eigen::Success) return;
   const double scale = std::max(1.0, matrix.diagonal().cwiseAbs().maxCoeff());
   for (const double relative_shift : {1e-10, 1e-8, 1e-6, 1e-4}) {
     solver->setShift(relative_shift * scale);

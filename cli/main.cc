@@ -1,8 +1,9 @@
 // `ramap <command> [--option value ...]`: dispatch to a subcommand, report errors uniformly.
+#include <glog/logging.h>
+
 #include <CLI/CLI.hpp>
 #include <cstring>
 #include <exception>
-#include <glog/logging.h>
 #include <iostream>
 
 #include "commands.h"

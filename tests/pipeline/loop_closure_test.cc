@@ -135,8 +135,8 @@ TEST(LoopClosure, PairsBetweenModelsJoinThem) {
   }
   const MapperResult first = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
   ASSERT_EQ(first.reconstructions.size(), 2u);
-  const LoopClosureSummary closure = MatchLoopCandidates(first, LoopClosureOptions(),
-                                                         FeatureMatchingOptions(), &scene.database);
+  const LoopClosureSummary closure =
+      MatchLoopCandidates(first, LoopClosureOptions(), FeatureMatchingOptions(), &scene.database);
   // 40 x 40 images, sampled to every second of each: 400 pairs at most.
   EXPECT_GT(closure.num_bridge_pairs, 100);
   EXPECT_LE(closure.num_bridge_pairs, 400);

@@ -16,8 +16,8 @@ void PairDirectionOptions::Check() const {
               num_reweighting_rounds);
   CheckOption(residual_scale_deg > 0, s + "residual_scale_deg", "> 0", residual_scale_deg);
   CheckOption(min_num_matches >= 2, s + "min_num_matches", ">= 2", min_num_matches);
-  CheckOption(min_cheirality_ratio > 0.5 && min_cheirality_ratio <= 1.0,
-              s + "min_cheirality_ratio", "in (0.5, 1]", min_cheirality_ratio);
+  CheckOption(min_cheirality_ratio > 0.5 && min_cheirality_ratio <= 1.0, s + "min_cheirality_ratio",
+              "in (0.5, 1]", min_cheirality_ratio);
 }
 
 std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& rotation1,

@@ -18,7 +18,6 @@
 namespace ramap {
 namespace {
 
-
 Eigen::Vector3d LogQ(const Eigen::Quaterniond& q) {
   double w = q.w();
   Eigen::Vector3d v = q.vec();

@@ -19,7 +19,6 @@
 namespace ramap {
 namespace {
 
-
 uint64_t PairKey(uint32_t a, uint32_t b) {
   return (static_cast<uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
 }
@@ -418,26 +417,21 @@ void TranslationAveragingOptions::Check() const {
               admm_relative_tolerance);
 }
 
-TranslationAveragingResult AverageTranslations(
-    const std::map<uint32_t, Eigen::Quaterniond>& rotations,
-    const std::vector<PairDirection>& pair_directions, const std::vector<TranslationTrack>& tracks,
-    const TranslationAveragingOptions& options, const std::vector<CenterPrior>& priors) {
-  options.Check();
-  Timer timer;
-  TranslationAveragingResult result;
-  const DirectionTable directions(pair_directions);
-  std::vector<Constraint> constraints =
-      BuildConstraints(rotations, directions, tracks, options, &result.num_tracks_used);
+namespace {
 
-  // Pair rows: c_j - c_i = s_ij d_ij with a scale s_ij >= 1 per pair (Ozyesil & Singer, "Robust
-  // camera location estimation by convex programming", CVPR 2015). The bound fixes the scale and
-  // makes the problem convex; without it the homogeneous track system admits collapsed solutions
-  // (on KITTI 07 the L1 solution on a sphere put all the scale on the first 50 frames and the other
-  // 110 on one point).
-  struct PairRow {
-    uint32_t i = 0, j = 0;
-    Eigen::Vector3d direction;
-  };
+// Pair rows: c_j - c_i = s_ij d_ij with a scale s_ij >= 1 per pair (Ozyesil & Singer, "Robust
+// camera location estimation by convex programming", CVPR 2015). The bound fixes the scale and
+// makes the problem convex; without it the homogeneous track system admits collapsed solutions
+// (on KITTI 07 the L1 solution on a sphere put all the scale on the first 50 frames and the other
+// 110 on one point).
+struct PairRow {
+  uint32_t i = 0, j = 0;
+  Eigen::Vector3d direction;
+};
+
+// The pair directions between two rotated images, unit length.
+std::vector<PairRow> UsablePairRows(const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+                                    const std::vector<PairDirection>& pair_directions) {
   std::vector<PairRow> pairs;
   for (const PairDirection& pair : pair_directions) {
     if (pair.image_id1 == pair.image_id2 || !pair.direction.allFinite() ||
@@ -447,8 +441,15 @@ TranslationAveragingResult AverageTranslations(
     }
     pairs.push_back({pair.image_id1, pair.image_id2, pair.direction.normalized()});
   }
+  return pairs;
+}
 
-  // Solve the largest set of cameras that the constraints connect.
+// The largest set of images that the constraints and pairs connect, increasing (the first is the
+// gauge camera); the other rotated images go to `unconstrained`.
+std::vector<uint32_t> LargestConnectedImages(
+    const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+    const std::vector<Constraint>& constraints, const std::vector<PairRow>& pairs,
+    std::vector<uint32_t>* unconstrained) {
   UnionFind components;
   std::set<uint32_t> constrained;
   for (const Constraint& c : constraints) {
@@ -459,55 +460,46 @@ TranslationAveragingResult AverageTranslations(
     components.Union(pair.i, pair.j);
     constrained.insert({pair.i, pair.j});
   }
-  if (pairs.empty()) {
-    throw std::runtime_error(
-        "translation averaging: no pair direction (every pair is a pure rotation?)");
-  }
   std::map<uint32_t, int> component_size;
   for (const uint32_t image_id : constrained) ++component_size[components.Find(image_id)];
   const uint32_t root =
       std::max_element(component_size.begin(), component_size.end(),
                        [](const auto& x, const auto& y) { return x.second < y.second; })
           ->first;
-  std::vector<uint32_t> solved;  // positioned image ids, increasing; solved[0] is the gauge camera
+  std::vector<uint32_t> solved;
   for (const auto& [image_id, rotation] : rotations) {
     (void)rotation;
     if (constrained.count(image_id) && components.Find(image_id) == root) {
       solved.push_back(image_id);
     } else {
-      result.unconstrained_images.push_back(image_id);
+      unconstrained->push_back(image_id);
     }
   }
-  if (solved.size() < 2)
-    throw std::runtime_error("translation averaging: fewer than two cameras connected");
-  // Priors of positioned cameras; with any, they fix the gauge and no camera is held.
-  std::vector<CenterPrior> used_priors;
-  {
-    const std::set<uint32_t> solved_set(solved.begin(), solved.end());
-    for (const CenterPrior& prior : priors) {
-      if (solved_set.count(prior.image_id) && prior.center.allFinite() &&
-          prior.sqrt_information.allFinite()) {
-        used_priors.push_back(prior);
-      }
-    }
-  }
-  const bool has_priors = !used_priors.empty();
-  std::map<uint32_t, int> column;  // image id -> camera index (the gauge camera: -1)
-  result.gauge_image_id = has_priors ? 0 : solved.front();
-  for (size_t i = 0; i < solved.size(); ++i) {
-    column[solved[i]] = static_cast<int>(i) - (has_priors ? 0 : 1);
-  }
-  constraints.erase(std::remove_if(constraints.begin(), constraints.end(),
-                                   [&](const Constraint& c) { return !column.count(c.a.from); }),
-                    constraints.end());
-  pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
-                             [&](const PairRow& pair) { return !column.count(pair.i); }),
-              pairs.end());
+  return solved;
+}
 
-  // B v = 0 with v = (centres of all cameras but the gauge camera, fixed at the origin; one scale
-  // per pair; with priors, every centre and one constant per prior). Track rows first, then pair
-  // rows, then prior rows.
-  const int num_cameras = static_cast<int>(solved.size()) - (has_priors ? 0 : 1);
+// The usable priors of the solved images.
+std::vector<CenterPrior> PriorsOfSolvedImages(const std::vector<uint32_t>& solved,
+                                              const std::vector<CenterPrior>& priors) {
+  const std::set<uint32_t> solved_set(solved.begin(), solved.end());
+  std::vector<CenterPrior> used;
+  for (const CenterPrior& prior : priors) {
+    if (solved_set.count(prior.image_id) && prior.center.allFinite() &&
+        prior.sqrt_information.allFinite()) {
+      used.push_back(prior);
+    }
+  }
+  return used;
+}
+
+// B v = 0 with v = (centres of all cameras but the gauge camera, fixed at the origin; one scale
+// per pair; with priors, every centre and one constant per prior). Track rows first, then pair
+// rows, then prior rows. `column` maps an image to its camera index (the gauge camera: -1).
+StackedSystem AssembleSystem(const std::vector<Constraint>& constraints,
+                             const std::vector<PairRow>& pairs,
+                             const std::vector<CenterPrior>& used_priors,
+                             const std::map<uint32_t, int>& column, int num_cameras,
+                             const TranslationAveragingOptions& options) {
   const int num_position_cols = 3 * num_cameras;
   const int num_cols = num_position_cols + static_cast<int>(pairs.size() + used_priors.size());
   const int num_rows = 3 * static_cast<int>(constraints.size() + pairs.size() + used_priors.size());
@@ -561,34 +553,82 @@ TranslationAveragingResult AverageTranslations(
   system.num_prior_columns = static_cast<int>(used_priors.size());
   // The bound s >= 1 only excludes the collapsed solutions; priors already do, and in their units
   // a baseline may be any length.
-  system.scale_bound = has_priors ? 0.0 : 1.0;
+  system.scale_bound = used_priors.empty() ? 1.0 : 0.0;
   system.prior_min_residual = options.prior_huber_sigmas * options.prior_weight;
-  const Eigen::SparseMatrix<double>& B = system.B;
+  return system;
+}
 
-  // Start: least squares with every scale at 1, min ||B_c c + B_s 1||^2, then each scale set to
-  // the projected baseline it implies (at least 1).
-  Eigen::VectorXd x = Eigen::VectorXd::Ones(num_cols);
-  // The centre of an image in the current solution (the gauge camera at the origin).
-  auto center = [&](uint32_t id) -> Eigen::Vector3d {
-    const int cam = column.at(id);
-    return cam < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(x.segment<3>(3 * cam));
-  };
-  {
-    const Eigen::SparseMatrix<double> B_c = B.leftCols(num_position_cols);
-    const Eigen::SparseMatrix<double> B_s = B.rightCols(system.num_extra_cols());
-    Eigen::SparseMatrix<double> normal_c = B_c.transpose() * B_c;
-    SparseCholesky least_squares;
-    least_squares.analyzePattern(normal_c);
-    FactorizeWithRidge(normal_c, &least_squares);
-    x.head(num_position_cols) = least_squares.solve(
-        -(B_c.transpose() * (B_s * Eigen::VectorXd::Ones(system.num_extra_cols()))));
-    for (size_t k = 0; k < pairs.size(); ++k) {
-      x(num_position_cols + k) = pairs[k].direction.dot(center(pairs[k].j) - center(pairs[k].i));
-    }
-    x = ProjectScales(x, system);
+// The centre of an image in solution `x` (the gauge camera at the origin).
+Eigen::Vector3d CenterIn(const Eigen::VectorXd& x, const std::map<uint32_t, int>& column,
+                         uint32_t image_id) {
+  const int cam = column.at(image_id);
+  return cam < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(x.segment<3>(3 * cam));
+}
+
+// Start: least squares with every scale at 1, min ||B_c c + B_s 1||^2, then each scale set to the
+// projected baseline it implies (at least the bound).
+Eigen::VectorXd LeastSquaresStart(const StackedSystem& system, const std::vector<PairRow>& pairs,
+                                  const std::map<uint32_t, int>& column) {
+  const Eigen::SparseMatrix<double>& B = system.B;
+  const int num_position_cols = system.num_position_cols;
+  Eigen::VectorXd x = Eigen::VectorXd::Ones(B.cols());
+  const Eigen::SparseMatrix<double> B_c = B.leftCols(num_position_cols);
+  const Eigen::SparseMatrix<double> B_s = B.rightCols(system.num_extra_cols());
+  Eigen::SparseMatrix<double> normal_c = B_c.transpose() * B_c;
+  SparseCholesky least_squares;
+  least_squares.analyzePattern(normal_c);
+  FactorizeWithRidge(normal_c, &least_squares);
+  x.head(num_position_cols) = least_squares.solve(
+      -(B_c.transpose() * (B_s * Eigen::VectorXd::Ones(system.num_extra_cols()))));
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    x(num_position_cols + k) =
+        pairs[k].direction.dot(CenterIn(x, column, pairs[k].j) - CenterIn(x, column, pairs[k].i));
   }
+  return ProjectScales(x, system);
+}
+
+}  // namespace
+
+TranslationAveragingResult AverageTranslations(
+    const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+    const std::vector<PairDirection>& pair_directions, const std::vector<TranslationTrack>& tracks,
+    const TranslationAveragingOptions& options, const std::vector<CenterPrior>& priors) {
+  options.Check();
+  Timer timer;
+  TranslationAveragingResult result;
+  const DirectionTable directions(pair_directions);
+  std::vector<Constraint> constraints =
+      BuildConstraints(rotations, directions, tracks, options, &result.num_tracks_used);
+  std::vector<PairRow> pairs = UsablePairRows(rotations, pair_directions);
+  if (pairs.empty()) {
+    throw std::runtime_error(
+        "translation averaging: no pair direction (every pair is a pure rotation?)");
+  }
+  // Solve the largest set of cameras that the constraints connect.
+  const std::vector<uint32_t> solved =
+      LargestConnectedImages(rotations, constraints, pairs, &result.unconstrained_images);
+  if (solved.size() < 2)
+    throw std::runtime_error("translation averaging: fewer than two cameras connected");
+  // Priors of positioned cameras; with any, they fix the gauge and no camera is held.
+  const std::vector<CenterPrior> used_priors = PriorsOfSolvedImages(solved, priors);
+  const bool has_priors = !used_priors.empty();
+  std::map<uint32_t, int> column;  // image id -> camera index (the gauge camera: -1)
+  result.gauge_image_id = has_priors ? 0 : solved.front();
+  for (size_t i = 0; i < solved.size(); ++i) {
+    column[solved[i]] = static_cast<int>(i) - (has_priors ? 0 : 1);
+  }
+  constraints.erase(std::remove_if(constraints.begin(), constraints.end(),
+                                   [&](const Constraint& c) { return !column.count(c.a.from); }),
+                    constraints.end());
+  pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                             [&](const PairRow& pair) { return !column.count(pair.i); }),
+              pairs.end());
+  const int num_cameras = static_cast<int>(solved.size()) - (has_priors ? 0 : 1);
+  const StackedSystem system =
+      AssembleSystem(constraints, pairs, used_priors, column, num_cameras, options);
 
   int iterations = 0;
+  Eigen::VectorXd x = LeastSquaresStart(system, pairs, column);
   x = options.solver == TranslationSolver::kIrls ? SolveByIrls(system, x, options, &iterations)
                                                  : SolveByAdmm(system, x, options, &iterations);
   result.num_solver_iterations = iterations;
@@ -596,18 +636,19 @@ TranslationAveragingResult AverageTranslations(
   // The documented scale: mean projected pair baseline = 1.
   double projected = 0.0;
   for (const PairRow& pair : pairs) {
-    projected += pair.direction.dot(center(pair.j) - center(pair.i));
+    projected += pair.direction.dot(CenterIn(x, column, pair.j) - CenterIn(x, column, pair.i));
   }
   if (!(projected > 0)) {
     throw std::runtime_error(
         "translation averaging: the solution does not fit the pair directions");
   }
-  result.l1_cost = (B * x).lpNorm<1>();
+  result.l1_cost = (system.B * x).lpNorm<1>();
   result.num_constraints = static_cast<int>(constraints.size() + pairs.size());
   result.num_priors_used = static_cast<int>(used_priors.size());
   // With priors the solution is already in their frame and units.
   const double scale = has_priors ? 1.0 : static_cast<double>(pairs.size()) / projected;
-  for (const uint32_t image_id : solved) result.centers[image_id] = scale * center(image_id);
+  for (const uint32_t image_id : solved)
+    result.centers[image_id] = scale * CenterIn(x, column, image_id);
   result.seconds = timer.ElapsedSeconds();
   return result;
 }

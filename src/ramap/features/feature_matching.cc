@@ -360,8 +360,7 @@ MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOp
     }
   }
   const int num_screened = static_cast<int>(pairs.size());
-  const bool preemptive =
-      mode == MatchingMode::kExhaustive && options.preemptive_num_features > 0;
+  const bool preemptive = mode == MatchingMode::kExhaustive && options.preemptive_num_features > 0;
   if (preemptive) pairs = ScreenPairsPreemptively(*database, pairs, options, progress);
   database->matches.clear();
   database->two_view_geometries.clear();

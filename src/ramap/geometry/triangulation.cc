@@ -1,11 +1,12 @@
-#include "ramap/geometry/rotation.h"
 #include "ramap/geometry/triangulation.h"
-#include "ramap/util/option_check.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "ramap/geometry/rotation.h"
+#include "ramap/util/option_check.h"
 
 namespace ramap {
 namespace {

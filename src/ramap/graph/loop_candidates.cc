@@ -62,8 +62,8 @@ std::vector<LoopCandidate> FindLoopCandidates(const Reconstruction& reconstructi
       const uint32_t id1 = std::min(views[a].id, views[b].id);
       const uint32_t id2 = std::max(views[a].id, views[b].id);
       if (matched_pair_ids.count(ImagePairToPairId(id1, id2))) continue;
-      candidates.push_back({id1, id2, distance / baseline,
-                            std::acos(std::clamp(cos_angle, -1.0, 1.0)) * kRadToDeg});
+      candidates.push_back(
+          {id1, id2, distance / baseline, std::acos(std::clamp(cos_angle, -1.0, 1.0)) * kRadToDeg});
     }
   }
   std::sort(candidates.begin(), candidates.end(),

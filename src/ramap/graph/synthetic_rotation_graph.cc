@@ -1,4 +1,3 @@
-#include "ramap/geometry/rotation.h"
 #include "ramap/graph/synthetic_rotation_graph.h"
 
 #include <Eigen/SVD>
@@ -8,9 +7,10 @@
 #include <set>
 #include <stdexcept>
 
+#include "ramap/geometry/rotation.h"
+
 namespace ramap {
 namespace {
-
 
 Eigen::Quaterniond RandomSmallRotation(std::mt19937& rng, double sigma_rad) {
   std::normal_distribution<double> normal(0.0, sigma_rad);

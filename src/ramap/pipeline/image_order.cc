@@ -46,8 +46,7 @@ std::vector<size_t> CaptureOrder(const std::vector<std::string>& names) {
 }
 
 bool IsSequentialInput(InputOrder order, const std::vector<std::string>& names) {
-  return order == InputOrder::kSequential ||
-         (order == InputOrder::kAuto && LooksSequential(names));
+  return order == InputOrder::kSequential || (order == InputOrder::kAuto && LooksSequential(names));
 }
 
 bool LooksSequential(const std::vector<std::string>& names) {

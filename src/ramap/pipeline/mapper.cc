@@ -482,9 +482,9 @@ std::optional<Reconstruction> ReconstructLabelledComponent(
   if (size < min_size) {
     for (size_t k = 0; k < graph.node_ids.size(); ++k) {
       if (labels[k] != label) continue;
-      context.image_reasons[graph.node_ids[k]] =
-          "in a component of " + std::to_string(size) + " images (< Mapper.min_component_size " +
-          std::to_string(min_size) + ")";
+      context.image_reasons[graph.node_ids[k]] = "in a component of " + std::to_string(size) +
+                                                 " images (< Mapper.min_component_size " +
+                                                 std::to_string(min_size) + ")";
     }
     return std::nullopt;
   }
@@ -573,9 +573,8 @@ MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions&
   const std::vector<int> labels = ConnectedComponents(graph);
   const int num_components =
       labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
-  MapperContext context{database,           pass_options, cameras, bearings,      view_edges,
-                        order,              summary.sequential, log, summary, image_reasons,
-                        priors};
+  MapperContext context{database,           pass_options, cameras, bearings,      view_edges, order,
+                        summary.sequential, log,          summary, image_reasons, priors};
   for (int label = 0; label < num_components; ++label) {
     std::optional<Reconstruction> reconstruction =
         ReconstructLabelledComponent(context, graph, graph_to_view_edge, labels, label);
@@ -639,7 +638,8 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
   // 62 -> 20 iterations, the same AUC).
   MapperOptions second_options = options;
   BundleAdjustmentOptions& ba = second_options.bundle_adjustment;
-  ba.intrinsics_function_tolerance = std::max(ba.intrinsics_function_tolerance, ba.function_tolerance);
+  ba.intrinsics_function_tolerance =
+      std::max(ba.intrinsics_function_tolerance, ba.function_tolerance);
   MapperResult second = RunMapperPass(database, second_options, source, progress, priors, &refined);
   // One summary for both passes: the first pass's view-graph estimates, both passes' time.
   for (CameraIntrinsicsSummary& camera : second.summary.cameras) {

@@ -62,8 +62,9 @@ struct MapperOptions {
   // bundle adjustment only finds the intrinsics for a second pass (averaging through them, then
   // the final BA), so it adjusts at most this many points, each image keeping at least 50 of its
   // observations. A focal length far from the guess takes BA 100-400 iterations to reach; on fewer
-  // points each is cheaper (measured: templeRing 12.3 -> 4.4 s, kitti07_first160 111 -> 21 s, the
-  // same focal length after the second pass within 0.3%). 0: the first BA is a full one.
+  // points each is cheaper (measured: templeRing 12.3 -> 4.4 s; kitti07_first160, when its guess
+  // was kept, 111 -> 21 s; the same focal length after the second pass within 0.3%). 0: the
+  // first BA is a full one.
   int calibration_num_points = 2000;
   // Components with fewer images are not written (COLMAP's Mapper.min_model_size is 10; ramap
   // writes smaller ones too because small data sets are common among its users).

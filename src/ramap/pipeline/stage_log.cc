@@ -9,8 +9,9 @@ namespace ramap {
 
 const std::vector<std::string>& TimedMapperStages() {
   static const std::vector<std::string> stages = {
-      stage::kBearings,      stage::kRelativePoses, stage::kRotationAveraging,
-      stage::kTranslationAveraging, stage::kTriangulation, stage::kBundleAdjustment};
+      stage::kBearings,          stage::kRelativePoses,
+      stage::kRotationAveraging, stage::kTranslationAveraging,
+      stage::kTriangulation,     stage::kBundleAdjustment};
   return stages;
 }
 

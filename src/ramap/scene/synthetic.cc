@@ -18,7 +18,6 @@ namespace {
 
 using Rng = std::mt19937_64;
 
-
 double Uniform(Rng& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);
 }

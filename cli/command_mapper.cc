@@ -59,7 +59,8 @@ void PrintSummaryTable(const MapperSummary& s, const std::string& output_path, s
 }  // namespace
 
 int RunMapper(int argc, char** argv) {
-  CLI::App app("Camera poses and points from a COLMAP database by motion averaging", "mapper");
+  CLI::App app("Camera poses and points from a COLMAP database by motion averaging",
+               "ramap mapper");
   std::string database_path, image_path, output_path, output_type = "BIN";
   int log_level = 1;
   app.add_option("--database_path", database_path,

@@ -14,7 +14,7 @@
 namespace ramap::cli {
 
 int RunModelConverter(int argc, char** argv) {
-  CLI::App app("Convert a COLMAP sparse model between .bin and .txt", "model_converter");
+  CLI::App app("Convert a COLMAP sparse model between .bin and .txt", "ramap model_converter");
   std::string input_path;
   std::string output_path;
   std::string output_type;

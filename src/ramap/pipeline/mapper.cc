@@ -14,6 +14,7 @@
 #include "ramap/pipeline/rotation_stage.h"
 #include "ramap/pipeline/stage_log.h"
 #include "ramap/util/error.h"
+#include "ramap/util/option_check.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
@@ -378,10 +379,8 @@ void MapperOptions::Check() const {
   if (!(max_focal_change_in_bundle_adjustment >= 0)) {
     throw InputError("--Mapper.max_focal_change_in_bundle_adjustment", "must be >= 0");
   }
-  if (calibration_num_points < 0) {
-    throw InputError("--Mapper.calibration_num_points",
-                     "must be >= 0, got " + std::to_string(calibration_num_points));
-  }
+  CheckOption(calibration_num_points >= 0, "--Mapper.calibration_num_points", ">= 0",
+              calibration_num_points);
 }
 
 namespace {

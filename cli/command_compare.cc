@@ -117,6 +117,141 @@ void ThrowIfAnyRunFailed(const Comparison& comparison, const std::string& output
   }
 }
 
+struct Plan {
+  std::string name, folder, command;
+};
+
+// The three mapper runs on one database as command lines: COLMAP, ramap averaging alone, ramap
+// with BA. Without refine_intrinsics every mapper keeps the intrinsics fixed (COLMAP's and ramap's
+// options of the same meaning).
+std::vector<Plan> MapperPlans(const std::string& colmap, const std::string& database_path,
+                              const std::string& images, const std::string& output_path,
+                              int num_threads, bool refine_intrinsics) {
+  const std::string colmap_intrinsics =
+      refine_intrinsics ? ""
+                        : " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0"
+                          " --Mapper.ba_refine_extra_params 0";
+  const std::string ramap_intrinsics = refine_intrinsics
+                                           ? ""
+                                           : " --BundleAdjustment.refine_focal_length 0"
+                                             " --BundleAdjustment.refine_principal_point 0"
+                                             " --BundleAdjustment.refine_extra_params 0";
+  const std::string self = fs::read_symlink("/proc/self/exe").string();
+  const std::string threads = std::to_string(num_threads);
+  auto ramap = [&](const std::string& folder, const std::string& options) {
+    return Quote(self) + " mapper --database_path " + Quote(database_path) + " --output_path " +
+           Quote(output_path + "/" + folder) + " --Mapper.num_threads " + threads + options;
+  };
+  return {
+      {"COLMAP", "colmap",
+       Quote(colmap) + " mapper --database_path " + Quote(database_path) + " --image_path " +
+           Quote(images) + " --output_path " + Quote(output_path + "/colmap") +
+           " --Mapper.num_threads " + threads + colmap_intrinsics},
+      {"ramap", "ramap", ramap("ramap", " --Mapper.refine 0")},
+      {"ramap+BA", "ramap_ba", ramap("ramap_ba", " --Mapper.refine 1" + ramap_intrinsics)},
+  };
+}
+
+// Runs `plan` in its folder (replaced), timed as a process; the poses of its largest model go to
+// `poses` under the run's name.
+MapperRun RunPlan(const Plan& plan, const std::string& output_path, size_t num_images,
+                  std::map<std::string, std::map<std::string, Rigid3d>>* poses) {
+  const std::string folder = output_path + "/" + plan.folder;
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  std::cout << "[ramap compare] " << plan.name << ": " << plan.command << std::endl;
+  MapperRun run;
+  run.name = plan.name;
+  run.command = plan.command;
+  const auto [seconds, exited_cleanly] = RunTimed(plan.command, folder + ".log");
+  run.seconds = seconds;
+  PickLargestModel(folder, &run);
+  run.succeeded = exited_cleanly && !run.model_path.empty();
+  if (!run.succeeded) {
+    std::cerr << "ramap compare: " << plan.name << " failed (see " << folder << ".log)\n";
+  } else {
+    const Reconstruction model = ReadColmapModel(run.model_path);
+    (*poses)[run.name] = PosesByName(model, run.model_path);
+    for (const auto& [camera_id, camera] : model.cameras) {
+      run.focal_lengths_px[camera_id] = MeanFocalLength(camera);
+    }
+  }
+  run.stage_seconds = StageSeconds(folder + "/summary.json");
+  std::cout << "[ramap compare] " << plan.name << ": " << run.num_registered << " of " << num_images
+            << " images in " << seconds << " s" << std::endl;
+  return run;
+}
+
+// Each run's bar: its stages, and what they do not cover (reading the database, writing the
+// model; all of COLMAP's time).
+std::vector<StageBar> StageBars(const std::vector<MapperRun>& runs) {
+  std::vector<StageBar> bars;
+  for (const MapperRun& run : runs) {
+    if (!run.succeeded) continue;
+    StageBar bar{run.name, run.stage_seconds};
+    double staged = 0;
+    for (const auto& [stage, seconds] : run.stage_seconds) staged += seconds;
+    bar.stages.push_back({run.stage_seconds.empty() ? "whole mapper" : "input / output",
+                          std::max(0.0, run.seconds - staged)});
+    bars.push_back(bar);
+  }
+  return bars;
+}
+
+// The figures in output_path, their file names added to comparison->figures: a top-down overlay
+// of the camera centres, rotation and position error distributions, stage times. `name` is the
+// data set's.
+void DrawFigures(const std::vector<std::string>& names,
+                 const std::map<std::string, Rigid3d>& reference, bool against_colmap,
+                 const std::map<std::string, std::map<std::string, Rigid3d>>& poses,
+                 const std::string& name, const std::string& output_path, Comparison* comparison) {
+  std::vector<std::string> capture_order;
+  for (const size_t k : CaptureOrder(names)) capture_order.push_back(names[k]);
+  std::vector<PlotSeries> trajectories = {{against_colmap ? "COLMAP (reference)" : "ground truth",
+                                           Centers(reference, capture_order, Sim3d()),
+                                           {}}};
+  std::vector<PlotSeries> rotation_errors, position_errors;
+  for (const MapperRun& run : comparison->runs) {
+    if (!run.evaluation) continue;
+    trajectories.push_back(
+        {run.name,
+         Centers(poses.at(run.name), capture_order, run.evaluation->gt_from_estimate),
+         {}});
+    PlotSeries rotations{run.name, {}, {}}, positions{run.name, {}, {}};
+    for (const ImageEvaluation& image : run.evaluation->images) {
+      if (!image.has_ground_truth) continue;
+      const double inf = std::numeric_limits<double>::infinity();
+      rotations.values.push_back(image.registered ? image.rotation_error_deg : inf);
+      positions.values.push_back(image.registered ? image.position_error : inf);
+    }
+    rotation_errors.push_back(rotations);
+    position_errors.push_back(positions);
+  }
+  if (trajectories.size() > 1) {
+    PlotTrajectories(trajectories, "Camera centres, top-down (" + name + ")",
+                     output_path + "/trajectories.png");
+    PlotCumulativeDistributions(rotation_errors, "Rotation error after alignment (" + name + ")",
+                                "degrees", output_path + "/rotation_error_cdf.png");
+    PlotCumulativeDistributions(position_errors, "Position error after alignment (" + name + ")",
+                                against_colmap ? "COLMAP model units" : "ground-truth units",
+                                output_path + "/position_error_cdf.png");
+    comparison->figures = {"trajectories.png", "rotation_error_cdf.png", "position_error_cdf.png"};
+  }
+  PlotStageTimes(StageBars(comparison->runs), "Wall time per stage, seconds (" + name + ")",
+                 output_path + "/stage_times.png");
+  comparison->figures.push_back("stage_times.png");
+}
+
+// report.json and report.md in output_path; the Markdown is printed too.
+void WriteReports(const Comparison& comparison, const std::string& output_path) {
+  WriteFileAtomically(output_path + "/report.json", [&](std::ostream& out) {
+    out << ComparisonToJson(comparison).dump(2) << "\n";
+  });
+  const std::string markdown = ComparisonToMarkdown(comparison);
+  WriteFileAtomically(output_path + "/report.md", [&](std::ostream& out) { out << markdown; });
+  std::cout << "\n" << markdown;
+}
+
 }  // namespace
 
 int RunCompare(int argc, char** argv) {
@@ -149,13 +284,7 @@ int RunCompare(int argc, char** argv) {
   }
   CheckFolderOutput("--output_path", output_path, {database_path, image_path, ground_truth_path});
 
-  DatabaseReadOptions read_options;
-  read_options.read_matches = false;
-  std::vector<std::string> names;
-  for (const auto& [id, image] : ReadColmapDatabase(database_path, read_options).images) {
-    names.push_back(image.name);
-  }
-  std::sort(names.begin(), names.end());
+  const std::vector<std::string> names = ReadDatabaseImageNames(database_path);
   std::map<std::string, Rigid3d> gt_poses;
   if (!ground_truth_path.empty()) {
     gt_poses = GroundTruthByImageName(
@@ -166,35 +295,8 @@ int RunCompare(int argc, char** argv) {
   }
 
   const std::string images = image_path.empty() ? output_path + "/no_images" : image_path;
-  const std::string self = fs::read_symlink("/proc/self/exe").string();
-  const std::string intrinsics =
-      refine_intrinsics ? ""
-                        : " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0"
-                          " --Mapper.ba_refine_extra_params 0";
-  // ramap's bundle adjustment under the same rule (COLMAP's option names and defaults).
-  const std::string ramap_intrinsics = refine_intrinsics
-                                           ? ""
-                                           : " --BundleAdjustment.refine_focal_length 0"
-                                             " --BundleAdjustment.refine_principal_point 0"
-                                             " --BundleAdjustment.refine_extra_params 0";
-  struct Plan {
-    std::string name, folder, command;
-  };
-  const std::string threads = std::to_string(num_threads);
-  const std::vector<Plan> plans = {
-      {"COLMAP", "colmap",
-       Quote(colmap) + " mapper --database_path " + Quote(database_path) + " --image_path " +
-           Quote(images) + " --output_path " + Quote(output_path + "/colmap") +
-           " --Mapper.num_threads " + threads + intrinsics},
-      {"ramap", "ramap",
-       Quote(self) + " mapper --database_path " + Quote(database_path) + " --output_path " +
-           Quote(output_path + "/ramap") + " --Mapper.num_threads " + threads +
-           " --Mapper.refine 0"},
-      {"ramap+BA", "ramap_ba",
-       Quote(self) + " mapper --database_path " + Quote(database_path) + " --output_path " +
-           Quote(output_path + "/ramap_ba") + " --Mapper.num_threads " + threads +
-           " --Mapper.refine 1" + ramap_intrinsics},
-  };
+  const std::vector<Plan> plans =
+      MapperPlans(colmap, database_path, images, output_path, num_threads, refine_intrinsics);
 
   for (const Plan& plan : plans) CheckRunFolder(output_path, plan.folder);
   fs::create_directories(output_path);
@@ -209,30 +311,7 @@ int RunCompare(int argc, char** argv) {
           : "ground truth " + ground_truth_path + " (" + ground_truth_format + ")";
   std::map<std::string, std::map<std::string, Rigid3d>> poses;  // by run name
   for (const Plan& plan : plans) {
-    const std::string folder = output_path + "/" + plan.folder;
-    fs::remove_all(folder);
-    fs::create_directories(folder);
-    std::cout << "[ramap compare] " << plan.name << ": " << plan.command << std::endl;
-    MapperRun run;
-    run.name = plan.name;
-    run.command = plan.command;
-    const auto [seconds, exited_cleanly] = RunTimed(plan.command, folder + ".log");
-    run.seconds = seconds;
-    PickLargestModel(folder, &run);
-    run.succeeded = exited_cleanly && !run.model_path.empty();
-    if (!run.succeeded) {
-      std::cerr << "ramap compare: " << plan.name << " failed (see " << folder << ".log)\n";
-    } else {
-      const Reconstruction model = ReadColmapModel(run.model_path);
-      poses[run.name] = PosesByName(model, run.model_path);
-      for (const auto& [camera_id, camera] : model.cameras) {
-        run.focal_lengths_px[camera_id] = MeanFocalLength(camera);
-      }
-    }
-    run.stage_seconds = StageSeconds(folder + "/summary.json");
-    std::cout << "[ramap compare] " << plan.name << ": " << run.num_registered << " of "
-              << names.size() << " images in " << seconds << " s" << std::endl;
-    comparison.runs.push_back(std::move(run));
+    comparison.runs.push_back(RunPlan(plan, output_path, names.size(), &poses));
   }
 
   // Evaluation against the ground truth, or against COLMAP's model.
@@ -244,62 +323,11 @@ int RunCompare(int argc, char** argv) {
     run.evaluation = EvaluatePoses(poses.at(run.name), reference, names);
   }
 
-  // Figures: a top-down overlay, error distributions, stage times.
-  std::vector<std::string> capture_order;
-  for (const size_t k : CaptureOrder(names)) capture_order.push_back(names[k]);
-  std::vector<PlotSeries> trajectories = {{against_colmap ? "COLMAP (reference)" : "ground truth",
-                                           Centers(reference, capture_order, Sim3d()),
-                                           {}}};
-  std::vector<PlotSeries> rotation_errors, position_errors;
-  for (const MapperRun& run : comparison.runs) {
-    if (!run.evaluation) continue;
-    trajectories.push_back(
-        {run.name,
-         Centers(poses.at(run.name), capture_order, run.evaluation->gt_from_estimate),
-         {}});
-    PlotSeries rotations{run.name, {}, {}}, positions{run.name, {}, {}};
-    for (const ImageEvaluation& image : run.evaluation->images) {
-      if (!image.has_ground_truth) continue;
-      const double inf = std::numeric_limits<double>::infinity();
-      rotations.values.push_back(image.registered ? image.rotation_error_deg : inf);
-      positions.values.push_back(image.registered ? image.position_error : inf);
-    }
-    rotation_errors.push_back(rotations);
-    position_errors.push_back(positions);
-  }
-  std::vector<StageBar> bars;
-  for (const MapperRun& run : comparison.runs) {
-    if (!run.succeeded) continue;
-    StageBar bar{run.name, run.stage_seconds};
-    double staged = 0;
-    for (const auto& [stage, seconds] : run.stage_seconds) staged += seconds;
-    // What the stages do not cover: reading the database, writing the model (all of COLMAP's).
-    bar.stages.push_back({run.stage_seconds.empty() ? "whole mapper" : "input / output",
-                          std::max(0.0, run.seconds - staged)});
-    bars.push_back(bar);
-  }
   // The data set's name, as the folder of its database.
   const std::string name = fs::absolute(database_path).parent_path().filename().string();
-  if (trajectories.size() > 1) {
-    PlotTrajectories(trajectories, "Camera centres, top-down (" + name + ")",
-                     output_path + "/trajectories.png");
-    PlotCumulativeDistributions(rotation_errors, "Rotation error after alignment (" + name + ")",
-                                "degrees", output_path + "/rotation_error_cdf.png");
-    PlotCumulativeDistributions(position_errors, "Position error after alignment (" + name + ")",
-                                against_colmap ? "COLMAP model units" : "ground-truth units",
-                                output_path + "/position_error_cdf.png");
-    comparison.figures = {"trajectories.png", "rotation_error_cdf.png", "position_error_cdf.png"};
-  }
-  PlotStageTimes(bars, "Wall time per stage, seconds (" + name + ")",
-                 output_path + "/stage_times.png");
-  comparison.figures.push_back("stage_times.png");
+  DrawFigures(names, reference, against_colmap, poses, name, output_path, &comparison);
 
-  WriteFileAtomically(output_path + "/report.json", [&](std::ostream& out) {
-    out << ComparisonToJson(comparison).dump(2) << "\n";
-  });
-  const std::string markdown = ComparisonToMarkdown(comparison);
-  WriteFileAtomically(output_path + "/report.md", [&](std::ostream& out) { out << markdown; });
-  std::cout << "\n" << markdown;
+  WriteReports(comparison, output_path);
   ThrowIfAnyRunFailed(comparison, output_path);
   return 0;
 }

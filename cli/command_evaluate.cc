@@ -56,12 +56,7 @@ std::vector<std::string> InputImageNames(const std::string& image_list_path,
   if (!image_list_path.empty()) {
     input_names = ReadImageList(image_list_path);
   } else if (!database_path.empty()) {
-    DatabaseReadOptions read_options;
-    read_options.read_matches = false;
-    for (const auto& [image_id, image] : ReadColmapDatabase(database_path, read_options).images) {
-      input_names.push_back(image.name);
-    }
-    std::sort(input_names.begin(), input_names.end());
+    input_names = ReadDatabaseImageNames(database_path);
   }
 
   if (input_names.empty()) {

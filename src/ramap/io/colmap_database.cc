@@ -726,6 +726,17 @@ FeatureDatabase ReadColmapDatabase(const std::string& path, const DatabaseReadOp
   return Reader(path, options).Read();
 }
 
+std::vector<std::string> ReadDatabaseImageNames(const std::string& path) {
+  DatabaseReadOptions read_options;
+  read_options.read_matches = false;
+  std::vector<std::string> names;
+  for (const auto& [id, image] : ReadColmapDatabase(path, read_options).images) {
+    names.push_back(image.name);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 void WriteColmapDatabase(const FeatureDatabase& database, const std::string& path) {
   CheckWritable(database, path);
   StagedPath staged(path);

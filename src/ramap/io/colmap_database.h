@@ -36,6 +36,9 @@ struct DatabaseReadOptions {
 FeatureDatabase ReadColmapDatabase(const std::string& path,
                                    const DatabaseReadOptions& options = DatabaseReadOptions());
 
+// The names of the database's images, sorted (read without matches or descriptors).
+std::vector<std::string> ReadDatabaseImageNames(const std::string& path);
+
 // Writes a new database with COLMAP 3.8's exact schema at `path` (replacing any file there),
 // staged under a temporary name and renamed when complete, in one transaction.
 //

@@ -127,6 +127,148 @@ void RefineComponent(const MapperContext& context, bool georegistered,
               "again with the refined poses and intrinsics: ");
 }
 
+// Stage 3 for one component: rotation averaging (keyframe windows first for sequences, the whole
+// graph for collections). The estimated rotations go to `world_rotations`; images left without
+// one and pruned edges are recorded with their reasons.
+RotationStageResult AverageComponentRotations(
+    const MapperContext& context, const RotationGraph& graph, MapperComponentSummary* component,
+    std::map<uint32_t, Eigen::Quaterniond>* world_rotations) {
+  const MapperOptions& options = context.options;
+  Timer timer;
+  RotationStageResult stage = AverageViewGraphRotations(
+      graph, context.order, context.sequential, options.pose_graph, options.rotation_averaging);
+  const RotationAveragingResult& rotations = stage.rotations;
+  context.summary.num_keyframes += stage.num_keyframes;
+  context.summary.num_loop_edges += stage.num_loop_edges;
+  for (size_t k = 0; k < rotations.node_ids.size(); ++k) {
+    if (rotations.estimated[k]) {
+      (*world_rotations)[rotations.node_ids[k]] = rotations.rotations[k];
+    } else {
+      context.image_reasons[rotations.node_ids[k]] =
+          "rotation not estimated (cut off by pruned edges)";
+    }
+  }
+  for (const PrunedEdge& pruned : rotations.pruned_edges) {
+    const RelativeRotationEdge& edge = graph.edges[pruned.edge_index];
+    context.summary.dropped_edges.push_back(
+        {PairName(context.database, edge.i, edge.j),
+         pruned.reason == EdgeStatus::kPrunedResidual
+             ? "rotation residual " + Degrees(pruned.residual_deg) + " > alpha_max " +
+                   Degrees(pruned.threshold_deg) + " (pruning round " +
+                   std::to_string(pruned.round) + ")"
+             : "outside the largest connected component after pruning"});
+  }
+  component->num_rotation_edges = static_cast<int>(graph.edges.size());
+  component->num_pruned_edges = static_cast<int>(rotations.pruned_edges.size());
+  component->rotation_certified = rotations.certificate.certified;
+  component->certificate_bound_deg = rotations.certificate.bound_deg;
+  component->max_rotation_residual_deg = rotations.certificate.max_robust_residual_deg;
+  context.log.Record(
+      stage::kRotationAveraging, timer.ElapsedSeconds(),
+      std::to_string(world_rotations->size()) + " rotations, " +
+          std::to_string(rotations.pruned_edges.size()) + " edges pruned, " +
+          (rotations.certificate.certified ? "certified globally optimal" : "not certified"));
+  return stage;
+}
+
+// The direction of every edge rotation averaging kept between two rotated images (pure rotations
+// aside), from its inlier bearings and the averaged rotations; `kept_pairs` gets every kept pair.
+std::vector<PairDirection> KeptPairDirections(
+    const MapperContext& context, const RotationGraph& graph,
+    const std::vector<size_t>& graph_to_view_edge, const std::vector<EdgeStatus>& edge_status,
+    const std::map<uint32_t, Eigen::Quaterniond>& world_rotations, std::set<uint64_t>* kept_pairs) {
+  std::vector<PairDirection> directions;
+  for (size_t e = 0; e < graph.edges.size(); ++e) {
+    if (edge_status[e] != EdgeStatus::kKept) continue;
+    const ViewGraphEdge& view_edge = context.view_edges[graph_to_view_edge[e]];
+    if (!world_rotations.count(view_edge.image_id1) || !world_rotations.count(view_edge.image_id2))
+      continue;
+    kept_pairs->insert(ImagePairToPairId(view_edge.image_id1, view_edge.image_id2));
+    if (view_edge.estimate.flags & kRelativePosePureRotation) continue;
+    std::vector<Eigen::Vector3d> f1, f2;
+    for (const int k : view_edge.estimate.inliers) {
+      f1.push_back(view_edge.correspondences.bearings1[k]);
+      f2.push_back(view_edge.correspondences.bearings2[k]);
+    }
+    const std::optional<Eigen::Vector3d> direction = EstimatePairDirection(
+        world_rotations.at(view_edge.image_id1), world_rotations.at(view_edge.image_id2), f1, f2,
+        context.options.pair_direction);
+    if (direction) directions.push_back({view_edge.image_id1, view_edge.image_id2, *direction});
+  }
+  return directions;
+}
+
+// The tracks' observations by rotated images, as bearings; tracks left with fewer than two are
+// dropped.
+std::vector<TranslationTrack> TranslationTracks(
+    const std::vector<Track>& tracks, const ImageBearings& bearings,
+    const std::map<uint32_t, Eigen::Quaterniond>& world_rotations) {
+  std::vector<TranslationTrack> translation_tracks;
+  translation_tracks.reserve(tracks.size());
+  for (const Track& track : tracks) {
+    TranslationTrack observations;
+    for (const TrackElement& element : track) {
+      if (!world_rotations.count(element.image_id)) continue;
+      observations.push_back(
+          {element.image_id, bearings.bearings.at(element.image_id)[element.point2D_idx]});
+    }
+    if (observations.size() >= 2) translation_tracks.push_back(std::move(observations));
+  }
+  return translation_tracks;
+}
+
+// Stage 4 for one component; none when translation averaging fails (its images get the reason).
+std::optional<TranslationAveragingResult> AverageComponentTranslations(
+    const MapperContext& context, const std::map<uint32_t, Eigen::Quaterniond>& world_rotations,
+    const std::vector<PairDirection>& directions,
+    const std::vector<TranslationTrack>& translation_tracks, MapperComponentSummary* component) {
+  Timer timer;
+  TranslationAveragingResult positions;
+  try {
+    positions = AverageTranslations(world_rotations, directions, translation_tracks,
+                                    context.options.translation_averaging);
+  } catch (const std::runtime_error& error) {
+    for (const auto& [id, rotation] : world_rotations) context.image_reasons[id] = error.what();
+    context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(), error.what());
+    return std::nullopt;
+  }
+  for (const uint32_t id : positions.unconstrained_images) {
+    context.image_reasons[id] =
+        "no translation constraint links it to the rest (too little parallax?)";
+  }
+  component->num_translation_constraints = positions.num_constraints;
+  component->num_solver_iterations = positions.num_solver_iterations;
+  context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(),
+                     std::to_string(positions.centers.size()) + " positions from " +
+                         std::to_string(directions.size()) + " pair directions and " +
+                         std::to_string(positions.num_tracks_used) + " tracks, " +
+                         std::to_string(positions.num_solver_iterations) + " solver iterations");
+  return positions;
+}
+
+// The georegistration's progress line.
+std::string GeoregistrationLine(const GeoregistrationSummary& geo) {
+  if (!geo.georegistered) return "not georegistered: " + geo.problem;
+  return std::to_string(geo.num_inliers) + " of " + std::to_string(geo.num_priors) +
+         " priors within " + Metres(geo.threshold_m) + ", RMSE " + Metres(geo.rmse_m) + ", " +
+         std::to_string(geo.outliers.size()) + " outliers" +
+         (geo.used_in_translation_averaging ? ", used in translation averaging" : "");
+}
+
+// After the final model: the priors' errors, and the outliers reported with them.
+void ReportPriorErrors(const MapperContext& context, const Reconstruction& reconstruction,
+                       PriorAlignment* georegistration) {
+  MeasurePriorErrors(reconstruction, context.priors, georegistration->inliers,
+                     &georegistration->summary);
+  const GeoregistrationSummary& geo = georegistration->summary;
+  for (const PriorOutlier& outlier : geo.outliers) {
+    context.summary.prior_outliers.push_back({context.database.images.at(outlier.image_id).name,
+                                              "prior " + Metres(outlier.error_m) +
+                                                  " from the aligned camera centre (> " +
+                                                  Metres(geo.threshold_m) + "): not used"});
+  }
+}
+
 // Stages 2-6 for one connected component of the view graph. Returns false (with reasons recorded)
 // when the component cannot be reconstructed.
 bool ReconstructComponent(const MapperContext& context, const RotationGraph& graph,
@@ -136,99 +278,24 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
   const MapperOptions& options = context.options;
   MapperComponentSummary component;
 
-  // Rotation averaging: keyframe windows first for sequences, the whole graph for collections.
-  Timer timer;
-  const RotationStageResult stage = AverageViewGraphRotations(
-      graph, context.order, context.sequential, options.pose_graph, options.rotation_averaging);
-  const RotationAveragingResult& rotations = stage.rotations;
-  context.summary.num_keyframes += stage.num_keyframes;
-  context.summary.num_loop_edges += stage.num_loop_edges;
   std::map<uint32_t, Eigen::Quaterniond> world_rotations;
-  for (size_t k = 0; k < rotations.node_ids.size(); ++k) {
-    if (rotations.estimated[k]) {
-      world_rotations[rotations.node_ids[k]] = rotations.rotations[k];
-    } else {
-      context.image_reasons[rotations.node_ids[k]] =
-          "rotation not estimated (cut off by pruned edges)";
-    }
-  }
-  for (const PrunedEdge& pruned : rotations.pruned_edges) {
-    const RelativeRotationEdge& edge = graph.edges[pruned.edge_index];
-    context.summary.dropped_edges.push_back(
-        {PairName(database, edge.i, edge.j),
-         pruned.reason == EdgeStatus::kPrunedResidual
-             ? "rotation residual " + Degrees(pruned.residual_deg) + " > alpha_max " +
-                   Degrees(pruned.threshold_deg) + " (pruning round " +
-                   std::to_string(pruned.round) + ")"
-             : "outside the largest connected component after pruning"});
-  }
-  component.num_rotation_edges = static_cast<int>(graph.edges.size());
-  component.num_pruned_edges = static_cast<int>(rotations.pruned_edges.size());
-  component.rotation_certified = rotations.certificate.certified;
-  component.certificate_bound_deg = rotations.certificate.bound_deg;
-  component.max_rotation_residual_deg = rotations.certificate.max_robust_residual_deg;
-  context.log.Record(
-      stage::kRotationAveraging, timer.ElapsedSeconds(),
-      std::to_string(world_rotations.size()) + " rotations, " +
-          std::to_string(rotations.pruned_edges.size()) + " edges pruned, " +
-          (rotations.certificate.certified ? "certified globally optimal" : "not certified"));
+  const RotationStageResult stage =
+      AverageComponentRotations(context, graph, &component, &world_rotations);
 
   // Translation averaging: pair directions with the averaged rotations, then feature tracks.
-  timer.Restart();
-  std::vector<PairDirection> directions;
   std::set<uint64_t> kept_pairs;
-  for (size_t e = 0; e < graph.edges.size(); ++e) {
-    if (rotations.edge_status[e] != EdgeStatus::kKept) continue;
-    const ViewGraphEdge& view_edge = context.view_edges[graph_to_view_edge[e]];
-    if (!world_rotations.count(view_edge.image_id1) || !world_rotations.count(view_edge.image_id2))
-      continue;
-    kept_pairs.insert(ImagePairToPairId(view_edge.image_id1, view_edge.image_id2));
-    if (view_edge.estimate.flags & kRelativePosePureRotation) continue;
-    std::vector<Eigen::Vector3d> f1, f2;
-    for (const int k : view_edge.estimate.inliers) {
-      f1.push_back(view_edge.correspondences.bearings1[k]);
-      f2.push_back(view_edge.correspondences.bearings2[k]);
-    }
-    const std::optional<Eigen::Vector3d> direction = EstimatePairDirection(
-        world_rotations.at(view_edge.image_id1), world_rotations.at(view_edge.image_id2), f1, f2,
-        options.pair_direction);
-    if (direction) directions.push_back({view_edge.image_id1, view_edge.image_id2, *direction});
-  }
+  const std::vector<PairDirection> directions =
+      KeptPairDirections(context, graph, graph_to_view_edge, stage.rotations.edge_status,
+                         world_rotations, &kept_pairs);
   TrackBuildSummary track_summary;
   const std::vector<Track> tracks =
       BuildTracks(database.two_view_geometries, kept_pairs, {}, &track_summary);
-  std::vector<TranslationTrack> translation_tracks;
-  translation_tracks.reserve(tracks.size());
-  for (const Track& track : tracks) {
-    TranslationTrack observations;
-    for (const TrackElement& element : track) {
-      if (!world_rotations.count(element.image_id)) continue;
-      observations.push_back(
-          {element.image_id, context.bearings.bearings.at(element.image_id)[element.point2D_idx]});
-    }
-    if (observations.size() >= 2) translation_tracks.push_back(std::move(observations));
-  }
-  TranslationAveragingResult positions;
-  try {
-    positions = AverageTranslations(world_rotations, directions, translation_tracks,
-                                    options.translation_averaging);
-  } catch (const std::runtime_error& error) {
-    for (const auto& [id, rotation] : world_rotations) context.image_reasons[id] = error.what();
-    context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(), error.what());
-    return false;
-  }
-  for (const uint32_t id : positions.unconstrained_images) {
-    context.image_reasons[id] =
-        "no translation constraint links it to the rest (too little parallax?)";
-  }
-
-  component.num_translation_constraints = positions.num_constraints;
-  component.num_solver_iterations = positions.num_solver_iterations;
-  context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(),
-                     std::to_string(positions.centers.size()) + " positions from " +
-                         std::to_string(directions.size()) + " pair directions and " +
-                         std::to_string(positions.num_tracks_used) + " tracks, " +
-                         std::to_string(positions.num_solver_iterations) + " solver iterations");
+  const std::vector<TranslationTrack> translation_tracks =
+      TranslationTracks(tracks, context.bearings, world_rotations);
+  std::optional<TranslationAveragingResult> averaged = AverageComponentTranslations(
+      context, world_rotations, directions, translation_tracks, &component);
+  if (!averaged) return false;
+  TranslationAveragingResult& positions = *averaged;
 
   // Georegistration with the position priors.
   PriorAlignment georegistration;
@@ -236,15 +303,8 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
     Timer georegistration_timer;
     georegistration =
         GeoregisterPositions(context, world_rotations, directions, translation_tracks, &positions);
-    const GeoregistrationSummary& geo = georegistration.summary;
-    context.log.Record(
-        stage::kGeoregistration, georegistration_timer.ElapsedSeconds(),
-        geo.georegistered
-            ? std::to_string(geo.num_inliers) + " of " + std::to_string(geo.num_priors) +
-                  " priors within " + Metres(geo.threshold_m) + ", RMSE " + Metres(geo.rmse_m) +
-                  ", " + std::to_string(geo.outliers.size()) + " outliers" +
-                  (geo.used_in_translation_averaging ? ", used in translation averaging" : "")
-            : "not georegistered: " + geo.problem);
+    context.log.Record(stage::kGeoregistration, georegistration_timer.ElapsedSeconds(),
+                       GeoregistrationLine(georegistration.summary));
   }
   const bool georegistered = georegistration.summary.georegistered;
 
@@ -277,18 +337,8 @@ bool ReconstructComponent(const MapperContext& context, const RotationGraph& gra
     RefineComponent(context, georegistered, triangulate, &georegistration, &component,
                     reconstruction);
   }
-  if (georegistered) {
-    MeasurePriorErrors(*reconstruction, context.priors, georegistration.inliers,
-                       &georegistration.summary);
-    // Reported with the errors of the final model, as in the component's summary.
-    const GeoregistrationSummary& geo = georegistration.summary;
-    for (const PriorOutlier& outlier : geo.outliers) {
-      context.summary.prior_outliers.push_back(
-          {database.images.at(outlier.image_id).name, "prior " + Metres(outlier.error_m) +
-                                                          " from the aligned camera centre (> " +
-                                                          Metres(geo.threshold_m) + "): not used"});
-    }
-  }
+  // Reported with the errors of the final model, as in the component's summary.
+  if (georegistered) ReportPriorErrors(context, *reconstruction, &georegistration);
   component.georegistration = georegistration.summary;
   component.num_images = static_cast<int>(reconstruction->images.size());
   context.summary.components.push_back(component);

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # COLMAP's BA mapper vs ramap's averaging mapper (with and without --Mapper.refine 1) on the SAME
-# COLMAP database of every benchmark data set, in one run, through `ramap compare`: each mapper is
+# COLMAP database of every benchmark data set, in one run, through `ramap compare`, with COLMAP
+# 4.1.1's incremental mapper and its global_mapper (GLOMAP) as peers: each mapper is
 # timed as a whole process and evaluated against the data set's ground truth (or, without one,
 # against COLMAP's model). Then the mapper table of BENCHMARKS.md is rewritten and the figures are
 # copied to docs/figures/NAME/.
@@ -10,7 +11,8 @@
 # Databases come from scripts/prepare_datasets.sh, which this runs first (cached: a data set whose
 # database is complete is not touched again). Intrinsics stay fixed in every mapper, as
 # ../shared/data/README.md asks. Settings: RAMAP_DATA_DIR (default ../shared/data), RAMAP_BENCH_DIR
-# (default build/bench).
+# (default build/bench), RAMAP_PEERS=0 to leave the peers out (else scripts/peers.sh builds them
+# once, 1-1.5 h, and caches them; without ../shared/peers they are left out with a note).
 #
 # RAMAP_INTRINSICS=unknown: the same on databases made as a user without a calibration makes them
 # (COLMAP's SIMPLE_RADIAL guess, prior_focal_length 0), every mapper with its defaults (intrinsics
@@ -29,6 +31,11 @@ ramap=${RAMAP_BINARY:-$root/build/ramap}
 source "$root/scripts/datasets/list.sh"
 [[ -x $ramap ]] || { echo "benchmark: $ramap not built (run scripts/build.sh)" >&2; exit 1; }
 RAMAP_INTRINSICS=$intrinsics RAMAP_BENCH_DIR=$bench_dir bash "$root/scripts/prepare_datasets.sh" "$@"
+peer_options=()
+if [[ ${RAMAP_PEERS:-1} != 0 ]]; then
+  peer=$(bash "$root/scripts/peers.sh")
+  [[ -n $peer ]] && peer_options=(--peer_colmap "$peer")
+fi
 
 ran=()
 for entry in "${RAMAP_DATASETS[@]}"; do
@@ -47,7 +54,8 @@ for entry in "${RAMAP_DATASETS[@]}"; do
   rm -f "$dir/compare/report.json"
   # compare exits non-zero when a mapper failed, after writing the report that says which.
   if ! "$ramap" compare --database_path "$dir/database.db" --image_path "$images" \
-    --output_path "$dir/compare" "${gt_options[@]}" "${compare_options[@]}" >"$dir/compare.log" 2>&1; then
+    --output_path "$dir/compare" "${gt_options[@]}" "${compare_options[@]}" "${peer_options[@]}" \
+    >"$dir/compare.log" 2>&1; then
     if [[ ! -f $dir/compare/report.json ]]; then
       echo "benchmark: $name: ramap compare failed (log: $dir/compare.log)" >&2
       continue

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """The mapper table of one scripts/benchmark.sh run, from each data set's `ramap compare`
-report.json: accuracy and wall time of `colmap mapper`, `ramap mapper` and `ramap mapper
---Mapper.refine 1` on the same database, side by side, with the speed ratios. Prints it and
+report.json: accuracy and wall time of `colmap mapper`, the peers when they ran (COLMAP 4.1.1's
+`mapper` and `global_mapper` = GLOMAP), `ramap mapper --Mapper.refine 0` and `ramap mapper` on
+the same database, side by side, with the speed ratios (and, with GLOMAP, a line of the ratios
+against it at each one's AUC@3). Prints it and
 rewrites it in BENCHMARKS.md between the mapper-table markers (with --intrinsics unknown: the
 unknown-intrinsics table, with each mapper's focal length error against the known calibration).
 
@@ -43,19 +45,50 @@ def focal_error(env, run):
     return f"{100 * (estimate / truth - 1):+.2f}%"
 
 
+def auc3(run):
+    e = run.get("evaluation")
+    return None if not e else 100 * e["relative"]["auc_by_threshold_deg"]["3"]
+
+
+def ratio(value):
+    return "-" if value is None else f"{value:.1f}x"
+
+
+def glomap_line(name, report):
+    """'name: GLOMAP AUC@3 a in s s; ramap+BA 12.0x as fast at AUC@3 b; ...', or None."""
+    runs = report["runs"]
+    names = [run["name"] for run in runs]
+    if "GLOMAP" not in names:
+        return None
+    glomap = runs[names.index("GLOMAP")]
+    if not glomap["succeeded"]:
+        return f"- {name}: GLOMAP failed."
+    parts = [f"{run['name']} {ratio(run.get('speedup_over_glomap'))} as fast at AUC@3 "
+             f"{fmt(auc3(run), 1)}" for run in runs[names.index("GLOMAP") + 1:]]
+    return (f"- {name}: GLOMAP AUC@3 {fmt(auc3(glomap), 1)} in {fmt(glomap['seconds'])} s; "
+            + "; ".join(parts) + ".")
+
+
 def table(folders, unknown):
+    reports = []
+    for folder in folders:
+        env = read_env(os.path.join(folder, "dataset.env"))
+        with open(os.path.join(folder, "compare", "report.json")) as f:
+            reports.append((env.get("name", os.path.basename(folder)), env, json.load(f)))
+    with_glomap = any(run["name"] == "GLOMAP" for _, _, report in reports for run in report["runs"])
     focal_header = " focal error |" if unknown else ""
     rows = [
         "| data set | images | mapper |" + focal_header + " registered | AUC@1 | AUC@3 | AUC@5 "
         "| rot. err. median (deg) | rel. rot. err. median (deg) | ATE RMSE | ATE / path "
-        "| ATE / extent | wall time (s) | speed-up over COLMAP |",
-        "|" + " --- |" * (14 + unknown),
+        "| ATE / extent | wall time (s) | speed-up over COLMAP |"
+        + (" speed-up over GLOMAP |" if with_glomap else ""),
+        "|" + " --- |" * (14 + unknown + with_glomap),
     ]
-    for folder in folders:
-        env = read_env(os.path.join(folder, "dataset.env"))
-        name = env.get("name", os.path.basename(folder))
-        with open(os.path.join(folder, "compare", "report.json")) as f:
-            report = json.load(f)
+    glomap_lines = []
+    for name, env, report in reports:
+        line = glomap_line(name, report)
+        if line:
+            glomap_lines.append(line)
         for run in report["runs"]:
             registered = f"{run['num_registered']}" if run["succeeded"] else "failed"
             speedup = run.get("speedup_over_colmap")
@@ -74,13 +107,18 @@ def table(folders, unknown):
                           fmt(100 * ate["rmse_over_extent"], 2, "%")]
             else:
                 cells += ["", "", "", "(reference)", "", "", "", ""]
-            cells += [fmt(run["seconds"]), "-" if speedup is None else f"{speedup:.1f}x"]
+            cells += [fmt(run["seconds"]), ratio(speedup)]
+            if with_glomap:
+                cells.append(ratio(run.get("speedup_over_glomap")))
             rows.append("| " + " | ".join(cells) + " |")
     reference = ("Reference: the data set's ground truth; sceaux_castle has none, so its ramap "
                  "models are scored against COLMAP's (`ramap compare` without --ground_truth).")
     stamp = time.strftime("%Y-%m-%d", time.gmtime())
-    return "\n".join(rows) + f"\n\n{reference} Run on {stamp}, {os.cpu_count()} cores, " \
+    text = "\n".join(rows) + f"\n\n{reference} Run on {stamp}, {os.cpu_count()} cores, " \
         f"{platform.machine()}.\n"
+    if glomap_lines:
+        text += "\nAgainst GLOMAP, at each one's AUC@3:\n\n" + "\n".join(glomap_lines) + "\n"
+    return text
 
 
 def main(benchmarks, folders, intrinsics):

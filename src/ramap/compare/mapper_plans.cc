@@ -1,0 +1,115 @@
+#include "ramap/compare/mapper_plans.h"
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <regex>
+
+namespace ramap {
+namespace {
+
+namespace fs = std::filesystem;
+
+// COLMAP's incremental mapper (3.8 and 4 share its options) on `database_path`.
+std::string ColmapMapperCommand(const std::string& binary, const std::string& database_path,
+                                const std::string& output_folder, const CompareOptions& options) {
+  std::string command =
+      ShellQuote(binary) + " mapper --database_path " + ShellQuote(database_path) +
+      " --image_path " + ShellQuote(options.image_path) + " --output_path " +
+      ShellQuote(output_folder) + " --Mapper.num_threads " + std::to_string(options.num_threads);
+  if (!options.refine_intrinsics) {
+    command +=
+        " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0"
+        " --Mapper.ba_refine_extra_params 0";
+  }
+  return command;
+}
+
+// COLMAP 4's global mapper (GLOMAP) on `database_path`.
+std::string GlobalMapperCommand(const std::string& binary, const std::string& database_path,
+                                const std::string& output_folder, const CompareOptions& options) {
+  std::string command = ShellQuote(binary) + " global_mapper --database_path " +
+                        ShellQuote(database_path) + " --image_path " +
+                        ShellQuote(options.image_path) + " --output_path " +
+                        ShellQuote(output_folder) + " --GlobalMapper.num_threads " +
+                        std::to_string(options.num_threads);
+  if (!options.refine_intrinsics) {
+    command +=
+        " --GlobalMapper.ba_refine_focal_length 0 --GlobalMapper.ba_refine_principal_point 0"
+        " --GlobalMapper.ba_refine_extra_params 0";
+  }
+  return command;
+}
+
+std::string RamapMapperCommand(const std::string& binary, const std::string& output_folder,
+                               const CompareOptions& options, bool refine) {
+  std::string command =
+      ShellQuote(binary) + " mapper --database_path " + ShellQuote(options.database_path) +
+      " --output_path " + ShellQuote(output_folder) + " --Mapper.num_threads " +
+      std::to_string(options.num_threads) + " --Mapper.refine " + (refine ? "1" : "0");
+  if (refine && !options.refine_intrinsics) {
+    command +=
+        " --BundleAdjustment.refine_focal_length 0 --BundleAdjustment.refine_principal_point 0"
+        " --BundleAdjustment.refine_extra_params 0";
+  }
+  return command;
+}
+
+}  // namespace
+
+std::string ShellQuote(const std::string& text) {
+  std::string quoted = "'";
+  for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+std::string ColmapVersion(const std::string& colmap_binary) {
+  const std::string command = ShellQuote(colmap_binary) + " help 2>&1";
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+  std::string help;
+  if (pipe) {
+    std::array<char, 512> buffer;
+    while (help.size() < 4096 && fgets(buffer.data(), buffer.size(), pipe.get()) != nullptr) {
+      help += buffer.data();
+    }
+  }
+  std::smatch match;
+  if (std::regex_search(help, match, std::regex("COLMAP ([0-9]+(\\.[0-9]+)*)"))) return match[1];
+  return "peer";
+}
+
+std::vector<MapperPlan> MapperPlans(const CompareOptions& options,
+                                    const std::string& peer_version) {
+  const std::string ramap = options.ramap_binary.empty()
+                                ? fs::read_symlink("/proc/self/exe").string()
+                                : options.ramap_binary;
+  auto folder_path = [&](const std::string& folder) { return options.output_path + "/" + folder; };
+  std::vector<MapperPlan> plans;
+  plans.push_back({mapper_row::kColmap, "colmap",
+                   ColmapMapperCommand(options.colmap_binary, options.database_path,
+                                       folder_path("colmap"), options),
+                   options.database_path, false});
+  if (!options.peer_colmap_binary.empty()) {
+    // Each peer gets its own copy: COLMAP 4 upgrades a 3.8 database when it opens it.
+    const std::string incremental_copy = folder_path("colmap_peer.database.db");
+    plans.push_back({std::string(mapper_row::kColmap) + " " + peer_version, "colmap_peer",
+                     ColmapMapperCommand(options.peer_colmap_binary, incremental_copy,
+                                         folder_path("colmap_peer"), options),
+                     incremental_copy, true});
+    const std::string global_copy = folder_path("glomap.database.db");
+    plans.push_back({mapper_row::kGlomap, "glomap",
+                     GlobalMapperCommand(options.peer_colmap_binary, global_copy,
+                                         folder_path("glomap"), options),
+                     global_copy, true});
+  }
+  plans.push_back({mapper_row::kRamap, "ramap",
+                   RamapMapperCommand(ramap, folder_path("ramap"), options, false),
+                   options.database_path, false});
+  plans.push_back({mapper_row::kRamapBa, "ramap_ba",
+                   RamapMapperCommand(ramap, folder_path("ramap_ba"), options, true),
+                   options.database_path, false});
+  return plans;
+}
+
+}  // namespace ramap

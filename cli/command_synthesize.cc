@@ -13,7 +13,7 @@
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/trajectory.h"
-#include "ramap/scene/synthetic.h"
+#include "ramap/synthetic/synthetic_scene.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"

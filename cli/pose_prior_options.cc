@@ -3,6 +3,7 @@
 #include <iomanip>
 
 #include "options.h"
+#include "ramap/geometry/geodetic.h"
 #include "ramap/io/pose_prior_file.h"
 #include "ramap/util/error.h"
 

@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <sstream>
 
 #include "ramap/graph/fiedler.h"
 #include "ramap/graph/keyframes.h"
@@ -63,6 +65,18 @@ struct NoiseCase {
   double outlier_fraction;
 };
 
+// "noise_2deg_outliers_10pct": the case as ctest lists it.
+std::string CaseName(const NoiseCase& noise) {
+  std::ostringstream name;
+  name << "noise_" << noise.noise_deg << "deg_outliers_"
+       << std::lround(100 * noise.outlier_fraction) << "pct";
+  std::string text = name.str();
+  std::replace(text.begin(), text.end(), '.', 'p');
+  return text;
+}
+
+void PrintTo(const NoiseCase& noise, std::ostream* out) { *out << CaseName(noise); }
+
 class RotationAveragingNoise : public ::testing::TestWithParam<NoiseCase> {};
 
 TEST_P(RotationAveragingNoise, CloseToInlierOnlyChordalOptimum) {
@@ -119,12 +133,12 @@ TEST_P(RotationAveragingNoise, CloseToInlierOnlyChordalOptimum) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(RotationAveraging, RotationAveragingNoise,
-                         ::testing::Values(NoiseCase{0.5, 0.0}, NoiseCase{0.5, 0.1},
-                                           NoiseCase{0.5, 0.3}, NoiseCase{2.0, 0.0},
-                                           NoiseCase{2.0, 0.1}, NoiseCase{2.0, 0.3},
-                                           NoiseCase{5.0, 0.0}, NoiseCase{5.0, 0.1},
-                                           NoiseCase{5.0, 0.3}));
+INSTANTIATE_TEST_SUITE_P(
+    RotationAveraging, RotationAveragingNoise,
+    ::testing::Values(NoiseCase{0.5, 0.0}, NoiseCase{0.5, 0.1}, NoiseCase{0.5, 0.3},
+                      NoiseCase{2.0, 0.0}, NoiseCase{2.0, 0.1}, NoiseCase{2.0, 0.3},
+                      NoiseCase{5.0, 0.0}, NoiseCase{5.0, 0.1}, NoiseCase{5.0, 0.3}),
+    [](const ::testing::TestParamInfo<NoiseCase>& info) { return CaseName(info.param); });
 
 TEST(RotationAveraging, CertificateOnLowNoiseGraphMatchesChordalOptimum) {
   // The bound grows with algebraic connectivity: a well connected graph (each camera linked to

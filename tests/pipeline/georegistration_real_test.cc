@@ -9,6 +9,7 @@
 #include "ramap/features/feature_matching.h"
 #include "ramap/features/image_reader.h"
 #include "ramap/geometry/alignment.h"
+#include "ramap/geometry/geodetic.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/pipeline/mapper.h"

@@ -9,7 +9,7 @@
 
 #include "ramap/eval/pose_metrics.h"
 #include "ramap/pipeline/mapper.h"
-#include "ramap/scene/synthetic.h"
+#include "ramap/synthetic/synthetic_scene.h"
 #include "test_support.h"
 
 namespace ramap {

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "ramap/eval/pose_metrics.h"
-#include "ramap/scene/synthetic.h"
+#include "ramap/synthetic/synthetic_scene.h"
 #include "test_support.h"
 
 namespace ramap {

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "ramap/eval/pose_metrics.h"
-#include "ramap/scene/synthetic.h"
+#include "ramap/synthetic/synthetic_scene.h"
 #include "ramap/util/error.h"
 #include "test_support.h"
 
@@ -39,6 +39,9 @@ struct ExactCase {
   const char* name;
   SyntheticSceneOptions options;
 };
+
+// ctest lists a case by its name, not by a dump of its bytes.
+void PrintTo(const ExactCase& scene, std::ostream* out) { *out << scene.name; }
 
 class MapperExactRecovery : public ::testing::TestWithParam<ExactCase> {};
 

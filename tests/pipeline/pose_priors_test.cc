@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "ramap/geometry/geodetic.h"
+
 namespace ramap {
 namespace {
 

@@ -10,7 +10,7 @@
 #include "ramap/eval/pose_metrics.h"
 #include "ramap/geometry/camera_projection.h"
 #include "ramap/pipeline/mapper.h"
-#include "ramap/scene/synthetic.h"
+#include "ramap/synthetic/synthetic_scene.h"
 
 namespace ramap {
 namespace {

@@ -5,7 +5,7 @@
 
 #include "ramap/eval/plots.h"
 #include "ramap/geometry/alignment.h"
-#include "ramap/pipeline/image_order.h"
+#include "ramap/scene/image_order.h"
 
 namespace ramap {
 namespace {

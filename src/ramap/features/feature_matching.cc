@@ -11,7 +11,7 @@
 
 #include "ramap/geometry/camera_projection.h"
 #include "ramap/geometry/relative_pose.h"
-#include "ramap/pipeline/image_order.h"
+#include "ramap/scene/image_order.h"
 #include "ramap/util/error.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/parallel.h"

@@ -6,13 +6,9 @@
 #include <Eigen/Core>
 #include <string>
 
-namespace ramap {
+#include "ramap/scene/geodetic_point.h"
 
-struct GeodeticPoint {
-  double latitude_deg = 0.0;
-  double longitude_deg = 0.0;
-  double altitude_m = 0.0;  // above the WGS84 ellipsoid
-};
+namespace ramap {
 
 // Whether the latitude is in [-90, 90], the longitude in [-180, 360) and every value finite (the
 // altitude within 100 km of the ellipsoid, which excludes swapped or garbage columns).

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <set>
 
-#include "ramap/pipeline/image_order.h"
+#include "ramap/scene/image_order.h"
 #include "ramap/util/error.h"
 #include "ramap/util/timer.h"
 

@@ -9,10 +9,10 @@
 
 #include "ramap/graph/tracks.h"
 #include "ramap/pipeline/bearings.h"
-#include "ramap/pipeline/image_order.h"
 #include "ramap/pipeline/relative_poses.h"
 #include "ramap/pipeline/rotation_stage.h"
 #include "ramap/pipeline/stage_log.h"
+#include "ramap/scene/image_order.h"
 #include "ramap/util/error.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/timer.h"

@@ -25,11 +25,11 @@
 #include "ramap/geometry/relative_pose.h"
 #include "ramap/graph/keyframes.h"
 #include "ramap/pipeline/georegistration.h"
-#include "ramap/pipeline/image_order.h"
 #include "ramap/pipeline/structure.h"
 #include "ramap/pipeline/view_graph_calibration.h"
 #include "ramap/refine/bundle_adjustment.h"
 #include "ramap/scene/features.h"
+#include "ramap/scene/image_order.h"
 #include "ramap/scene/reconstruction.h"
 
 namespace ramap {

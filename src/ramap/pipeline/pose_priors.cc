@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "ramap/geometry/geodetic.h"
 #include "ramap/util/error.h"
 #include "ramap/util/statistics.h"
 

@@ -7,7 +7,7 @@
 #include <map>
 #include <optional>
 
-#include "ramap/geometry/geodetic.h"
+#include "ramap/scene/geodetic_point.h"
 
 namespace ramap {
 

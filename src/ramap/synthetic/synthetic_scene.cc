@@ -1,4 +1,4 @@
-#include "ramap/scene/synthetic.h"
+#include "ramap/synthetic/synthetic_scene.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

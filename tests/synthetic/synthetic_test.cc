@@ -1,5 +1,3 @@
-#include "ramap/scene/synthetic.h"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -11,6 +9,7 @@
 #include <sstream>
 
 #include "ramap/geometry/camera_projection.h"
+#include "ramap/synthetic/synthetic_scene.h"
 #include "ramap/util/error.h"
 #include "test_support.h"
 

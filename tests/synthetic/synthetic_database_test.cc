@@ -1,15 +1,15 @@
 // The synthetic scene through the COLMAP database writer and reader: what `ramap synthesize`
 // writes must read back unchanged, and COLMAP must reconstruct it.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
 #include <cmath>
 #include <iostream>
 #include <map>
 
-#include <Eigen/Geometry>
-#include <gtest/gtest.h>
-
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/colmap_model.h"
-#include "ramap/scene/synthetic.h"
+#include "ramap/synthetic/synthetic_scene.h"
 #include "test_support.h"
 
 namespace ramap {

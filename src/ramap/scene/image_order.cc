@@ -1,4 +1,4 @@
-#include "ramap/pipeline/image_order.h"
+#include "ramap/scene/image_order.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,12 +1,8 @@
-// A graph of relative rotations between cameras (the input of rotation averaging) and the graph
-// utilities the averaging needs: connected components, a maximum spanning tree and the rotations
-// obtained by chaining relative rotations along it (the usual initialisation, Chatterjee & Govindu,
-// "Efficient and robust large-scale rotation averaging", ICCV 2013).
-//
-// Convention, used by every rotation-averaging file in ramap: an absolute rotation R_i is
-// cam_from_world (COLMAP, x_cam = R_i x_world + t_i); an edge (i, j) holds R_ij = R_j R_i^T, the
-// rotation taking camera i's frame to camera j's frame. Gauge: R_i -> R_i G for any rotation G
-// leaves every R_ij unchanged.
+// The graph utilities rotation averaging needs on a graph of relative rotations
+// (scene/relative_rotations.h, which states the rotation convention and gauge): connected
+// components, a maximum spanning tree and the rotations obtained by chaining relative rotations
+// along it (the usual initialisation, Chatterjee & Govindu, "Efficient and robust large-scale
+// rotation averaging", ICCV 2013).
 #pragma once
 
 #include <Eigen/Core>
@@ -15,19 +11,9 @@
 #include <unordered_map>
 #include <vector>
 
+#include "ramap/scene/relative_rotations.h"
+
 namespace ramap {
-
-struct RelativeRotationEdge {
-  uint32_t i = 0;                                            // node id (e.g. COLMAP image_id)
-  uint32_t j = 0;                                            // node id
-  Eigen::Quaterniond R_ij = Eigen::Quaterniond::Identity();  // R_j R_i^T
-  double weight = 1.0;  // confidence, e.g. the number of verified inliers; > 0
-};
-
-struct RotationGraph {
-  std::vector<uint32_t> node_ids;           // distinct ids; edges refer to nodes by id
-  std::vector<RelativeRotationEdge> edges;  // no self loops; parallel edges are allowed
-};
 
 // node id -> position in graph.node_ids. Throws std::invalid_argument on duplicate ids or edges
 // naming unknown nodes or self loops.

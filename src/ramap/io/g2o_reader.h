@@ -3,7 +3,7 @@
 // rotations about z); any other line (comments, FIX, landmarks, ...) is ignored.
 //
 // g2o stores poses T_k = world_from_body and an edge (i, j) measures T_ij = T_i^{-1} T_j, so its
-// rotation is Q_ij = Q_i^T Q_j. In ramap's convention (graph/rotation_graph.h) R_k = Q_k^T is
+// rotation is Q_ij = Q_i^T Q_j. In ramap's convention (scene/relative_rotations.h) R_k = Q_k^T is
 // cam_from_world (body = camera) and R_ij = R_j R_i^T = Q_j^T Q_i = Q_ij^T: the edge holds the
 // inverse of the g2o rotation, and a vertex rotation is the inverse of the g2o quaternion.
 #pragma once
@@ -14,7 +14,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "ramap/graph/rotation_graph.h"
+#include "ramap/scene/relative_rotations.h"
 
 namespace ramap {
 

@@ -4,7 +4,6 @@
 // first solve are matched and verified and the mapper solves again with the loops
 // (pipeline/loop_closure.h).
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 
 #include "feature_options.h"
@@ -23,17 +22,6 @@
 namespace ramap::cli {
 
 namespace {
-
-void PrintLoopClosure(const LoopClosureSummary& closure, std::ostream& out) {
-  out << "[ramap] loop closure: " << closure.num_verified << " of " << closure.num_candidates
-      << " candidate pairs verified";
-  if (closure.num_bridge_pairs > 0) {
-    out << "; between models " << closure.num_bridge_pairs_verified << " verified of "
-        << closure.num_bridge_pairs_matched << " matched of " << closure.num_bridge_pairs
-        << " screened";
-  }
-  out << ", " << std::fixed << std::setprecision(2) << closure.seconds << " s\n";
-}
 
 void AddLoopClosureOptions(CLI::App& app, bool* close_loops, LoopClosureOptions* options) {
   LoopCandidateOptions& loops = options->candidates;
@@ -60,22 +48,6 @@ void AddLoopClosureOptions(CLI::App& app, bool* close_loops, LoopClosureOptions*
                  "(0: off)")
       ->capture_default_str()
       ->check(AtLeast(0));
-}
-
-nlohmann::json LoopClosureJson(bool enable, const LoopClosureOptions& options,
-                               const LoopClosureSummary& closure) {
-  const LoopCandidateOptions& loops = options.candidates;
-  return {{"enable", enable},
-          {"max_distance_baselines", loops.max_distance_baselines},
-          {"max_view_angle_deg", loops.max_view_angle_deg},
-          {"min_frame_gap", loops.min_frame_gap},
-          {"num_candidates", closure.num_candidates},
-          {"num_verified", closure.num_verified},
-          {"max_bridge_pairs", options.max_bridge_pairs},
-          {"num_bridge_pairs", closure.num_bridge_pairs},
-          {"num_bridge_pairs_matched", closure.num_bridge_pairs_matched},
-          {"num_bridge_pairs_verified", closure.num_bridge_pairs_verified},
-          {"loops", closure.loops}};
 }
 
 }  // namespace
@@ -115,17 +87,13 @@ int RunReconstruct(int argc, char** argv) {
   // EXIF GPS went into the database's prior positions (as COLMAP's ImageReader does).
   const LocalizedPriors priors =
       LoadPosePriors(prior_text, database, "ramap reconstruct", std::cerr);
-  MapperResult result = RunMapper(database, mapper, database_path, &std::cout, priors.priors);
-  LoopClosureSummary closure;
-  if (close_loops && features.matching.mode == MatchingMode::kSequential) {
-    closure =
-        MatchLoopCandidates(result, closure_options, features.matching, &database, &std::cout);
-    PrintLoopClosure(closure, std::cout);
-    if (closure.num_verified + closure.num_bridge_pairs_verified > 0) {
-      WriteColmapDatabaseMatches(database, database_path);  // COLMAP gets the loop pairs too
-      result = RunMapper(database, mapper, database_path, &std::cout, priors.priors);
-    }
-  }
+  const bool sequential = features.matching.mode == MatchingMode::kSequential;
+  LoopClosedMapperResult closed =
+      RunMapperWithLoopClosure(&database, mapper, close_loops && sequential, closure_options,
+                               features.matching, database_path, &std::cout, priors.priors);
+  // COLMAP gets the loop pairs too.
+  if (closed.database_changed) WriteColmapDatabaseMatches(database, database_path);
+  MapperResult& result = closed.result;
   for (Reconstruction& reconstruction : result.reconstructions) {
     ColorPointsFromImages(image_path, &reconstruction);
   }
@@ -137,7 +105,7 @@ int RunReconstruct(int argc, char** argv) {
       {"matching_mode", features.mode},
       {"options", MapperOptionsToJson(mapper)},
       {"pose_priors", PosePriorOptionsToJson(prior_text, mapper.georegistration)},
-      {"loop_closure", LoopClosureJson(close_loops, closure_options, closure)}};
+      {"loop_closure", LoopClosureToJson(close_loops, closure_options, closed.closure)}};
   WriteMapperOutput(result, output_path + "/sparse", ModelFormat::kBinary, run);
   created_database.Keep();
   created_folder.Keep();

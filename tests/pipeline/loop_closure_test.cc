@@ -103,13 +103,15 @@ TEST(LoopClosure, VerifiedLoopsEnterTheSecondSolve) {
   };
   const MapperResult first = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
   ASSERT_EQ(first.summary.num_registered_images, 80);
-  FeatureMatchingOptions matching;
-  const LoopClosureSummary closure =
-      MatchLoopCandidates(first, LoopClosureOptions(), matching, &scene.database);
+  const LoopClosedMapperResult closed =
+      RunMapperWithLoopClosure(&scene.database, test::AveragingOnly(), true, LoopClosureOptions(),
+                               FeatureMatchingOptions(), "synthetic", nullptr, PositionPriors());
+  const LoopClosureSummary& closure = closed.closure;
   EXPECT_GT(closure.num_candidates, 0);
   EXPECT_GE(closure.num_verified, 3);
   EXPECT_EQ(closure.loops.size(), static_cast<size_t>(closure.num_verified));
-  const MapperResult second = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
+  EXPECT_TRUE(closed.database_changed);
+  const MapperResult& second = closed.result;
   // The pose graph's loop edges (between keyframe windows) gain the revisits.
   EXPECT_GE(second.summary.num_loop_edges, first.summary.num_loop_edges + closure.num_verified);
   const PoseEvaluation before = evaluate(first), after = evaluate(second);
@@ -135,19 +137,21 @@ TEST(LoopClosure, PairsBetweenModelsJoinThem) {
   }
   const MapperResult first = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
   ASSERT_EQ(first.reconstructions.size(), 2u);
-  const LoopClosureSummary closure =
-      MatchLoopCandidates(first, LoopClosureOptions(), FeatureMatchingOptions(), &scene.database);
+  FeatureDatabase unjoined = scene.database;
+  const LoopClosedMapperResult closed =
+      RunMapperWithLoopClosure(&scene.database, test::AveragingOnly(), true, LoopClosureOptions(),
+                               FeatureMatchingOptions(), "synthetic", nullptr, PositionPriors());
+  const LoopClosureSummary& closure = closed.closure;
   // 40 x 40 images, sampled to every second of each: 400 pairs at most.
   EXPECT_GT(closure.num_bridge_pairs, 100);
   EXPECT_LE(closure.num_bridge_pairs, 400);
   EXPECT_GE(closure.num_bridge_pairs_verified, 2);
-  const MapperResult second = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
+  const MapperResult& second = closed.result;
   EXPECT_EQ(second.reconstructions.size(), 1u);
   EXPECT_EQ(second.summary.num_registered_images, 80);
   LoopClosureOptions off;
   off.max_bridge_pairs = 0;
-  FeatureDatabase untouched = scene.database;
-  EXPECT_EQ(MatchLoopCandidates(first, off, FeatureMatchingOptions(), &untouched).num_bridge_pairs,
+  EXPECT_EQ(MatchLoopCandidates(first, off, FeatureMatchingOptions(), &unjoined).num_bridge_pairs,
             0);
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <set>
 
 #include "ramap/scene/image_order.h"
@@ -107,6 +108,57 @@ LoopClosureSummary MatchLoopCandidates(const MapperResult& first, const LoopClos
   }
   summary.seconds = timer.ElapsedSeconds();
   return summary;
+}
+
+namespace {
+
+void PrintLoopClosure(const LoopClosureSummary& closure, std::ostream& out) {
+  out << "[ramap] loop closure: " << closure.num_verified << " of " << closure.num_candidates
+      << " candidate pairs verified";
+  if (closure.num_bridge_pairs > 0) {
+    out << "; between models " << closure.num_bridge_pairs_verified << " verified of "
+        << closure.num_bridge_pairs_matched << " matched of " << closure.num_bridge_pairs
+        << " screened";
+  }
+  out << ", " << std::fixed << std::setprecision(2) << closure.seconds << " s\n";
+}
+
+}  // namespace
+
+LoopClosedMapperResult RunMapperWithLoopClosure(FeatureDatabase* database,
+                                                const MapperOptions& options, bool close_loops,
+                                                const LoopClosureOptions& closure_options,
+                                                const FeatureMatchingOptions& matching,
+                                                const std::string& source, std::ostream* progress,
+                                                const PositionPriors& priors) {
+  LoopClosedMapperResult closed;
+  closed.result = RunMapper(*database, options, source, progress, priors);
+  if (!close_loops) return closed;
+  closed.closure =
+      MatchLoopCandidates(closed.result, closure_options, matching, database, progress);
+  if (progress != nullptr) PrintLoopClosure(closed.closure, *progress);
+  closed.database_changed =
+      closed.closure.num_verified + closed.closure.num_bridge_pairs_verified > 0;
+  if (closed.database_changed) {
+    closed.result = RunMapper(*database, options, source, progress, priors);
+  }
+  return closed;
+}
+
+nlohmann::json LoopClosureToJson(bool enable, const LoopClosureOptions& options,
+                                 const LoopClosureSummary& closure) {
+  const LoopCandidateOptions& loops = options.candidates;
+  return {{"enable", enable},
+          {"max_distance_baselines", loops.max_distance_baselines},
+          {"max_view_angle_deg", loops.max_view_angle_deg},
+          {"min_frame_gap", loops.min_frame_gap},
+          {"num_candidates", closure.num_candidates},
+          {"num_verified", closure.num_verified},
+          {"max_bridge_pairs", options.max_bridge_pairs},
+          {"num_bridge_pairs", closure.num_bridge_pairs},
+          {"num_bridge_pairs_matched", closure.num_bridge_pairs_matched},
+          {"num_bridge_pairs_verified", closure.num_bridge_pairs_verified},
+          {"loops", closure.loops}};
 }
 
 }  // namespace ramap

@@ -6,6 +6,7 @@
 // models.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -40,5 +41,25 @@ struct LoopClosureSummary {
 LoopClosureSummary MatchLoopCandidates(const MapperResult& first, const LoopClosureOptions& options,
                                        const FeatureMatchingOptions& matching,
                                        FeatureDatabase* database, std::ostream* progress = nullptr);
+
+struct LoopClosedMapperResult {
+  MapperResult result;            // the second solve's when a loop was verified, else the first's
+  LoopClosureSummary closure;     // empty when loop closure was off
+  bool database_changed = false;  // loop or bridge pairs were verified into the database
+};
+
+// The method's loop-closure step around the mapper (DESIGN.md): a first solve; with `close_loops`,
+// its loop candidates and bridge pairs matched and verified into `database` and, when any was
+// verified, a second solve with them. `progress` gets the mapper's lines and one loop-closure line.
+LoopClosedMapperResult RunMapperWithLoopClosure(FeatureDatabase* database,
+                                                const MapperOptions& options, bool close_loops,
+                                                const LoopClosureOptions& closure_options,
+                                                const FeatureMatchingOptions& matching,
+                                                const std::string& source, std::ostream* progress,
+                                                const PositionPriors& priors);
+
+// The options and the summary, as summary.json's "loop_closure".
+nlohmann::json LoopClosureToJson(bool enable, const LoopClosureOptions& options,
+                                 const LoopClosureSummary& closure);
 
 }  // namespace ramap

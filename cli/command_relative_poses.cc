@@ -16,22 +16,7 @@
 #include "ramap/util/timer.h"
 
 namespace ramap::cli {
-namespace {
-
-// "only 12 inliers after refinement" -> "only N inliers after refinement": reasons grouped by kind.
-std::string ReasonKind(const std::string& reason) {
-  std::string kind;
-  bool in_number = false;
-  for (const char c : reason) {
-    const bool digit = std::isdigit(static_cast<unsigned char>(c)) || (in_number && c == '.');
-    if (digit && !in_number) kind += 'N';
-    if (!digit) kind += c;
-    in_number = digit;
-  }
-  return kind;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int RunRelativePoses(int argc, char** argv) {
   CLI::App app("Relative pose of every verified image pair of a COLMAP database.",
@@ -57,9 +42,12 @@ int RunRelativePoses(int argc, char** argv) {
   const double seconds = timer.ElapsedSeconds();
 
   const std::vector<RelativePoseRecord> records = AcceptedRelativePoses(database, edges);
-  std::map<std::string, int> rejected;
+  // Rejections by kind, each with its first pair's reason as the example.
+  std::map<RelativePoseRejection, std::pair<int, std::string>> rejected;
   for (const ViewGraphEdge& edge : edges) {
-    if (!edge.estimate.success) ++rejected[ReasonKind(edge.estimate.reason)];
+    if (edge.estimate.success) continue;
+    auto& [count, example] = rejected[edge.estimate.rejection];
+    if (count++ == 0) example = edge.estimate.reason;
   }
   if (records.empty()) {
     throw InputError(database_path,
@@ -74,8 +62,9 @@ int RunRelativePoses(int argc, char** argv) {
             << " sampler) in " << std::fixed << std::setprecision(2) << seconds << " s ("
             << std::setprecision(3) << 1000.0 * seconds / edges.size() << " ms per pair on "
             << options.num_threads << " threads) -> " << output_path << "\n";
-  for (const auto& [reason, count] : rejected) {
-    std::cout << "  rejected " << count << ": " << reason << "\n";
+  for (const auto& [kind, count_and_example] : rejected) {
+    std::cout << "  rejected " << count_and_example.first << ": " << RelativePoseRejectionName(kind)
+              << " (e.g. " << count_and_example.second << ")\n";
   }
   return 0;
 }

@@ -128,6 +128,7 @@ void ExpectExactRecovery(CorrespondenceSampler sampler) {
     EXPECT_EQ(estimate.flags, kRelativePoseNone);
     EXPECT_DOUBLE_EQ(estimate.cheirality_ratio, 1.0);
     EXPECT_TRUE(estimate.reason.empty());
+    EXPECT_EQ(estimate.rejection, RelativePoseRejection::kNone);
   }
 }
 
@@ -201,6 +202,7 @@ TEST(RelativePoseTest, RejectsFewerThanSix) {
   RelativePoseEstimate estimate = EstimateRelativePose(pair.matches, options);
   EXPECT_FALSE(estimate.success);
   EXPECT_NE(estimate.reason.find("only 5 matches"), std::string::npos) << estimate.reason;
+  EXPECT_EQ(estimate.rejection, RelativePoseRejection::kTooFewMatches);
   // And fewer than COLMAP's 15 with the defaults.
   pair = MakePair(motion.R, motion.center2, 12, 0, 1);
   estimate = EstimateRelativePose(pair.matches, {});
@@ -217,6 +219,7 @@ TEST(RelativePoseTest, RejectsAllInOneCell) {
   const RelativePoseEstimate estimate = EstimateRelativePose(pair.matches, {});
   EXPECT_FALSE(estimate.success);
   EXPECT_NE(estimate.reason.find("one grid cell"), std::string::npos) << estimate.reason;
+  EXPECT_EQ(estimate.rejection, RelativePoseRejection::kTooLittleSpread);
 }
 
 TEST(RelativePoseTest, RejectsCollinearPoints) {
@@ -239,6 +242,7 @@ TEST(RelativePoseTest, RejectsCollinearPoints) {
   const RelativePoseEstimate estimate = EstimateRelativePose(pair.matches, {});
   EXPECT_FALSE(estimate.success);
   EXPECT_NE(estimate.reason.find("collinear"), std::string::npos) << estimate.reason;
+  EXPECT_EQ(estimate.rejection, RelativePoseRejection::kTooLittleSpread);
 }
 
 TEST(RelativePoseTest, RejectsUnknownFocalLength) {
@@ -248,6 +252,7 @@ TEST(RelativePoseTest, RejectsUnknownFocalLength) {
   const RelativePoseEstimate estimate = EstimateRelativePose(pair.matches, {});
   EXPECT_FALSE(estimate.success);
   EXPECT_NE(estimate.reason.find("focal length unknown"), std::string::npos) << estimate.reason;
+  EXPECT_EQ(estimate.rejection, RelativePoseRejection::kUnknownFocalLength);
 }
 
 TEST(RelativePoseTest, RejectsIdenticalImages) {
@@ -255,6 +260,7 @@ TEST(RelativePoseTest, RejectsIdenticalImages) {
   const RelativePoseEstimate estimate = EstimateRelativePose(pair.matches, {});
   EXPECT_FALSE(estimate.success);
   EXPECT_NE(estimate.reason.find("no motion"), std::string::npos) << estimate.reason;
+  EXPECT_EQ(estimate.rejection, RelativePoseRejection::kNoMotion);
 }
 
 TEST(RelativePoseTest, RejectsNaNInput) {
@@ -280,6 +286,7 @@ TEST(RelativePoseTest, RejectsInconsistentInput) {
   const RelativePoseEstimate estimate = EstimateRelativePose(pair.matches, {});
   EXPECT_FALSE(estimate.success);
   EXPECT_NE(estimate.reason.find("inconsistent"), std::string::npos) << estimate.reason;
+  EXPECT_EQ(estimate.rejection, RelativePoseRejection::kInvalidInput);
 }
 
 TEST(RelativePoseTest, OptionsCheck) {

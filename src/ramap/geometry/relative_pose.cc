@@ -13,6 +13,7 @@
 #include <opengv/relative_pose/methods.hpp>
 #include <opengv/sac/Ransac.hpp>
 #include <opengv/sac_problems/relative_pose/CentralRelativePoseSacProblem.hpp>
+#include <optional>
 #include <sstream>
 
 #include "ramap/geometry/rotation.h"
@@ -23,9 +24,10 @@ namespace {
 
 constexpr int kNumSamples = 6;
 
-RelativePoseEstimate Reject(const std::string& reason) {
+RelativePoseEstimate Reject(RelativePoseRejection rejection, const std::string& reason) {
   RelativePoseEstimate estimate;
   estimate.success = false;
+  estimate.rejection = rejection;
   estimate.reason = reason;
   return estimate;
 }
@@ -331,235 +333,362 @@ Eigen::Vector3d TranslationFromRotation(const std::vector<Eigen::Vector3d>& bear
   return eig.eigenvectors().col(0).normalized();
 }
 
-RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
-                                          const RelativePoseOptions& options) {
+const char* RelativePoseRejectionName(RelativePoseRejection rejection) {
+  switch (rejection) {
+    case RelativePoseRejection::kNone:
+      return "accepted";
+    case RelativePoseRejection::kInvalidInput:
+      return "invalid input";
+    case RelativePoseRejection::kUnknownFocalLength:
+      return "focal length unknown";
+    case RelativePoseRejection::kTooFewMatches:
+      return "too few matches";
+    case RelativePoseRejection::kTooLittleSpread:
+      return "too little spread (one grid cell or collinear)";
+    case RelativePoseRejection::kNoMotion:
+      return "no motion between the images";
+    case RelativePoseRejection::kPureRotationTooFewInliers:
+      return "pure rotation with too few inliers";
+    case RelativePoseRejection::kNoHypothesis:
+      return "no rotation hypothesis";
+    case RelativePoseRejection::kTooFewInliers:
+      return "too few inliers";
+    case RelativePoseRejection::kRefinementDiverged:
+      return "refinement diverged";
+    case RelativePoseRejection::kLowInlierRatio:
+      return "inlier ratio below min_inlier_ratio";
+    case RelativePoseRejection::kNonFiniteEstimate:
+      return "non-finite estimate";
+  }
+  return "unknown";
+}
+
+namespace {
+
+using Bearings = std::vector<Eigen::Vector3d>;
+using Rejection = RelativePoseRejection;
+
+// The pixel thresholds as angles (small-angle: an angle times the focal length is pixels).
+struct AngularThresholds {
+  double max_epipolar_error = 0;
+  double pure_rotation_parallax = 0;
+};
+
+// The checks on the input that need no geometry: lengths, counts, sizes, the focal length.
+std::optional<RelativePoseEstimate> InputRejection(const TwoViewCorrespondences& matches,
+                                                   const RelativePoseOptions& options) {
   const size_t n = matches.size();
   if (matches.bearings2.size() != n || matches.pixels1.size() != n || matches.pixels2.size() != n ||
       (!matches.confidence.empty() && matches.confidence.size() != n)) {
-    return Reject("inconsistent input: bearings, pixels and confidences differ in length");
+    return Reject(Rejection::kInvalidInput,
+                  "inconsistent input: bearings, pixels and confidences differ in length");
   }
   if (static_cast<int>(n) < std::max(kNumSamples, options.min_num_inliers)) {
-    return Reject("only " + std::to_string(n) + " matches, need at least " +
-                  std::to_string(std::max(kNumSamples, options.min_num_inliers)));
+    return Reject(Rejection::kTooFewMatches,
+                  "only " + std::to_string(n) + " matches, need at least " +
+                      std::to_string(std::max(kNumSamples, options.min_num_inliers)));
   }
   if (matches.width1 <= 0 || matches.height1 <= 0 || matches.width2 <= 0 || matches.height2 <= 0) {
-    return Reject("image sizes must be positive");
+    return Reject(Rejection::kInvalidInput, "image sizes must be positive");
   }
   if (!(matches.focal_length_px > 0) || !std::isfinite(matches.focal_length_px)) {
-    return Reject("focal length unknown: pixel thresholds cannot be turned into angles");
+    return Reject(Rejection::kUnknownFocalLength,
+                  "focal length unknown: pixel thresholds cannot be turned into angles");
   }
-  // Pixel thresholds as angles (small-angle: an angle times the focal length is pixels).
-  const double max_epipolar_error = options.max_epipolar_error_px / matches.focal_length_px;
-  const double parallax_threshold = options.pure_rotation_parallax_px / matches.focal_length_px;
-  std::vector<Eigen::Vector3d> f1(n), f2(n);
+  return std::nullopt;
+}
+
+// The unit bearings of both images into f1, f2; a rejection on a non-finite value or zero bearing.
+std::optional<RelativePoseEstimate> UnitBearings(const TwoViewCorrespondences& matches,
+                                                 Bearings* f1, Bearings* f2) {
+  const size_t n = matches.size();
+  f1->resize(n);
+  f2->resize(n);
   for (size_t k = 0; k < n; ++k) {
     const bool finite = matches.bearings1[k].allFinite() && matches.bearings2[k].allFinite() &&
                         matches.pixels1[k].allFinite() && matches.pixels2[k].allFinite() &&
                         (matches.confidence.empty() || std::isfinite(matches.confidence[k]));
-    if (!finite) return Reject("non-finite value in match " + std::to_string(k));
+    if (!finite)
+      return Reject(Rejection::kInvalidInput, "non-finite value in match " + std::to_string(k));
     if (matches.bearings1[k].norm() < 1e-12 || matches.bearings2[k].norm() < 1e-12) {
-      return Reject("zero bearing vector in match " + std::to_string(k));
+      return Reject(Rejection::kInvalidInput, "zero bearing vector in match " + std::to_string(k));
     }
-    f1[k] = matches.bearings1[k].normalized();
-    f2[k] = matches.bearings2[k].normalized();
+    (*f1)[k] = matches.bearings1[k].normalized();
+    (*f2)[k] = matches.bearings2[k].normalized();
   }
+  return std::nullopt;
+}
 
-  // Spread: one grid cell, or bearings on one great circle (keypoints on one image line), leave
-  // the rotation undetermined.
-  {
-    const ImageGrid grid1{options.grid_cols, options.grid_rows, matches.width1, matches.height1};
-    const ImageGrid grid2{options.grid_cols, options.grid_rows, matches.width2, matches.height2};
-    std::vector<bool> occupied1(options.grid_cols * options.grid_rows, false);
-    std::vector<bool> occupied2(occupied1.size(), false);
-    for (size_t k = 0; k < n; ++k) {
-      occupied1[grid1.CellIndex(matches.pixels1[k])] = true;
-      occupied2[grid2.CellIndex(matches.pixels2[k])] = true;
-    }
-    if (std::count(occupied1.begin(), occupied1.end(), true) < 2 ||
-        std::count(occupied2.begin(), occupied2.end(), true) < 2) {
-      return Reject("all matches fall into one grid cell: too little spread");
-    }
-    if (GreatCircleSpread(f1) < options.min_bearing_spread ||
-        GreatCircleSpread(f2) < options.min_bearing_spread) {
-      return Reject("matches are collinear in an image: rotation undetermined");
-    }
+// Spread: one grid cell, or bearings on one great circle (keypoints on one image line), leave
+// the rotation undetermined. Motion: identical views have none.
+std::optional<RelativePoseEstimate> SpreadOrMotionRejection(const TwoViewCorrespondences& matches,
+                                                            const Bearings& f1, const Bearings& f2,
+                                                            const RelativePoseOptions& options) {
+  const size_t n = matches.size();
+  const ImageGrid grid1{options.grid_cols, options.grid_rows, matches.width1, matches.height1};
+  const ImageGrid grid2{options.grid_cols, options.grid_rows, matches.width2, matches.height2};
+  std::vector<bool> occupied1(options.grid_cols * options.grid_rows, false);
+  std::vector<bool> occupied2(occupied1.size(), false);
+  for (size_t k = 0; k < n; ++k) {
+    occupied1[grid1.CellIndex(matches.pixels1[k])] = true;
+    occupied2[grid2.CellIndex(matches.pixels2[k])] = true;
   }
-
-  std::vector<int> all(n);
-  for (size_t k = 0; k < n; ++k) all[k] = static_cast<int>(k);
-
-  {
-    std::vector<double> raw_angles(n);
-    for (size_t k = 0; k < n; ++k) raw_angles[k] = AngleBetween(f1[k], f2[k]);
-    if (Median(raw_angles) < options.min_motion_deg * kDegToRad) {
-      return Reject("no motion between the images (identical or duplicate views)");
-    }
+  if (std::count(occupied1.begin(), occupied1.end(), true) < 2 ||
+      std::count(occupied2.begin(), occupied2.end(), true) < 2) {
+    return Reject(Rejection::kTooLittleSpread,
+                  "all matches fall into one grid cell: too little spread");
   }
+  if (GreatCircleSpread(f1) < options.min_bearing_spread ||
+      GreatCircleSpread(f2) < options.min_bearing_spread) {
+    return Reject(Rejection::kTooLittleSpread,
+                  "matches are collinear in an image: rotation undetermined");
+  }
+  std::vector<double> raw_angles(n);
+  for (size_t k = 0; k < n; ++k) raw_angles[k] = AngleBetween(f1[k], f2[k]);
+  if (Median(raw_angles) < options.min_motion_deg * kDegToRad) {
+    return Reject(Rejection::kNoMotion,
+                  "no motion between the images (identical or duplicate views)");
+  }
+  return std::nullopt;
+}
 
-  // Pure rotation / low parallax: the epipolar constraint is then satisfied by any translation and
-  // the solvers are ill-posed, so test for it first with a pure-rotation fit, refit once on the
-  // matches it explains.
-  {
-    Eigen::Matrix3d R = FitPureRotation(f1, f2, all);
-    std::vector<double> parallax(n);
-    for (size_t k = 0; k < n; ++k) parallax[k] = AngleBetween(R * f1[k], f2[k]);
-    if (Median(parallax) < parallax_threshold) {
-      std::vector<int> inliers;
-      const double inlier_threshold = std::max(2.0 * parallax_threshold, max_epipolar_error);
-      for (size_t k = 0; k < n; ++k) {
-        if (parallax[k] < inlier_threshold) inliers.push_back(static_cast<int>(k));
+// Pure rotation / low parallax: the epipolar constraint is then satisfied by any translation and
+// the solvers are ill-posed, so it is tested first with a pure-rotation fit, refit once on the
+// matches it explains. Returns the pure-rotation estimate (or its rejection); nothing when the
+// pair has parallax.
+std::optional<RelativePoseEstimate> PureRotationOutcome(const Bearings& f1, const Bearings& f2,
+                                                        const std::vector<int>& all,
+                                                        const AngularThresholds& thresholds,
+                                                        const RelativePoseOptions& options) {
+  const size_t n = f1.size();
+  Eigen::Matrix3d R = FitPureRotation(f1, f2, all);
+  std::vector<double> parallax(n);
+  for (size_t k = 0; k < n; ++k) parallax[k] = AngleBetween(R * f1[k], f2[k]);
+  if (!(Median(parallax) < thresholds.pure_rotation_parallax)) return std::nullopt;
+  std::vector<int> inliers;
+  const double inlier_threshold =
+      std::max(2.0 * thresholds.pure_rotation_parallax, thresholds.max_epipolar_error);
+  for (size_t k = 0; k < n; ++k) {
+    if (parallax[k] < inlier_threshold) inliers.push_back(static_cast<int>(k));
+  }
+  if (static_cast<int>(inliers.size()) < options.min_num_inliers) {
+    return Reject(Rejection::kPureRotationTooFewInliers,
+                  "pure rotation with only " + std::to_string(inliers.size()) + " inliers");
+  }
+  R = FitPureRotation(f1, f2, inliers);
+  RelativePoseEstimate estimate;
+  estimate.success = true;
+  estimate.rotation = Eigen::Quaterniond(R).normalized();
+  estimate.translation.setZero();
+  estimate.inliers = inliers;
+  estimate.num_inliers = static_cast<int>(inliers.size());
+  std::vector<double> inlier_parallax;
+  for (int k : inliers) inlier_parallax.push_back(AngleBetween(R * f1[k], f2[k]));
+  estimate.median_parallax_deg = Median(inlier_parallax) * kRadToDeg;
+  estimate.median_residual = Median(inlier_parallax);
+  estimate.cheirality_ratio = 1.0;
+  estimate.flags = kRelativePosePureRotation;
+  return estimate;
+}
+
+// The paper's hypothesis: six grid-selected (or random, or ROI) correspondences, the rotation
+// candidates of the six-point solver on them and on each five of them, ranked by preemptive
+// scoring (Nister, "Preemptive RANSAC", ICCV 2003: the up to ~40 candidates on an even subset of
+// the matches, only the best scored on all). False when no six could be selected
+// (`*no_six`) or no solver returned a rotation.
+bool SixPointHypothesis(const TwoViewCorrespondences& matches, const Bearings& f1,
+                        const Bearings& f2, const std::vector<int>& all,
+                        const RelativePoseOptions& options, double max_epipolar_error,
+                        Eigen::Matrix3d* R, Eigen::Vector3d* t, bool* no_six) {
+  std::vector<int> six;
+  switch (options.sampler) {
+    case CorrespondenceSampler::kGrid:
+      six = SelectGridCorrespondences(matches, options.grid_cols, options.grid_rows, kNumSamples,
+                                      options.min_cell_distance);
+      break;
+    case CorrespondenceSampler::kRandom:
+      six = SelectRandomCorrespondences(matches, kNumSamples, options.seed);
+      break;
+    case CorrespondenceSampler::kRoi:
+      six = SelectRoiCorrespondences(matches, options.grid_cols, options.grid_rows, kNumSamples);
+      break;
+    case CorrespondenceSampler::kRansac5:
+      break;
+  }
+  *no_six = static_cast<int>(six.size()) < kNumSamples;
+  if (*no_six) return false;
+  Bearings f1_subset, f2_subset;
+  for (const int k : EvenSubset(all, kNumPreemptiveMatches)) {
+    f1_subset.push_back(f1[k]);
+    f2_subset.push_back(f2[k]);
+  }
+  double best_subset_cost = std::numeric_limits<double>::infinity();
+  auto consider = [&](const std::vector<RotationCandidate>& candidates) {
+    for (const RotationCandidate& candidate : candidates) {
+      Eigen::Vector3d candidate_t;
+      const Scored scored =
+          ScoreRotation(f1_subset, f2_subset, candidate.R,
+                        TranslationFromRotation(f1, f2, candidate.support, candidate.R),
+                        max_epipolar_error, &candidate_t);
+      if (scored.cost < best_subset_cost) {
+        best_subset_cost = scored.cost;
+        *R = candidate.R;
+        *t = candidate_t;
       }
-      if (static_cast<int>(inliers.size()) < options.min_num_inliers) {
-        return Reject("pure rotation with only " + std::to_string(inliers.size()) + " inliers");
-      }
-      R = FitPureRotation(f1, f2, inliers);
-      RelativePoseEstimate estimate;
-      estimate.success = true;
-      estimate.rotation = Eigen::Quaterniond(R).normalized();
-      estimate.translation.setZero();
-      estimate.inliers = inliers;
-      estimate.num_inliers = static_cast<int>(inliers.size());
-      std::vector<double> inlier_parallax;
-      for (int k : inliers) inlier_parallax.push_back(AngleBetween(R * f1[k], f2[k]));
-      estimate.median_parallax_deg = Median(inlier_parallax) * kRadToDeg;
-      estimate.median_residual = Median(inlier_parallax);
-      estimate.cheirality_ratio = 1.0;
-      estimate.flags = kRelativePosePureRotation;
-      return estimate;
     }
+  };
+  consider(RotationCandidatesFromSix(f1, f2, six, -1));
+  for (int leave_out = 0; leave_out < kNumSamples; ++leave_out) {
+    consider(RotationCandidatesFromSix(f1, f2, six, leave_out));
   }
+  return std::isfinite(best_subset_cost);
+}
 
-  // Hypothesis: the paper's six-point rotation, or the RANSAC baseline.
-  Eigen::Matrix3d R;
-  Eigen::Vector3d t;
+// The best hypothesis (the paper's six-point rotation, or the RANSAC baseline) scored on every
+// match: its rotation, translation and inliers; a rejection when there is none or it explains
+// fewer than six matches.
+std::optional<RelativePoseEstimate> BestHypothesis(const TwoViewCorrespondences& matches,
+                                                   const Bearings& f1, const Bearings& f2,
+                                                   const std::vector<int>& all,
+                                                   const RelativePoseOptions& options,
+                                                   double max_epipolar_error, Eigen::Matrix3d* R,
+                                                   Eigen::Vector3d* t, std::vector<int>* inliers) {
   Scored best;
   if (options.sampler == CorrespondenceSampler::kRansac5) {
     Eigen::Vector3d t_ransac;
-    if (!RansacFivePoint(f1, f2, options, max_epipolar_error, &R, &t_ransac)) {
-      return Reject("RANSAC five-point found no essential matrix");
+    if (!RansacFivePoint(f1, f2, options, max_epipolar_error, R, &t_ransac)) {
+      return Reject(Rejection::kNoHypothesis, "RANSAC five-point found no essential matrix");
     }
-    best = ScoreRotation(f1, f2, R, t_ransac, max_epipolar_error, &t);
+    best = ScoreRotation(f1, f2, *R, t_ransac, max_epipolar_error, t);
   } else {
-    std::vector<int> six;
-    switch (options.sampler) {
-      case CorrespondenceSampler::kGrid:
-        six = SelectGridCorrespondences(matches, options.grid_cols, options.grid_rows, kNumSamples,
-                                        options.min_cell_distance);
-        break;
-      case CorrespondenceSampler::kRandom:
-        six = SelectRandomCorrespondences(matches, kNumSamples, options.seed);
-        break;
-      case CorrespondenceSampler::kRoi:
-        six = SelectRoiCorrespondences(matches, options.grid_cols, options.grid_rows, kNumSamples);
-        break;
-      case CorrespondenceSampler::kRansac5:
-        break;
+    bool no_six = false;
+    if (!SixPointHypothesis(matches, f1, f2, all, options, max_epipolar_error, R, t, &no_six)) {
+      return Reject(Rejection::kNoHypothesis, no_six
+                                                  ? "could not select six correspondences"
+                                                  : "the six-point solvers returned no rotation");
     }
-    if (static_cast<int>(six.size()) < kNumSamples) {
-      return Reject("could not select six correspondences");
-    }
-    // Preemptive scoring (Nister, "Preemptive RANSAC", ICCV 2003): the up to ~40 candidates are
-    // ranked on an even subset of the matches, and only the best is scored on all of them.
-    std::vector<Eigen::Vector3d> f1_subset, f2_subset;
-    for (const int k : EvenSubset(all, kNumPreemptiveMatches)) {
-      f1_subset.push_back(f1[k]);
-      f2_subset.push_back(f2[k]);
-    }
-    double best_subset_cost = std::numeric_limits<double>::infinity();
-    auto consider = [&](const std::vector<RotationCandidate>& candidates) {
-      for (const RotationCandidate& candidate : candidates) {
-        Eigen::Vector3d candidate_t;
-        const Scored scored =
-            ScoreRotation(f1_subset, f2_subset, candidate.R,
-                          TranslationFromRotation(f1, f2, candidate.support, candidate.R),
-                          max_epipolar_error, &candidate_t);
-        if (scored.cost < best_subset_cost) {
-          best_subset_cost = scored.cost;
-          R = candidate.R;
-          t = candidate_t;
-        }
-      }
-    };
-    consider(RotationCandidatesFromSix(f1, f2, six, -1));
-    for (int leave_out = 0; leave_out < kNumSamples; ++leave_out) {
-      consider(RotationCandidatesFromSix(f1, f2, six, leave_out));
-    }
-    if (!std::isfinite(best_subset_cost)) {
-      return Reject("the six-point solvers returned no rotation");
-    }
-    best = ScoreRotation(f1, f2, R, t, max_epipolar_error, &t);
+    best = ScoreRotation(f1, f2, *R, *t, max_epipolar_error, t);
   }
   if (static_cast<int>(best.inliers.size()) < kNumSamples) {
-    return Reject("rotation inconsistent with the epipolar constraint: only " +
-                  std::to_string(best.inliers.size()) + " inliers");
+    return Reject(Rejection::kTooFewInliers,
+                  "rotation inconsistent with the epipolar constraint: only " +
+                      std::to_string(best.inliers.size()) + " inliers");
   }
+  *inliers = best.inliers;
+  return std::nullopt;
+}
 
-  // Refine on all inliers, drop the matches the refined model does not explain and refit, until
-  // the inlier set is stable (a few rounds at most), so that the estimate is a fit of its final
-  // inliers only.
-  std::vector<int> inliers = best.inliers;
+// Refines on all inliers, drops the matches the refined model does not explain and refits, until
+// the inlier set is stable (a few rounds at most), so that the estimate is a fit of its final
+// inliers only.
+std::optional<RelativePoseEstimate> RefineUntilStable(const Bearings& f1, const Bearings& f2,
+                                                      const RelativePoseOptions& options,
+                                                      double max_epipolar_error,
+                                                      std::vector<int>* inliers, Eigen::Matrix3d* R,
+                                                      Eigen::Vector3d* t) {
   constexpr int kMaxRefineRounds = 4;
   for (int round = 0;; ++round) {
-    if (!RefineOnInliers(f1, f2, EvenSubset(inliers, options.max_refinement_matches), &R, &t)) {
-      return Reject("refinement diverged");
+    if (!RefineOnInliers(f1, f2, EvenSubset(*inliers, options.max_refinement_matches), R, t)) {
+      return Reject(Rejection::kRefinementDiverged, "refinement diverged");
     }
     if (round + 1 == kMaxRefineRounds) break;
-    std::vector<int> rescored = ScoreHypothesis(f1, f2, R, t, max_epipolar_error).inliers;
+    std::vector<int> rescored = ScoreHypothesis(f1, f2, *R, *t, max_epipolar_error).inliers;
     if (static_cast<int>(rescored.size()) < options.min_num_inliers) {
-      return Reject("only " + std::to_string(rescored.size()) + " inliers after refinement");
+      return Reject(Rejection::kTooFewInliers,
+                    "only " + std::to_string(rescored.size()) + " inliers after refinement");
     }
-    if (rescored == inliers) break;
-    inliers = std::move(rescored);
+    if (rescored == *inliers) break;
+    *inliers = std::move(rescored);
   }
+  return std::nullopt;
+}
 
-  // The paper's consistency check: the rotation must explain most of the verified matches.
-  const double ratio = static_cast<double>(inliers.size()) / static_cast<double>(n);
-  if (ratio < options.min_inlier_ratio) {
-    return Reject("rotation inconsistent with the epipolar constraint: only " + Percent(ratio) +
-                  " of the matches are inliers");
-  }
-
-  // Translation direction from the rotation, then the four-fold (R, +-t, twisted R) ambiguity of
-  // the epipolar constraint resolved by cheirality.
-  t = TranslationFromRotation(f1, f2, inliers, R);
-  const Eigen::Matrix3d R_refined = R;
-  const Eigen::Matrix3d R_twisted = Eigen::AngleAxisd(M_PI, t).toRotationMatrix() * R;
+// The translation direction from the rotation, then the four-fold (R, +-t, twisted R) ambiguity
+// of the epipolar constraint resolved by cheirality. Returns how many inliers are in front.
+int ResolveCheirality(const Bearings& f1, const Bearings& f2, const std::vector<int>& inliers,
+                      Eigen::Matrix3d* R, Eigen::Vector3d* t) {
+  *t = TranslationFromRotation(f1, f2, inliers, *R);
+  const Eigen::Matrix3d R_refined = *R;
+  const Eigen::Matrix3d R_twisted = Eigen::AngleAxisd(M_PI, *t).toRotationMatrix() * *R;
+  const Eigen::Vector3d t_refined = *t;
   int best_in_front = -1;
-  Eigen::Matrix3d R_final = R;
-  Eigen::Vector3d t_final = t;
   for (const Eigen::Matrix3d* R_option : {&R_refined, &R_twisted}) {
     for (double sign : {1.0, -1.0}) {
-      const int in_front = CountInFront(f1, f2, inliers, *R_option, sign * t);
+      const int in_front = CountInFront(f1, f2, inliers, *R_option, sign * t_refined);
       if (in_front > best_in_front) {
         best_in_front = in_front;
-        R_final = *R_option;
-        t_final = sign * t;
+        *R = *R_option;
+        *t = sign * t_refined;
       }
     }
   }
+  return best_in_front;
+}
 
+// The accepted estimate of (R, t) on `inliers`, with its residuals and parallax; pure rotation
+// when the parallax is below the threshold after all.
+RelativePoseEstimate FinalEstimate(const Bearings& f1, const Bearings& f2,
+                                   const std::vector<int>& inliers, const Eigen::Matrix3d& R,
+                                   const Eigen::Vector3d& t, int num_in_front,
+                                   const AngularThresholds& thresholds) {
   RelativePoseEstimate estimate;
   estimate.success = true;
-  estimate.rotation = Eigen::Quaterniond(R_final).normalized();
-  estimate.translation = t_final;
+  estimate.rotation = Eigen::Quaterniond(R).normalized();
+  estimate.translation = t;
   estimate.inliers = inliers;
   estimate.num_inliers = static_cast<int>(inliers.size());
   std::vector<double> residuals, parallax;
   for (int k : inliers) {
-    residuals.push_back(EpipolarError(R_final, t_final, f1[k], f2[k]));
-    parallax.push_back(AngleBetween(R_final * f1[k], f2[k]));
+    residuals.push_back(EpipolarError(R, t, f1[k], f2[k]));
+    parallax.push_back(AngleBetween(R * f1[k], f2[k]));
   }
   estimate.median_residual = Median(residuals);
   estimate.median_parallax_deg = Median(parallax) * kRadToDeg;
-  estimate.cheirality_ratio = static_cast<double>(best_in_front) / inliers.size();
-  if (Median(parallax) < parallax_threshold) {
+  estimate.cheirality_ratio = static_cast<double>(num_in_front) / inliers.size();
+  if (Median(parallax) < thresholds.pure_rotation_parallax) {
     estimate.flags |= kRelativePosePureRotation;
     estimate.translation.setZero();
   }
   if (!estimate.rotation.coeffs().allFinite() || !estimate.translation.allFinite()) {
-    return Reject("non-finite estimate");
+    return Reject(Rejection::kNonFiniteEstimate, "non-finite estimate");
   }
   return estimate;
+}
+
+}  // namespace
+
+RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
+                                          const RelativePoseOptions& options) {
+  if (auto rejected = InputRejection(matches, options)) return *rejected;
+  const AngularThresholds thresholds{options.max_epipolar_error_px / matches.focal_length_px,
+                                     options.pure_rotation_parallax_px / matches.focal_length_px};
+  Bearings f1, f2;
+  if (auto rejected = UnitBearings(matches, &f1, &f2)) return *rejected;
+  if (auto rejected = SpreadOrMotionRejection(matches, f1, f2, options)) return *rejected;
+  std::vector<int> all(matches.size());
+  for (size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
+  if (auto pure = PureRotationOutcome(f1, f2, all, thresholds, options)) return *pure;
+
+  Eigen::Matrix3d R;
+  Eigen::Vector3d t;
+  std::vector<int> inliers;
+  if (auto rejected = BestHypothesis(matches, f1, f2, all, options, thresholds.max_epipolar_error,
+                                     &R, &t, &inliers)) {
+    return *rejected;
+  }
+  if (auto rejected =
+          RefineUntilStable(f1, f2, options, thresholds.max_epipolar_error, &inliers, &R, &t)) {
+    return *rejected;
+  }
+  // The paper's consistency check: the rotation must explain most of the verified matches.
+  const double ratio = static_cast<double>(inliers.size()) / static_cast<double>(matches.size());
+  if (ratio < options.min_inlier_ratio) {
+    return Reject(Rejection::kLowInlierRatio,
+                  "rotation inconsistent with the epipolar constraint: only " + Percent(ratio) +
+                      " of the matches are inliers");
+  }
+  const int num_in_front = ResolveCheirality(f1, f2, inliers, &R, &t);
+  return FinalEstimate(f1, f2, inliers, R, t, num_in_front, thresholds);
 }
 
 }  // namespace ramap

@@ -88,6 +88,25 @@ enum RelativePoseFlags : uint32_t {
   kRelativePosePureRotation = 1u << 0,
 };
 
+// Why a pair's relative pose was rejected, by kind (the estimate's `reason` has the numbers).
+enum class RelativePoseRejection {
+  kNone,                // success
+  kInvalidInput,        // inconsistent lengths, sizes, non-finite or zero bearings
+  kUnknownFocalLength,  // pixel thresholds cannot become angles
+  kTooFewMatches,       // fewer than six / min_num_inliers
+  kTooLittleSpread,     // one grid cell, or bearings on one great circle
+  kNoMotion,            // identical or duplicate views
+  kPureRotationTooFewInliers,
+  kNoHypothesis,   // no six correspondences, no solver root, no essential matrix
+  kTooFewInliers,  // the hypothesis or its refinement explains too few matches
+  kRefinementDiverged,
+  kLowInlierRatio,  // below min_inlier_ratio: the paper's consistency check
+  kNonFiniteEstimate,
+};
+
+// "too few matches", ...: the kind as the relative_poses summary groups it.
+const char* RelativePoseRejectionName(RelativePoseRejection rejection);
+
 struct RelativePoseEstimate {
   bool success = false;
   // cam2_from_cam1 (R_ij) and its unit translation (zero when kRelativePosePureRotation).
@@ -103,7 +122,8 @@ struct RelativePoseEstimate {
   // Fraction of inliers in front of both cameras (1 for pure rotation).
   double cheirality_ratio = 0;
   uint32_t flags = kRelativePoseNone;
-  // Why the edge was rejected (empty on success).
+  // Why the edge was rejected: the kind, and in words with its numbers (empty on success).
+  RelativePoseRejection rejection = RelativePoseRejection::kNone;
   std::string reason;
 };
 

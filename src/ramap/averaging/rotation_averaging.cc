@@ -355,6 +355,187 @@ double ChordalCost(const RotationGraph& graph, const std::vector<Eigen::Quaterni
   return cost;
 }
 
+namespace {
+
+// Every edge's residual (deg) under the current rotations; NaN where a node is not estimated.
+void ComputeEdgeResiduals(const RotationGraph& graph, const IndexedEdges& indexed,
+                          RotationAveragingResult* result) {
+  for (size_t e = 0; e < graph.edges.size(); ++e) {
+    const int a = indexed.a[e];
+    const int b = indexed.b[e];
+    result->edge_residuals_deg[e] =
+        result->estimated[a] && result->estimated[b]
+            ? EdgeResidualDeg(graph.edges[e], result->rotations[a], result->rotations[b])
+            : std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+// A node most of whose kept edges exceed the threshold is more likely mis-estimated than
+// surrounded by outliers; pruning would strand it on whichever edges happen to agree with its
+// wrong estimate. Such nodes (at least three kept edges) are suspect.
+std::vector<bool> SuspectNodes(const RotationGraph& graph, const IndexedEdges& indexed,
+                               const std::vector<bool>& keep, const RotationAveragingResult& result,
+                               double threshold_deg) {
+  const size_t n = graph.node_ids.size();
+  std::vector<int> degree(n, 0);
+  std::vector<int> above(n, 0);
+  for (size_t e = 0; e < graph.edges.size(); ++e) {
+    if (!keep[e]) continue;
+    const bool high = result.edge_residuals_deg[e] > threshold_deg;
+    for (int node : {indexed.a[e], indexed.b[e]}) {
+      ++degree[node];
+      above[node] += high;
+    }
+  }
+  std::vector<bool> suspect(n, false);
+  for (size_t k = 0; k < n; ++k) suspect[k] = degree[k] >= 3 && 2 * above[k] > degree[k];
+  return suspect;
+}
+
+// Re-initialises each suspect node from the consensus of its neighbours (the candidate rotation
+// most of the others agree with). A node whose neighbours agree with its current estimate is
+// right after all and is no longer suspect: its edges are pruned as usual. True when a node moved.
+bool ReinitializeSuspectNodes(const RotationGraph& graph, const IndexedEdges& indexed,
+                              const std::vector<bool>& keep, double threshold_deg,
+                              std::vector<bool>* suspect, RotationAveragingResult* result) {
+  const size_t n = graph.node_ids.size();
+  std::vector<std::vector<Eigen::Quaterniond>> candidates(n);
+  for (size_t e = 0; e < graph.edges.size(); ++e) {
+    if (!keep[e]) continue;
+    const int a = indexed.a[e];
+    const int b = indexed.b[e];
+    const Eigen::Quaterniond& R_ab = graph.edges[e].R_ij;
+    if ((*suspect)[a]) candidates[a].push_back(R_ab.conjugate() * result->rotations[b]);
+    if ((*suspect)[b]) candidates[b].push_back(R_ab * result->rotations[a]);
+  }
+  const double agree_rad = threshold_deg * kDegToRad;
+  bool changed = false;
+  for (size_t k = 0; k < n; ++k) {
+    if (!(*suspect)[k]) continue;
+    int best_support = -1;
+    Eigen::Quaterniond best = result->rotations[k];
+    for (const Eigen::Quaterniond& candidate : candidates[k]) {
+      int support = 0;
+      for (const Eigen::Quaterniond& other : candidates[k]) {
+        support += candidate.angularDistance(other) < agree_rad;
+      }
+      if (support > best_support) {
+        best_support = support;
+        best = candidate;
+      }
+    }
+    if (best.angularDistance(result->rotations[k]) < agree_rad) {
+      (*suspect)[k] = false;
+      continue;
+    }
+    result->rotations[k] = best.normalized();
+    result->reinitialized_nodes.push_back(graph.node_ids[k]);
+    changed = true;
+  }
+  return changed;
+}
+
+// Prunes every kept edge whose residual exceeds the threshold, but the edges of suspect nodes.
+// True when an edge was pruned.
+bool PruneEdgesAbove(double threshold_deg, int round, const IndexedEdges& indexed,
+                     const std::vector<bool>& suspect, std::vector<bool>* keep,
+                     RotationAveragingResult* result) {
+  bool changed = false;
+  for (size_t e = 0; e < keep->size(); ++e) {
+    if (!(*keep)[e] || !(result->edge_residuals_deg[e] > threshold_deg)) continue;
+    if (suspect[indexed.a[e]] || suspect[indexed.b[e]]) continue;
+    (*keep)[e] = false;
+    result->edge_status[e] = EdgeStatus::kPrunedResidual;
+    PrunedEdge pruned;
+    pruned.edge_index = e;
+    pruned.round = round;
+    pruned.residual_deg = result->edge_residuals_deg[e];
+    pruned.threshold_deg = threshold_deg;
+    pruned.reason = EdgeStatus::kPrunedResidual;
+    result->pruned_edges.push_back(pruned);
+    changed = true;
+  }
+  return changed;
+}
+
+// The robust weights' IRLS, as the pruning rounds and the first run use it.
+struct RobustIrls {
+  std::function<double(double)> weight;
+  int max_iterations = 0;
+  double tolerance_rad = 0;
+  const std::vector<double>& base_weights;
+};
+
+// Pruning rounds: edges above the threshold (alpha_max, or the strong-duality bound) are pruned,
+// suspect nodes re-initialised, and the robust IRLS run again on the largest component, until a
+// round changes nothing.
+void RunPruningRounds(const RotationGraph& graph, const IndexedEdges& indexed,
+                      const RotationAveragingOptions& options, const RobustIrls& irls,
+                      std::vector<bool>* keep, RotationAveragingResult* result) {
+  const size_t n = graph.node_ids.size();
+  for (int round = 1; round <= options.max_pruning_rounds; ++round) {
+    ComputeEdgeResiduals(graph, indexed, result);
+    double threshold_deg = options.alpha_max_deg;
+    if (options.pruning_mode == PruningThresholdMode::kStrongDualityBound) {
+      double lambda2 = 0.0;
+      int max_degree = 0;
+      threshold_deg =
+          KeptGraphBound(graph, *keep, result->estimated, &lambda2, &max_degree) * kRadToDeg;
+    }
+    std::vector<bool> suspect(n, false);
+    if (options.reinitialize_suspect_nodes &&
+        options.pruning_mode == PruningThresholdMode::kFixedAngle) {
+      suspect = SuspectNodes(graph, indexed, *keep, *result, threshold_deg);
+    }
+    bool changed = false;
+    if (std::find(suspect.begin(), suspect.end(), true) != suspect.end()) {
+      changed = ReinitializeSuspectNodes(graph, indexed, *keep, threshold_deg, &suspect, result);
+    }
+    changed = PruneEdgesAbove(threshold_deg, round, indexed, suspect, keep, result) || changed;
+    if (!changed) break;
+    ++result->pruning_rounds;
+    RestrictToLargestComponent(graph, indexed, round, result, keep);
+    TangentIrls solver(graph, indexed.a, indexed.b, KeptEdges(*keep), result->estimated,
+                       irls.base_weights);
+    result->irls_iterations +=
+        solver.Run(irls.weight, irls.max_iterations, irls.tolerance_rad, &result->rotations);
+  }
+  ComputeEdgeResiduals(graph, indexed, result);
+}
+
+// The global optimality certificate on the kept graph: the chordal optimum from the robust
+// solution, its largest residual against the strong-duality bound of the kept graph.
+void ComputeCertificate(const RotationGraph& graph, const IndexedEdges& indexed,
+                        const std::vector<bool>& keep, const RotationAveragingOptions& options,
+                        RotationAveragingResult* result) {
+  RotationCertificate& certificate = result->certificate;
+  certificate.computed = true;
+  certificate.bound_deg = KeptGraphBound(graph, keep, result->estimated, &certificate.fiedler_value,
+                                         &certificate.max_degree) *
+                          kRadToDeg;
+  certificate.rotations = result->rotations;
+  const std::vector<double> unit_weights(graph.edges.size(), 1.0);
+  TangentIrls chordal(graph, indexed.a, indexed.b, KeptEdges(keep), result->estimated,
+                      unit_weights);
+  certificate.iterations =
+      chordal.Run(ChordalWeight, options.max_certificate_iterations,
+                  options.certificate_step_tolerance_deg * kDegToRad, &certificate.rotations);
+  for (size_t e = 0; e < graph.edges.size(); ++e) {
+    if (!keep[e]) continue;
+    const int a = indexed.a[e];
+    const int b = indexed.b[e];
+    certificate.max_residual_deg = std::max(
+        certificate.max_residual_deg,
+        EdgeResidualDeg(graph.edges[e], certificate.rotations[a], certificate.rotations[b]));
+    certificate.max_robust_residual_deg =
+        std::max(certificate.max_robust_residual_deg, result->edge_residuals_deg[e]);
+  }
+  certificate.certified =
+      certificate.bound_deg > 0.0 && certificate.max_residual_deg <= certificate.bound_deg;
+}
+
+}  // namespace
+
 RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
                                              const std::vector<Eigen::Quaterniond>& initial,
                                              const std::vector<bool>& initial_known,
@@ -388,149 +569,26 @@ RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
 
   // L1RA, then the first robust IRLS run.
   timer.Restart();
-  auto irls = std::make_unique<TangentIrls>(graph, indexed.a, indexed.b, KeptEdges(keep),
-                                            result.estimated, base_weights);
+  TangentIrls solver(graph, indexed.a, indexed.b, KeptEdges(keep), result.estimated, base_weights);
   const double l1_floor = options.l1_min_residual_deg * kDegToRad;
-  result.l1_iterations = irls->Run(
+  result.l1_iterations = solver.Run(
       [l1_floor](double r) { return 1.0 / std::max(r, l1_floor); }, options.max_l1_iterations,
       options.l1_step_tolerance_deg * kDegToRad, &result.rotations, options.l1_inner_iterations);
   result.timings.l1 = timer.ElapsedSeconds();
   timer.Restart();
-  const auto robust_weight = RobustWeight(options);
-  const double irls_tolerance = options.irls_step_tolerance_deg * kDegToRad;
+  const RobustIrls irls{RobustWeight(options), options.max_irls_iterations,
+                        options.irls_step_tolerance_deg * kDegToRad, base_weights};
   result.irls_iterations =
-      irls->Run(robust_weight, options.max_irls_iterations, irls_tolerance, &result.rotations);
+      solver.Run(irls.weight, irls.max_iterations, irls.tolerance_rad, &result.rotations);
   result.timings.irls = timer.ElapsedSeconds();
 
-  auto compute_residuals = [&]() {
-    for (size_t e = 0; e < graph.edges.size(); ++e) {
-      const int a = indexed.a[e];
-      const int b = indexed.b[e];
-      result.edge_residuals_deg[e] =
-          result.estimated[a] && result.estimated[b]
-              ? EdgeResidualDeg(graph.edges[e], result.rotations[a], result.rotations[b])
-              : std::numeric_limits<double>::quiet_NaN();
-    }
-  };
-
-  // Pruning rounds.
   timer.Restart();
-  for (int round = 1; round <= options.max_pruning_rounds; ++round) {
-    compute_residuals();
-    double threshold_deg = options.alpha_max_deg;
-    if (options.pruning_mode == PruningThresholdMode::kStrongDualityBound) {
-      double lambda2 = 0.0;
-      int max_degree = 0;
-      threshold_deg =
-          KeptGraphBound(graph, keep, result.estimated, &lambda2, &max_degree) * kRadToDeg;
-    }
-    // A node most of whose kept edges exceed the threshold is more likely mis-estimated than
-    // surrounded by outliers; pruning would strand it on whichever edges happen to agree with
-    // its wrong estimate. Re-initialise it from the consensus of its neighbours instead.
-    std::vector<bool> suspect(n, false);
-    if (options.reinitialize_suspect_nodes &&
-        options.pruning_mode == PruningThresholdMode::kFixedAngle) {
-      std::vector<int> degree(n, 0);
-      std::vector<int> above(n, 0);
-      for (size_t e = 0; e < graph.edges.size(); ++e) {
-        if (!keep[e]) continue;
-        const bool high = result.edge_residuals_deg[e] > threshold_deg;
-        for (int node : {indexed.a[e], indexed.b[e]}) {
-          ++degree[node];
-          above[node] += high;
-        }
-      }
-      for (size_t k = 0; k < n; ++k) suspect[k] = degree[k] >= 3 && 2 * above[k] > degree[k];
-    }
-    bool changed = false;
-    if (std::find(suspect.begin(), suspect.end(), true) != suspect.end()) {
-      std::vector<std::vector<Eigen::Quaterniond>> candidates(n);
-      for (size_t e = 0; e < graph.edges.size(); ++e) {
-        if (!keep[e]) continue;
-        const int a = indexed.a[e];
-        const int b = indexed.b[e];
-        const Eigen::Quaterniond& R_ab = graph.edges[e].R_ij;
-        if (suspect[a]) candidates[a].push_back(R_ab.conjugate() * result.rotations[b]);
-        if (suspect[b]) candidates[b].push_back(R_ab * result.rotations[a]);
-      }
-      const double agree_rad = threshold_deg * kDegToRad;
-      for (size_t k = 0; k < n; ++k) {
-        if (!suspect[k]) continue;
-        int best_support = -1;
-        Eigen::Quaterniond best = result.rotations[k];
-        for (const Eigen::Quaterniond& candidate : candidates[k]) {
-          int support = 0;
-          for (const Eigen::Quaterniond& other : candidates[k]) {
-            support += candidate.angularDistance(other) < agree_rad;
-          }
-          if (support > best_support) {
-            best_support = support;
-            best = candidate;
-          }
-        }
-        // The neighbours agree with the current estimate: the node is right and most of its
-        // edges are outliers, which are pruned as usual.
-        if (best.angularDistance(result.rotations[k]) < agree_rad) {
-          suspect[k] = false;
-          continue;
-        }
-        result.rotations[k] = best.normalized();
-        result.reinitialized_nodes.push_back(graph.node_ids[k]);
-        changed = true;
-      }
-    }
-    for (size_t e = 0; e < graph.edges.size(); ++e) {
-      if (!keep[e] || !(result.edge_residuals_deg[e] > threshold_deg)) continue;
-      if (suspect[indexed.a[e]] || suspect[indexed.b[e]]) continue;
-      keep[e] = false;
-      result.edge_status[e] = EdgeStatus::kPrunedResidual;
-      PrunedEdge pruned;
-      pruned.edge_index = e;
-      pruned.round = round;
-      pruned.residual_deg = result.edge_residuals_deg[e];
-      pruned.threshold_deg = threshold_deg;
-      pruned.reason = EdgeStatus::kPrunedResidual;
-      result.pruned_edges.push_back(pruned);
-      changed = true;
-    }
-    if (!changed) break;
-    ++result.pruning_rounds;
-    RestrictToLargestComponent(graph, indexed, round, &result, &keep);
-    irls = std::make_unique<TangentIrls>(graph, indexed.a, indexed.b, KeptEdges(keep),
-                                         result.estimated, base_weights);
-    result.irls_iterations +=
-        irls->Run(robust_weight, options.max_irls_iterations, irls_tolerance, &result.rotations);
-  }
-  compute_residuals();
+  RunPruningRounds(graph, indexed, options, irls, &keep, &result);
   result.timings.pruning = timer.ElapsedSeconds();
 
-  // Certificate on the kept graph.
   if (options.compute_certificate) {
     timer.Restart();
-    RotationCertificate& certificate = result.certificate;
-    certificate.computed = true;
-    certificate.bound_deg = KeptGraphBound(graph, keep, result.estimated,
-                                           &certificate.fiedler_value, &certificate.max_degree) *
-                            kRadToDeg;
-    certificate.rotations = result.rotations;
-    const std::vector<double> unit_weights(graph.edges.size(), 1.0);
-    TangentIrls chordal(graph, indexed.a, indexed.b, KeptEdges(keep), result.estimated,
-                        unit_weights);
-    certificate.iterations =
-        chordal.Run(ChordalWeight, options.max_certificate_iterations,
-                    options.certificate_step_tolerance_deg * kDegToRad, &certificate.rotations);
-    for (size_t e = 0; e < graph.edges.size(); ++e) {
-      if (!keep[e]) continue;
-      const int a = indexed.a[e];
-      const int b = indexed.b[e];
-      certificate.max_residual_deg = std::max(
-          certificate.max_residual_deg,
-          EdgeResidualDeg(graph.edges[e], certificate.rotations[a], certificate.rotations[b]));
-      certificate.max_robust_residual_deg =
-          std::max(certificate.max_robust_residual_deg, result.edge_residuals_deg[e]);
-    }
-    certificate.certified =
-        certificate.bound_deg > 0.0 && certificate.max_residual_deg <= certificate.bound_deg;
+    ComputeCertificate(graph, indexed, keep, options, &result);
     result.timings.certificate = timer.ElapsedSeconds();
   }
   result.timings.total = total_timer.ElapsedSeconds();

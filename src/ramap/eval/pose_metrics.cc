@@ -99,6 +99,149 @@ std::map<std::string, Rigid3d> PosesByName(const Reconstruction& reconstruction,
   return poses;
 }
 
+namespace {
+
+// The images of the evaluation, in input order, with pointers to their poses where they have one.
+struct EvaluatedImages {
+  std::vector<const Rigid3d*> estimated;
+  std::vector<const Rigid3d*> ground_truth;
+  std::vector<int> evaluated;  // registered with ground truth
+  std::vector<int> with_gt;    // with ground truth, input order
+};
+
+// Fills the per-image rows and counts of `result`; throws InputError on a repeated name.
+EvaluatedImages MatchImages(const std::map<std::string, Rigid3d>& estimated,
+                            const std::map<std::string, Rigid3d>& ground_truth,
+                            const std::vector<std::string>& all_image_names,
+                            PoseEvaluation* result) {
+  std::unordered_map<std::string, int> input_index;
+  for (const std::string& name : all_image_names) {
+    if (!input_index.emplace(name, static_cast<int>(input_index.size())).second) {
+      throw InputError("image list", "image name '" + name + "' appears twice");
+    }
+  }
+  for (const auto& [name, pose] : estimated) {
+    if (input_index.count(name) == 0) ++result->num_estimated_not_in_input;
+  }
+  const int n = result->num_images;
+  EvaluatedImages images{
+      std::vector<const Rigid3d*>(n, nullptr), std::vector<const Rigid3d*>(n, nullptr), {}, {}};
+  result->images.resize(n);
+  for (int i = 0; i < n; ++i) {
+    ImageEvaluation& image = result->images[i];
+    image.name = all_image_names[i];
+    if (auto it = estimated.find(image.name); it != estimated.end()) {
+      images.estimated[i] = &it->second;
+    }
+    if (auto it = ground_truth.find(image.name); it != ground_truth.end()) {
+      images.ground_truth[i] = &it->second;
+    }
+    image.registered = images.estimated[i] != nullptr;
+    image.has_ground_truth = images.ground_truth[i] != nullptr;
+    result->num_registered += image.registered;
+    result->num_with_ground_truth += image.has_ground_truth;
+    if (image.has_ground_truth) images.with_gt.push_back(i);
+    if (image.registered && image.has_ground_truth) images.evaluated.push_back(i);
+  }
+  result->num_evaluated = static_cast<int>(images.evaluated.size());
+  return images;
+}
+
+// Scene size from the ground truth alone: path length and extent about the centroid.
+void MeasureScene(const EvaluatedImages& images, PoseEvaluation* result) {
+  std::vector<Eigen::Vector3d> gt_centres;
+  for (int i : images.with_gt) gt_centres.push_back(CameraCenter(*images.ground_truth[i]));
+  for (size_t k = 1; k < gt_centres.size(); ++k) {
+    result->gt_path_length += (gt_centres[k] - gt_centres[k - 1]).norm();
+  }
+  if (gt_centres.empty()) return;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& c : gt_centres) centroid += c;
+  centroid /= static_cast<double>(gt_centres.size());
+  for (const Eigen::Vector3d& c : gt_centres) {
+    result->gt_extent = std::max(result->gt_extent, (c - centroid).norm());
+  }
+}
+
+// The Sim(3) alignment of the camera centres, then each image's position and rotation error and
+// their statistics.
+void AbsoluteErrors(const EvaluatedImages& images, const PoseEvaluationOptions& options,
+                    PoseEvaluation* result) {
+  std::vector<Eigen::Vector3d> source;
+  std::vector<Eigen::Vector3d> target;
+  for (int i : images.evaluated) {
+    source.push_back(CameraCenter(*images.estimated[i]));
+    target.push_back(CameraCenter(*images.ground_truth[i]));
+  }
+  const AlignmentResult alignment = AlignPoints(source, target, options.alignment);
+  result->alignment_status = alignment.status;
+  result->num_alignment_inliers = alignment.num_inliers;
+  std::vector<double> position_errors;
+  std::vector<double> rotation_errors;
+  if (alignment.ok()) {
+    result->gt_from_estimate = alignment.target_from_source;
+    for (size_t k = 0; k < images.evaluated.size(); ++k) {
+      const int i = images.evaluated[k];
+      ImageEvaluation& image = result->images[i];
+      const Rigid3d aligned = TransformPose(alignment.target_from_source, *images.estimated[i]);
+      image.alignment_inlier = alignment.inliers[k];
+      image.position_error = (CameraCenter(aligned) - target[k]).norm();
+      image.rotation_error_deg =
+          RotationAngleDeg(images.ground_truth[i]->rotation, aligned.rotation);
+      position_errors.push_back(image.position_error);
+      rotation_errors.push_back(image.rotation_error_deg);
+    }
+  }
+  result->ate_rmse = Rms(position_errors);
+  result->ate_mean = Mean(position_errors);
+  result->ate_median = Median(position_errors);
+  result->ate_max = Max(position_errors);
+  result->ate_rmse_over_path_length =
+      result->gt_path_length > 0.0 ? result->ate_rmse / result->gt_path_length : kNaN;
+  result->ate_rmse_over_extent =
+      result->gt_extent > 0.0 ? result->ate_rmse / result->gt_extent : kNaN;
+  result->rotation_error_median_deg = Median(rotation_errors);
+  result->rotation_error_mean_deg = Mean(rotation_errors);
+  result->rotation_error_max_deg = Max(rotation_errors);
+}
+
+// Relative pose errors over every pair with ground truth (no alignment involved); a pair with an
+// unregistered image is a failure. Then their medians and AUC.
+void RelativeErrors(const EvaluatedImages& images, const PoseEvaluationOptions& options,
+                    PoseEvaluation* result) {
+  std::vector<double> pair_errors;
+  std::vector<double> relative_rotation_errors;
+  std::vector<double> relative_translation_errors;
+  auto score = [&](int i, int j) {
+    const Rigid3d* est_i = images.estimated[i];
+    const Rigid3d* est_j = images.estimated[j];
+    if (est_i == nullptr || est_j == nullptr) {
+      pair_errors.push_back(kInf);
+      ++result->num_failed_pairs;
+      return;
+    }
+    const PairPoseError e = RelativePoseError(*est_i, *est_j, *images.ground_truth[i],
+                                              *images.ground_truth[j], options.min_baseline);
+    relative_rotation_errors.push_back(e.rotation_deg);
+    relative_translation_errors.push_back(e.translation_deg);
+    pair_errors.push_back(e.error_deg());
+  };
+  const std::vector<int>& with_gt = images.with_gt;
+  for (size_t a = 0; a < with_gt.size(); ++a) {
+    for (size_t b = a + 1; b < with_gt.size(); ++b) {
+      score(with_gt[a], with_gt[b]);
+      if (options.ordered_pairs) score(with_gt[b], with_gt[a]);
+    }
+  }
+  result->num_pairs = static_cast<int>(pair_errors.size());
+  result->relative_rotation_error_median_deg = Median(relative_rotation_errors);
+  result->relative_translation_error_median_deg = Median(relative_translation_errors);
+  result->pair_error_median_deg = Median(pair_errors);
+  result->auc = ComputeAuc(pair_errors, options.auc_thresholds_deg, options.auc_definition);
+}
+
+}  // namespace
+
 PoseEvaluation EvaluatePoses(const std::map<std::string, Rigid3d>& estimated,
                              const std::map<std::string, Rigid3d>& ground_truth,
                              const std::vector<std::string>& all_image_names,
@@ -108,115 +251,10 @@ PoseEvaluation EvaluatePoses(const std::map<std::string, Rigid3d>& estimated,
   result.num_images = static_cast<int>(all_image_names.size());
   result.auc_thresholds_deg = options.auc_thresholds_deg;
   result.auc_definition = options.auc_definition;
-
-  std::unordered_map<std::string, int> input_index;
-  for (const std::string& name : all_image_names) {
-    if (!input_index.emplace(name, static_cast<int>(input_index.size())).second) {
-      throw InputError("image list", "image name '" + name + "' appears twice");
-    }
-  }
-  for (const auto& [name, pose] : estimated) {
-    if (input_index.count(name) == 0) ++result.num_estimated_not_in_input;
-  }
-
-  // Per-image bookkeeping; pointers into the two maps for the images that have them.
-  const int n = result.num_images;
-  std::vector<const Rigid3d*> est(n, nullptr);
-  std::vector<const Rigid3d*> gt(n, nullptr);
-  result.images.resize(n);
-  std::vector<int> evaluated;  // registered with ground truth
-  std::vector<int> with_gt;    // with ground truth, input order
-  for (int i = 0; i < n; ++i) {
-    ImageEvaluation& image = result.images[i];
-    image.name = all_image_names[i];
-    if (auto it = estimated.find(image.name); it != estimated.end()) est[i] = &it->second;
-    if (auto it = ground_truth.find(image.name); it != ground_truth.end()) gt[i] = &it->second;
-    image.registered = est[i] != nullptr;
-    image.has_ground_truth = gt[i] != nullptr;
-    result.num_registered += image.registered;
-    result.num_with_ground_truth += image.has_ground_truth;
-    if (image.has_ground_truth) with_gt.push_back(i);
-    if (image.registered && image.has_ground_truth) evaluated.push_back(i);
-  }
-  result.num_evaluated = static_cast<int>(evaluated.size());
-
-  // Scene size from the ground truth alone.
-  std::vector<Eigen::Vector3d> gt_centres;
-  for (int i : with_gt) gt_centres.push_back(CameraCenter(*gt[i]));
-  for (size_t k = 1; k < gt_centres.size(); ++k) {
-    result.gt_path_length += (gt_centres[k] - gt_centres[k - 1]).norm();
-  }
-  if (!gt_centres.empty()) {
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    for (const Eigen::Vector3d& c : gt_centres) centroid += c;
-    centroid /= static_cast<double>(gt_centres.size());
-    for (const Eigen::Vector3d& c : gt_centres) {
-      result.gt_extent = std::max(result.gt_extent, (c - centroid).norm());
-    }
-  }
-
-  // Alignment and absolute errors.
-  std::vector<Eigen::Vector3d> source;
-  std::vector<Eigen::Vector3d> target;
-  for (int i : evaluated) {
-    source.push_back(CameraCenter(*est[i]));
-    target.push_back(CameraCenter(*gt[i]));
-  }
-  const AlignmentResult alignment = AlignPoints(source, target, options.alignment);
-  result.alignment_status = alignment.status;
-  result.num_alignment_inliers = alignment.num_inliers;
-  std::vector<double> position_errors;
-  std::vector<double> rotation_errors;
-  if (alignment.ok()) {
-    result.gt_from_estimate = alignment.target_from_source;
-    for (size_t k = 0; k < evaluated.size(); ++k) {
-      ImageEvaluation& image = result.images[evaluated[k]];
-      const Rigid3d aligned = TransformPose(alignment.target_from_source, *est[evaluated[k]]);
-      image.alignment_inlier = alignment.inliers[k];
-      image.position_error = (CameraCenter(aligned) - target[k]).norm();
-      image.rotation_error_deg = RotationAngleDeg(gt[evaluated[k]]->rotation, aligned.rotation);
-      position_errors.push_back(image.position_error);
-      rotation_errors.push_back(image.rotation_error_deg);
-    }
-  }
-  result.ate_rmse = Rms(position_errors);
-  result.ate_mean = Mean(position_errors);
-  result.ate_median = Median(position_errors);
-  result.ate_max = Max(position_errors);
-  result.ate_rmse_over_path_length =
-      result.gt_path_length > 0.0 ? result.ate_rmse / result.gt_path_length : kNaN;
-  result.ate_rmse_over_extent = result.gt_extent > 0.0 ? result.ate_rmse / result.gt_extent : kNaN;
-  result.rotation_error_median_deg = Median(rotation_errors);
-  result.rotation_error_mean_deg = Mean(rotation_errors);
-  result.rotation_error_max_deg = Max(rotation_errors);
-
-  // Relative pose errors over every pair with ground truth; no alignment involved.
-  std::vector<double> pair_errors;
-  std::vector<double> relative_rotation_errors;
-  std::vector<double> relative_translation_errors;
-  auto score = [&](int i, int j) {
-    if (est[i] == nullptr || est[j] == nullptr) {
-      pair_errors.push_back(kInf);
-      ++result.num_failed_pairs;
-      return;
-    }
-    const PairPoseError e =
-        RelativePoseError(*est[i], *est[j], *gt[i], *gt[j], options.min_baseline);
-    relative_rotation_errors.push_back(e.rotation_deg);
-    relative_translation_errors.push_back(e.translation_deg);
-    pair_errors.push_back(e.error_deg());
-  };
-  for (size_t a = 0; a < with_gt.size(); ++a) {
-    for (size_t b = a + 1; b < with_gt.size(); ++b) {
-      score(with_gt[a], with_gt[b]);
-      if (options.ordered_pairs) score(with_gt[b], with_gt[a]);
-    }
-  }
-  result.num_pairs = static_cast<int>(pair_errors.size());
-  result.relative_rotation_error_median_deg = Median(relative_rotation_errors);
-  result.relative_translation_error_median_deg = Median(relative_translation_errors);
-  result.pair_error_median_deg = Median(pair_errors);
-  result.auc = ComputeAuc(pair_errors, options.auc_thresholds_deg, options.auc_definition);
+  const EvaluatedImages images = MatchImages(estimated, ground_truth, all_image_names, &result);
+  MeasureScene(images, &result);
+  AbsoluteErrors(images, options, &result);
+  RelativeErrors(images, options, &result);
   return result;
 }
 

@@ -333,107 +333,124 @@ void SyntheticSceneOptions::Check() const {
   }
 }
 
-SyntheticScene BuildSyntheticScene(const SyntheticSceneOptions& options) {
-  options.Check();
-  Rng rng(options.seed);
-  const Camera& camera = options.camera;
-  // Image i (0-based) is taken with camera_of(i): camera 1, or camera 2 for odd i with a second.
-  auto camera_id_of = [&](size_t i) -> uint32_t { return options.second_camera && i % 2 ? 2 : 1; };
-  auto camera_of = [&](size_t i) -> const Camera& {
-    return camera_id_of(i) == 2 ? *options.second_camera : camera;
-  };
+namespace {
 
-  const std::vector<Rigid3d> poses = MakePoses(options, rng);
-  const std::vector<Eigen::Vector3d> points = MakePoints(options, poses, rng);
+// Image i (0-based) is taken with camera 1, or camera 2 for odd i with a second camera.
+uint32_t CameraIdOf(const SyntheticSceneOptions& options, size_t i) {
+  return options.second_camera && i % 2 ? 2 : 1;
+}
+
+const Camera& CameraOf(const SyntheticSceneOptions& options, size_t i) {
+  return CameraIdOf(options, i) == 2 ? *options.second_camera : options.camera;
+}
+
+// What the cameras see: keypoints per image, each image's observations of the points, each
+// point's track and the sum of its pixel noise.
+struct SceneObservations {
+  std::vector<std::vector<Point2D>> points2D;
+  std::vector<std::vector<Observation>> observations;
+  std::vector<std::vector<TrackElement>> tracks;
+  std::vector<double> noise_sum;
+};
+
+// Observations: in front of the camera (not closer than half the minimum depth, which no real
+// camera could focus on), facing the camera on an object, and inside the image after noise.
+SceneObservations ObservePoints(const SyntheticSceneOptions& options,
+                                const std::vector<Rigid3d>& poses,
+                                const std::vector<Eigen::Vector3d>& centers,
+                                const std::vector<Eigen::Vector3d>& points, Rng& rng) {
   const size_t num_images = poses.size();
-  std::vector<Eigen::Vector3d> centers(num_images);
-  for (size_t i = 0; i < num_images; ++i) centers[i] = CameraCenter(poses[i]);
-
-  // Observations: in front of the camera (not closer than half the minimum depth, which no
-  // real camera could focus on), facing the camera on an object, and inside the image after
-  // noise.
-  std::vector<std::vector<Point2D>> points2D(num_images);
-  std::vector<std::vector<Observation>> observations(num_images);
-  std::vector<std::vector<TrackElement>> tracks(points.size());
-  std::vector<double> noise_sum(points.size(), 0.0);
+  SceneObservations seen;
+  seen.points2D.resize(num_images);
+  seen.observations.resize(num_images);
+  seen.tracks.resize(points.size());
+  seen.noise_sum.assign(points.size(), 0.0);
   const bool object_points = UsesObjectPoints(options);
   for (size_t j = 0; j < points.size(); ++j) {
     for (size_t i = 0; i < num_images; ++i) {
       if (object_points && points[j].dot(centers[i] - points[j]) <= 0.0) continue;
       const Eigen::Vector3d in_camera = poses[i] * points[j];
       if (in_camera.norm() < 0.5 * options.min_depth) continue;
-      const Eigen::Vector2d projection = ProjectToPixel(camera_of(i), in_camera);
-      if (!InsideImage(camera_of(i), projection)) continue;
+      const Camera& camera = CameraOf(options, i);
+      const Eigen::Vector2d projection = ProjectToPixel(camera, in_camera);
+      if (!InsideImage(camera, projection)) continue;
       const double dx = Gaussian(rng, options.pixel_noise_sigma);
       const double dy = Gaussian(rng, options.pixel_noise_sigma);
       const Eigen::Vector2d observed = projection + Eigen::Vector2d(dx, dy);
-      if (!InsideImage(camera_of(i), observed)) continue;
-      const uint32_t point2D_idx = static_cast<uint32_t>(points2D[i].size());
+      if (!InsideImage(camera, observed)) continue;
+      const uint32_t point2D_idx = static_cast<uint32_t>(seen.points2D[i].size());
       Point2D point2D;
       point2D.xy = observed;
-      points2D[i].push_back(point2D);
-      observations[i].push_back({static_cast<uint32_t>(j), point2D_idx});
-      tracks[j].push_back({static_cast<uint32_t>(i + 1), point2D_idx});
-      noise_sum[j] += std::hypot(dx, dy);
+      seen.points2D[i].push_back(point2D);
+      seen.observations[i].push_back({static_cast<uint32_t>(j), point2D_idx});
+      seen.tracks[j].push_back({static_cast<uint32_t>(i + 1), point2D_idx});
+      seen.noise_sum[j] += std::hypot(dx, dy);
     }
   }
+  return seen;
+}
 
-  // Pairs to match, as (index1, index2) with index1 < index2.
+// Pairs to match, as (index1, index2) with index1 < index2: every pair of an unordered
+// collection; for a sequence the next `overlap` frames and the revisits (close, looking the same
+// way, far along the path).
+std::set<std::pair<size_t, size_t>> CandidatePairs(const SyntheticSceneOptions& options,
+                                                   const std::vector<Rigid3d>& poses,
+                                                   const std::vector<Eigen::Vector3d>& centers) {
+  const size_t num_images = poses.size();
   std::set<std::pair<size_t, size_t>> candidates;
-  if (options.layout == SyntheticLayout::kSequential) {
-    for (size_t i = 0; i < num_images; ++i) {
-      for (size_t k = 1; k <= static_cast<size_t>(options.overlap) && i + k < num_images; ++k) {
-        candidates.insert({i, i + k});
-      }
-    }
-    if (options.loop_max_distance > 0.0) {
-      std::vector<double> travelled(num_images, 0.0);
-      for (size_t i = 1; i < num_images; ++i) {
-        travelled[i] = travelled[i - 1] + (centers[i] - centers[i - 1]).norm();
-      }
-      const double cos_max_angle = std::cos(options.loop_max_angle_deg * kDegToRad);
-      for (size_t i = 0; i < num_images; ++i) {
-        const Eigen::Vector3d axis_i = poses[i].rotation.conjugate() * Eigen::Vector3d::UnitZ();
-        for (size_t k = i + options.overlap + 1; k < num_images; ++k) {
-          if ((centers[k] - centers[i]).norm() > options.loop_max_distance) continue;
-          if (travelled[k] - travelled[i] <= 4.0 * options.loop_max_distance) continue;
-          const Eigen::Vector3d axis_k = poses[k].rotation.conjugate() * Eigen::Vector3d::UnitZ();
-          if (axis_i.dot(axis_k) < cos_max_angle) continue;
-          candidates.insert({i, k});
-        }
-      }
-    }
-  } else {
+  if (options.layout != SyntheticLayout::kSequential) {
     for (size_t i = 0; i < num_images; ++i) {
       for (size_t k = i + 1; k < num_images; ++k) candidates.insert({i, k});
     }
+    return candidates;
   }
-
-  SyntheticScene scene;
-  FeatureDatabase& database = scene.database;
-  for (const size_t i : {size_t{0}, size_t{1}}) {
-    if (i >= num_images) break;
-    Camera stored_camera = camera_of(i);
-    stored_camera.camera_id = camera_id_of(i);
-    database.cameras[stored_camera.camera_id] = stored_camera;
+  for (size_t i = 0; i < num_images; ++i) {
+    for (size_t k = 1; k <= static_cast<size_t>(options.overlap) && i + k < num_images; ++k) {
+      candidates.insert({i, i + k});
+    }
   }
+  if (!(options.loop_max_distance > 0.0)) return candidates;
+  std::vector<double> travelled(num_images, 0.0);
+  for (size_t i = 1; i < num_images; ++i) {
+    travelled[i] = travelled[i - 1] + (centers[i] - centers[i - 1]).norm();
+  }
+  const double cos_max_angle = std::cos(options.loop_max_angle_deg * kDegToRad);
+  for (size_t i = 0; i < num_images; ++i) {
+    const Eigen::Vector3d axis_i = poses[i].rotation.conjugate() * Eigen::Vector3d::UnitZ();
+    for (size_t k = i + options.overlap + 1; k < num_images; ++k) {
+      if ((centers[k] - centers[i]).norm() > options.loop_max_distance) continue;
+      if (travelled[k] - travelled[i] <= 4.0 * options.loop_max_distance) continue;
+      const Eigen::Vector3d axis_k = poses[k].rotation.conjugate() * Eigen::Vector3d::UnitZ();
+      if (axis_i.dot(axis_k) < cos_max_angle) continue;
+      candidates.insert({i, k});
+    }
+  }
+  return candidates;
+}
 
-  // A wrong correspondence joins two keypoints that observe nothing (clutter), one-to-one.
-  auto add_clutter_keypoint = [&](size_t image_index) {
-    Point2D point2D;
-    // A margin keeps the float32 keypoint below the image size.
-    point2D.xy = Eigen::Vector2d(Uniform(rng, 0.0, camera.width - 0.01),
-                                 Uniform(rng, 0.0, camera.height - 0.01));
-    points2D[image_index].push_back(point2D);
-    return static_cast<uint32_t>(points2D[image_index].size() - 1);
-  };
+// A wrong correspondence joins two keypoints that observe nothing (clutter), one-to-one; returns
+// the new keypoint's index.
+uint32_t AddClutterKeypoint(const Camera& camera, Rng& rng, std::vector<Point2D>* points2D) {
+  Point2D point2D;
+  // A margin keeps the float32 keypoint below the image size.
+  point2D.xy = Eigen::Vector2d(Uniform(rng, 0.0, camera.width - 0.01),
+                               Uniform(rng, 0.0, camera.height - 0.01));
+  points2D->push_back(point2D);
+  return static_cast<uint32_t>(points2D->size() - 1);
+}
 
+// The candidate pairs that share enough points, with their true matches, clutter matches at the
+// outlier ratio and the true two-view geometry. Returns the pairs matched.
+std::set<std::pair<size_t, size_t>> AddMatchedPairs(
+    const SyntheticSceneOptions& options, const std::set<std::pair<size_t, size_t>>& candidates,
+    const std::vector<Rigid3d>& poses, Rng& rng, SceneObservations* seen,
+    FeatureDatabase* database) {
   const size_t min_shared =
       options.layout == SyntheticLayout::kUnordered ? options.min_shared_points : 1;
   std::set<std::pair<size_t, size_t>> matched_pairs;
   for (const auto& [i, k] : candidates) {
     const std::vector<FeatureMatch> true_matches =
-        SharedObservations(observations[i], observations[k]);
+        SharedObservations(seen->observations[i], seen->observations[k]);
     if (true_matches.size() < min_shared) continue;
     matched_pairs.insert({i, k});
     const uint32_t image_id1 = static_cast<uint32_t>(i + 1);
@@ -444,93 +461,132 @@ SyntheticScene BuildSyntheticScene(const SyntheticSceneOptions& options) {
     const size_t num_outliers = static_cast<size_t>(
         std::lround(true_matches.size() * options.outlier_ratio / (1.0 - options.outlier_ratio)));
     for (size_t o = 0; o < num_outliers; ++o) {
-      const uint32_t idx1 = add_clutter_keypoint(i);
-      const uint32_t idx2 = add_clutter_keypoint(k);
+      const uint32_t idx1 = AddClutterKeypoint(options.camera, rng, &seen->points2D[i]);
+      const uint32_t idx2 = AddClutterKeypoint(options.camera, rng, &seen->points2D[k]);
       matches.push_back({idx1, idx2});
     }
     std::shuffle(matches.begin(), matches.end(), rng);
-    database.matches[pair_id] = std::move(matches);
+    database->matches[pair_id] = std::move(matches);
     if (true_matches.size() < static_cast<size_t>(std::max(options.min_num_inliers, 1))) continue;
-    TwoViewGeometry geometry =
-        MakeGeometry(image_id1, image_id2, poses[k] * poses[i].Inverse(),
-                     CalibrationMatrix(camera_of(i)), CalibrationMatrix(camera_of(k)));
+    TwoViewGeometry geometry = MakeGeometry(image_id1, image_id2, poses[k] * poses[i].Inverse(),
+                                            CalibrationMatrix(CameraOf(options, i)),
+                                            CalibrationMatrix(CameraOf(options, k)));
     geometry.inlier_matches = true_matches;
-    database.two_view_geometries[pair_id] = std::move(geometry);
+    database->two_view_geometries[pair_id] = std::move(geometry);
   }
+  return matched_pairs;
+}
 
-  // Whole outlier pairs: random pairs not matched above, with random matches and a random pose.
+// Whole outlier pairs: random pairs not matched yet, with random matches and a random pose.
+void AddOutlierPairs(const SyntheticSceneOptions& options, size_t num_images, Rng& rng,
+                     std::set<std::pair<size_t, size_t>>* matched_pairs, SceneObservations* seen,
+                     SyntheticScene* scene) {
+  FeatureDatabase& database = scene->database;
   const size_t max_pairs = num_images * (num_images - 1) / 2;
   const size_t max_attempts = 100 * static_cast<size_t>(options.num_outlier_pairs) + 100;
   std::uniform_int_distribution<size_t> random_image(0, num_images - 1);
   for (size_t attempt = 0;
        attempt < max_attempts &&
-       scene.outlier_pair_ids.size() < static_cast<size_t>(options.num_outlier_pairs) &&
-       matched_pairs.size() < max_pairs;
+       scene->outlier_pair_ids.size() < static_cast<size_t>(options.num_outlier_pairs) &&
+       matched_pairs->size() < max_pairs;
        ++attempt) {
     size_t i = random_image(rng);
     size_t k = random_image(rng);
     if (i == k) continue;
     if (i > k) std::swap(i, k);
-    if (!matched_pairs.insert({i, k}).second) continue;
+    if (!matched_pairs->insert({i, k}).second) continue;
     const uint32_t image_id1 = static_cast<uint32_t>(i + 1);
     const uint32_t image_id2 = static_cast<uint32_t>(k + 1);
     const uint64_t pair_id = ImagePairToPairId(image_id1, image_id2);
     std::vector<FeatureMatch> matches;
     for (int o = 0; o < options.num_outlier_pair_matches; ++o) {
-      const uint32_t idx1 = add_clutter_keypoint(i);
-      const uint32_t idx2 = add_clutter_keypoint(k);
+      const uint32_t idx1 = AddClutterKeypoint(options.camera, rng, &seen->points2D[i]);
+      const uint32_t idx2 = AddClutterKeypoint(options.camera, rng, &seen->points2D[k]);
       matches.push_back({idx1, idx2});
     }
     const Eigen::Quaterniond rotation = RandomRotation(rng);
     const Eigen::Vector3d translation = RandomUnitVector(rng);
-    TwoViewGeometry geometry =
-        MakeGeometry(image_id1, image_id2, Rigid3d(rotation, translation),
-                     CalibrationMatrix(camera_of(i)), CalibrationMatrix(camera_of(k)));
+    TwoViewGeometry geometry = MakeGeometry(image_id1, image_id2, Rigid3d(rotation, translation),
+                                            CalibrationMatrix(CameraOf(options, i)),
+                                            CalibrationMatrix(CameraOf(options, k)));
     geometry.inlier_matches = matches;
     database.matches[pair_id] = std::move(matches);
     database.two_view_geometries[pair_id] = std::move(geometry);
-    scene.outlier_pair_ids.push_back(pair_id);
+    scene->outlier_pair_ids.push_back(pair_id);
   }
+}
 
-  // Points seen twice or more become the ground-truth points3D, numbered from 1 in point order.
-  Reconstruction& truth = scene.ground_truth;
-  truth.cameras = database.cameras;
+// Points seen twice or more become the ground-truth points3D, numbered from 1 in point order.
+void AddGroundTruthPoints(const std::vector<Eigen::Vector3d>& points, SceneObservations* seen,
+                          Reconstruction* truth) {
   uint64_t next_point3D_id = 1;
   for (size_t j = 0; j < points.size(); ++j) {
-    if (tracks[j].size() < 2) continue;
+    const std::vector<TrackElement>& track = seen->tracks[j];
+    if (track.size() < 2) continue;
     const uint64_t point3D_id = next_point3D_id++;
     Point3D point3D;
     point3D.xyz = points[j];
     point3D.color = Eigen::Matrix<uint8_t, 3, 1>(160, 160, 160);
-    point3D.error = noise_sum[j] / tracks[j].size();
-    point3D.track = tracks[j];
-    for (const TrackElement& element : tracks[j]) {
-      points2D[element.image_id - 1][element.point2D_idx].point3D_id = point3D_id;
+    point3D.error = seen->noise_sum[j] / track.size();
+    point3D.track = track;
+    for (const TrackElement& element : track) {
+      seen->points2D[element.image_id - 1][element.point2D_idx].point3D_id = point3D_id;
     }
-    truth.points3D[point3D_id] = std::move(point3D);
+    truth->points3D[point3D_id] = std::move(point3D);
   }
+}
 
-  for (size_t i = 0; i < num_images; ++i) {
+// Every image: in the database with its keypoints, in the ground truth with its pose.
+void AddImages(const SyntheticSceneOptions& options, const std::vector<Rigid3d>& poses,
+               SceneObservations* seen, SyntheticScene* scene) {
+  for (size_t i = 0; i < poses.size(); ++i) {
     const uint32_t image_id = static_cast<uint32_t>(i + 1);
     Image image;
     image.image_id = image_id;
     image.name = FrameName(i);
-    image.camera_id = camera_id_of(i);
-    database.images[image_id] = image;
+    image.camera_id = CameraIdOf(options, i);
+    scene->database.images[image_id] = image;
 
     Keypoints keypoints;
     keypoints.num_cols = 2;
-    keypoints.data.reserve(2 * points2D[i].size());
-    for (const Point2D& point2D : points2D[i]) {
+    keypoints.data.reserve(2 * seen->points2D[i].size());
+    for (const Point2D& point2D : seen->points2D[i]) {
       keypoints.data.push_back(static_cast<float>(point2D.xy.x()));
       keypoints.data.push_back(static_cast<float>(point2D.xy.y()));
     }
-    database.keypoints[image_id] = std::move(keypoints);
+    scene->database.keypoints[image_id] = std::move(keypoints);
 
     image.cam_from_world = poses[i];
-    image.points2D = std::move(points2D[i]);
-    truth.images[image_id] = std::move(image);
+    image.points2D = std::move(seen->points2D[i]);
+    scene->ground_truth.images[image_id] = std::move(image);
   }
+}
+
+}  // namespace
+
+SyntheticScene BuildSyntheticScene(const SyntheticSceneOptions& options) {
+  options.Check();
+  Rng rng(options.seed);
+  const std::vector<Rigid3d> poses = MakePoses(options, rng);
+  const std::vector<Eigen::Vector3d> points = MakePoints(options, poses, rng);
+  const size_t num_images = poses.size();
+  std::vector<Eigen::Vector3d> centers(num_images);
+  for (size_t i = 0; i < num_images; ++i) centers[i] = CameraCenter(poses[i]);
+  SceneObservations seen = ObservePoints(options, poses, centers, points, rng);
+
+  SyntheticScene scene;
+  for (const size_t i : {size_t{0}, size_t{1}}) {
+    if (i >= num_images) break;
+    Camera stored_camera = CameraOf(options, i);
+    stored_camera.camera_id = CameraIdOf(options, i);
+    scene.database.cameras[stored_camera.camera_id] = stored_camera;
+  }
+  std::set<std::pair<size_t, size_t>> matched_pairs = AddMatchedPairs(
+      options, CandidatePairs(options, poses, centers), poses, rng, &seen, &scene.database);
+  AddOutlierPairs(options, num_images, rng, &matched_pairs, &seen, &scene);
+  scene.ground_truth.cameras = scene.database.cameras;
+  AddGroundTruthPoints(points, &seen, &scene.ground_truth);
+  AddImages(options, poses, &seen, &scene);
   return scene;
 }
 

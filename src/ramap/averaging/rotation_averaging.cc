@@ -674,6 +674,35 @@ RotationAveragingResult AverageRotationsInWindows(const RotationGraph& graph,
   return result;
 }
 
+namespace {
+
+// Solves the chordal normal equations (lower triangle in `triplets`, 3m x 3m) by CHOLMOD and
+// projects each unknown's 3 x 3 block onto the nearest rotation.
+void SolveChordalSystem(const std::vector<Eigen::Triplet<double, int>>& triplets,
+                        const Eigen::MatrixXd& rhs, int m, const std::vector<int>& unknown,
+                        std::vector<Eigen::Quaterniond>* rotations) {
+  SparseMatrix H(3 * m, 3 * m);
+  H.setFromTriplets(triplets.begin(), triplets.end());
+  H.makeCompressed();
+  Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> solver;
+  solver.compute(H);
+  if (solver.info() != Eigen::Success) {
+    throw std::runtime_error("chordal averaging: CHOLMOD factorisation failed");
+  }
+  const Eigen::MatrixXd X = solver.solve(rhs);
+  for (size_t k = 0; k < unknown.size(); ++k) {
+    if (unknown[k] < 0) continue;
+    const Eigen::Matrix3d M = X.block<3, 3>(3 * unknown[k], 0);
+    Eigen::JacobiSVD<Eigen::Matrix3d> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
+    D(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1.0 : 1.0;
+    (*rotations)[k] = Eigen::Quaterniond(svd.matrixU() * D * svd.matrixV().transpose());
+    (*rotations)[k].normalize();
+  }
+}
+
+}  // namespace
+
 ChordalAveragingResult AverageRotationsChordal(const RotationGraph& graph, bool refine,
                                                int max_refine_iterations,
                                                double refine_step_tolerance_deg) {
@@ -730,26 +759,7 @@ ChordalAveragingResult AverageRotationsChordal(const RotationGraph& graph, bool 
       rhs.block<3, 3>(3 * ua, 0) += A.transpose();
     }
   }
-  if (m > 0) {
-    SparseMatrix H(3 * m, 3 * m);
-    H.setFromTriplets(triplets.begin(), triplets.end());
-    H.makeCompressed();
-    Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> solver;
-    solver.compute(H);
-    if (solver.info() != Eigen::Success) {
-      throw std::runtime_error("chordal averaging: CHOLMOD factorisation failed");
-    }
-    const Eigen::MatrixXd X = solver.solve(rhs);
-    for (size_t k = 0; k < n; ++k) {
-      if (unknown[k] < 0) continue;
-      const Eigen::Matrix3d M = X.block<3, 3>(3 * unknown[k], 0);
-      Eigen::JacobiSVD<Eigen::Matrix3d> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
-      Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
-      D(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1.0 : 1.0;
-      result.rotations[k] = Eigen::Quaterniond(svd.matrixU() * D * svd.matrixV().transpose());
-      result.rotations[k].normalize();
-    }
-  }
+  if (m > 0) SolveChordalSystem(triplets, rhs, m, unknown, &result.rotations);
   if (refine) {
     std::vector<size_t> edges;
     for (size_t e = 0; e < graph.edges.size(); ++e) {

@@ -513,10 +513,17 @@ class Reader {
 // Writing.
 
 // Everything the reader would reject, checked before a byte is written.
-void CheckWritable(const FeatureDatabase& database, const std::string& path) {
-  const auto Fail = [&path](const std::string& problem) {
+namespace {
+
+// Throws InputError(path, "cannot write the database: problem").
+struct WriteFailure {
+  const std::string& path;
+  [[noreturn]] void operator()(const std::string& problem) const {
     throw InputError(path, "cannot write the database: " + problem);
-  };
+  }
+};
+
+void CheckWritableCamerasAndImages(const FeatureDatabase& database, const WriteFailure& Fail) {
   for (const auto& [camera_id, camera] : database.cameras) {
     if (camera.camera_id != camera_id) {
       Fail("camera keyed " + std::to_string(camera_id) + " has camera_id " +
@@ -537,6 +544,9 @@ void CheckWritable(const FeatureDatabase& database, const std::string& path) {
     }
     if (!names.insert(image.name).second) Fail(label + ": another image has the same name");
   }
+}
+
+void CheckWritableFeatures(const FeatureDatabase& database, const WriteFailure& Fail) {
   for (const auto& [image_id, keypoints] : database.keypoints) {
     if (database.images.count(image_id) == 0) {
       Fail("keypoints for image id " + std::to_string(image_id) + ", which is not an image");
@@ -560,40 +570,56 @@ void CheckWritable(const FeatureDatabase& database, const std::string& path) {
            " columns");
     }
   }
-  const auto CheckPair = [&](uint64_t pair_id, const char* what) {
-    const auto [id1, id2] = PairIdToImagePair(pair_id);
-    if (id1 >= id2 || ImagePairToPairId(id1, id2) != pair_id || database.images.count(id1) == 0 ||
-        database.images.count(id2) == 0) {
-      Fail(std::string(what) + " under pair_id " + std::to_string(pair_id) +
-           ", which is not a pair of two known images");
-    }
-    return std::make_pair(id1, id2);
-  };
+}
+
+// The images of `pair_id`, which must be a pair of two known images.
+std::pair<uint32_t, uint32_t> CheckWritablePairId(const FeatureDatabase& database, uint64_t pair_id,
+                                                  const char* what, const WriteFailure& Fail) {
+  const auto [id1, id2] = PairIdToImagePair(pair_id);
+  if (id1 >= id2 || ImagePairToPairId(id1, id2) != pair_id || database.images.count(id1) == 0 ||
+      database.images.count(id2) == 0) {
+    Fail(std::string(what) + " under pair_id " + std::to_string(pair_id) +
+         ", which is not a pair of two known images");
+  }
+  return {id1, id2};
+}
+
+void CheckWritableTwoViewGeometry(const FeatureDatabase& database, uint64_t pair_id,
+                                  const TwoViewGeometry& geometry, const WriteFailure& Fail) {
+  CheckWritablePairId(database, pair_id, "two-view geometry", Fail);
+  if (ImagePairToPairId(geometry.image_id1, geometry.image_id2) != pair_id ||
+      geometry.image_id1 == geometry.image_id2) {
+    Fail("two-view geometry of images (" + std::to_string(geometry.image_id1) + ", " +
+         std::to_string(geometry.image_id2) + ") is stored under pair_id " +
+         std::to_string(pair_id) + " of another pair");
+  }
+  const int config = static_cast<int>(geometry.config);
+  if (config < 0 || config > static_cast<int>(TwoViewConfig::kMultiple)) {
+    Fail("two-view geometry of " + PairLabel(database, geometry.image_id1, geometry.image_id2) +
+         ": unknown configuration type " + std::to_string(config));
+  }
+  CheckMatchIndices(database, "two-view geometry", geometry.image_id1, geometry.image_id2,
+                    geometry.inlier_matches, Fail);
+  if (!geometry.inlier_ratios.empty() &&
+      geometry.inlier_ratios.size() != geometry.inlier_matches.size()) {
+    Fail("two-view geometry of " + PairLabel(database, geometry.image_id1, geometry.image_id2) +
+         ": " + std::to_string(geometry.inlier_ratios.size()) + " descriptor ratios for " +
+         std::to_string(geometry.inlier_matches.size()) + " inlier matches");
+  }
+}
+
+}  // namespace
+
+void CheckWritable(const FeatureDatabase& database, const std::string& path) {
+  const WriteFailure fail{path};
+  CheckWritableCamerasAndImages(database, fail);
+  CheckWritableFeatures(database, fail);
   for (const auto& [pair_id, matches] : database.matches) {
-    const auto [id1, id2] = CheckPair(pair_id, "matches");
-    CheckMatchIndices(database, "matches", id1, id2, matches, Fail);
+    const auto [id1, id2] = CheckWritablePairId(database, pair_id, "matches", fail);
+    CheckMatchIndices(database, "matches", id1, id2, matches, fail);
   }
   for (const auto& [pair_id, geometry] : database.two_view_geometries) {
-    CheckPair(pair_id, "two-view geometry");
-    if (ImagePairToPairId(geometry.image_id1, geometry.image_id2) != pair_id ||
-        geometry.image_id1 == geometry.image_id2) {
-      Fail("two-view geometry of images (" + std::to_string(geometry.image_id1) + ", " +
-           std::to_string(geometry.image_id2) + ") is stored under pair_id " +
-           std::to_string(pair_id) + " of another pair");
-    }
-    const int config = static_cast<int>(geometry.config);
-    if (config < 0 || config > static_cast<int>(TwoViewConfig::kMultiple)) {
-      Fail("two-view geometry of " + PairLabel(database, geometry.image_id1, geometry.image_id2) +
-           ": unknown configuration type " + std::to_string(config));
-    }
-    CheckMatchIndices(database, "two-view geometry", geometry.image_id1, geometry.image_id2,
-                      geometry.inlier_matches, Fail);
-    if (!geometry.inlier_ratios.empty() &&
-        geometry.inlier_ratios.size() != geometry.inlier_matches.size()) {
-      Fail("two-view geometry of " + PairLabel(database, geometry.image_id1, geometry.image_id2) +
-           ": " + std::to_string(geometry.inlier_ratios.size()) + " descriptor ratios for " +
-           std::to_string(geometry.inlier_matches.size()) + " inlier matches");
-    }
+    CheckWritableTwoViewGeometry(database, pair_id, geometry, fail);
   }
 }
 

@@ -21,6 +21,33 @@ void GeoregistrationOptions::Check() const {
   }
 }
 
+namespace {
+
+// Why the priors cannot fix the model's rotation (empty when they can): spread over too little
+// for their standard deviation `sigma`, the fit's rotation would be uncertain by more than
+// max_fit_uncertainty_deg. Priors that all coincide get AlignPoints's own message later.
+std::string FitUncertaintyProblem(const std::vector<Eigen::Vector3d>& target, double sigma,
+                                  const GeoregistrationOptions& options) {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : target) centroid += p / static_cast<double>(target.size());
+  double spread = 0.0;
+  for (const Eigen::Vector3d& p : target) spread += (p - centroid).squaredNorm() / target.size();
+  spread = std::sqrt(spread);
+  const bool coincident = CheckPointSpread(target, AlignmentOptions().min_spread_ratio) ==
+                          AlignmentStatus::kCoincidentPoints;
+  const double uncertainty_deg =
+      sigma / (spread * std::sqrt(static_cast<double>(target.size()))) * kRadToDeg;
+  if (!(uncertainty_deg > options.max_fit_uncertainty_deg) || coincident) return "";
+  std::ostringstream problem;
+  problem << std::fixed << std::setprecision(2) << "the priors spread over " << spread
+          << " m (RMS) with a " << sigma << " m standard deviation: the fit's rotation would be "
+          << "uncertain by about " << std::setprecision(1) << uncertainty_deg << " deg (> "
+          << options.max_fit_uncertainty_deg << ", PosePrior.max_fit_uncertainty_deg)";
+  return problem.str();
+}
+
+}  // namespace
+
 PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& centers,
                                     const PositionPriors& priors,
                                     const GeoregistrationOptions& options) {
@@ -47,25 +74,8 @@ PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& c
   const double sigma = Median(sigmas);
   summary.threshold_m =
       options.max_alignment_error_m > 0 ? options.max_alignment_error_m : 3.0 * sigma;
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : target) centroid += p / static_cast<double>(target.size());
-  double spread = 0.0;
-  for (const Eigen::Vector3d& p : target) spread += (p - centroid).squaredNorm() / target.size();
-  spread = std::sqrt(spread);
-  // Priors that all coincide get AlignPoints's own message below.
-  const bool coincident = CheckPointSpread(target, AlignmentOptions().min_spread_ratio) ==
-                          AlignmentStatus::kCoincidentPoints;
-  const double uncertainty_deg =
-      sigma / (spread * std::sqrt(static_cast<double>(target.size()))) * kRadToDeg;
-  if (uncertainty_deg > options.max_fit_uncertainty_deg && !coincident) {
-    std::ostringstream problem;
-    problem << std::fixed << std::setprecision(2) << "the priors spread over " << spread
-            << " m (RMS) with a " << sigma << " m standard deviation: the fit's rotation would be "
-            << "uncertain by about " << std::setprecision(1) << uncertainty_deg << " deg (> "
-            << options.max_fit_uncertainty_deg << ", PosePrior.max_fit_uncertainty_deg)";
-    summary.problem = problem.str();
-    return result;
-  }
+  summary.problem = FitUncertaintyProblem(target, sigma, options);
+  if (!summary.problem.empty()) return result;
   AlignmentOptions alignment_options;
   alignment_options.estimate_scale = true;
   alignment_options.robust = true;

@@ -77,6 +77,50 @@ std::vector<PriorRecord> PriorRecordsFromDatabase(const FeatureDatabase& databas
   return records;
 }
 
+namespace {
+
+// The local east-north-up frame: about the given origin, or for geodetic and ECEF priors about
+// their median; none for priors already in a metric frame without an origin.
+std::optional<LocalEnuFrame> LocalFrame(const std::map<uint32_t, const PriorRecord*>& usable,
+                                        const PosePriorOptions& options) {
+  if (options.origin) return LocalEnuFrame(*options.origin);
+  if (options.coordinates != PriorCoordinates::kWgs84 &&
+      options.coordinates != PriorCoordinates::kEcef) {
+    return std::nullopt;
+  }
+  std::vector<Eigen::Vector3d> values;
+  for (const auto& [id, record] : usable) values.push_back(record->value);
+  const Eigen::Vector3d median = MedianPoint(values);
+  return LocalEnuFrame(options.coordinates == PriorCoordinates::kWgs84
+                           ? GeodeticPoint{median.x(), median.y(), median.z()}
+                           : EcefToGeodetic(median));
+}
+
+// Each usable prior's position in the local frame.
+std::map<uint32_t, Eigen::Vector3d> LocalPositions(
+    const std::map<uint32_t, const PriorRecord*>& usable, const std::optional<LocalEnuFrame>& frame,
+    const PosePriorOptions& options) {
+  std::map<uint32_t, Eigen::Vector3d> local;
+  for (const auto& [id, record] : usable) {
+    const Eigen::Vector3d& v = record->value;
+    switch (options.coordinates) {
+      case PriorCoordinates::kWgs84:
+        local[id] = frame->FromGeodetic({v.x(), v.y(), v.z()});
+        break;
+      case PriorCoordinates::kEcef:
+        local[id] = frame->FromEcef(v);
+        break;
+      case PriorCoordinates::kEnu:
+      case PriorCoordinates::kXyz:
+        local[id] = v;
+        break;
+    }
+  }
+  return local;
+}
+
+}  // namespace
+
 LocalizedPriors LocalizePriors(const std::vector<PriorRecord>& records,
                                const FeatureDatabase& database, const PosePriorOptions& options) {
   options.Check();
@@ -109,39 +153,11 @@ LocalizedPriors LocalizePriors(const std::vector<PriorRecord>& records,
   }
   if (usable.empty()) return result;
 
-  // The local frame.
-  std::optional<LocalEnuFrame> frame;
-  if (options.origin) {
-    frame.emplace(*options.origin);
-  } else if (options.coordinates == PriorCoordinates::kWgs84 ||
-             options.coordinates == PriorCoordinates::kEcef) {
-    std::vector<Eigen::Vector3d> values;
-    for (const auto& [id, record] : usable) values.push_back(record->value);
-    const Eigen::Vector3d median = MedianPoint(values);
-    frame.emplace(options.coordinates == PriorCoordinates::kWgs84
-                      ? GeodeticPoint{median.x(), median.y(), median.z()}
-                      : EcefToGeodetic(median));
-  }
+  const std::optional<LocalEnuFrame> frame = LocalFrame(usable, options);
   if (frame && options.coordinates != PriorCoordinates::kXyz) {
     result.priors.origin = frame->origin();
   }
-
-  std::map<uint32_t, Eigen::Vector3d> local;
-  for (const auto& [id, record] : usable) {
-    const Eigen::Vector3d& v = record->value;
-    switch (options.coordinates) {
-      case PriorCoordinates::kWgs84:
-        local[id] = frame->FromGeodetic({v.x(), v.y(), v.z()});
-        break;
-      case PriorCoordinates::kEcef:
-        local[id] = frame->FromEcef(v);
-        break;
-      case PriorCoordinates::kEnu:
-      case PriorCoordinates::kXyz:
-        local[id] = v;
-        break;
-    }
-  }
+  const std::map<uint32_t, Eigen::Vector3d> local = LocalPositions(usable, frame, options);
   // Gross errors: too far from the origin (for local frames without one, the median position).
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   if (!result.priors.origin) {

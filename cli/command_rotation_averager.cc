@@ -43,25 +43,6 @@ size_t NumDisconnectedEdges(const RotationAveragingResult& result) {
       [](const PrunedEdge& e) { return e.reason == EdgeStatus::kPrunedDisconnected; });
 }
 
-// The rotation graph of the records, its nodes numbered by image name (`names`, by node); the first
-// edge between two images counts.
-RotationGraph GraphOfRecords(const std::vector<RelativePoseRecord>& records,
-                             std::vector<std::string>* names) {
-  std::map<std::string, uint32_t> ids;
-  auto id_of = [&](const std::string& name) {
-    auto [it, inserted] = ids.emplace(name, static_cast<uint32_t>(names->size()));
-    if (inserted) names->push_back(name);
-    return it->second;
-  };
-  RotationGraph graph;
-  for (const RelativePoseRecord& r : records) {
-    graph.edges.push_back({id_of(r.image_name1), id_of(r.image_name2), r.rotation,
-                           static_cast<double>(std::max(r.num_inliers, 1))});
-  }
-  for (uint32_t k = 0; k < names->size(); ++k) graph.node_ids.push_back(k);
-  return graph;
-}
-
 }  // namespace
 
 int RunRotationAverager(int argc, char** argv) {
@@ -89,7 +70,7 @@ int RunRotationAverager(int argc, char** argv) {
   const std::vector<RelativePoseRecord> records =
       LoadRelativePoses(database_path, relative_poses_path, options);
   std::vector<std::string> names;
-  const RotationGraph graph = GraphOfRecords(records, &names);
+  const RotationGraph graph = RotationGraphOfRecords(records, &names);
   std::vector<uint32_t> order;
   for (const size_t k : CaptureOrder(names)) order.push_back(static_cast<uint32_t>(k));
   const bool sequential = IsSequentialInput(options.order, names);

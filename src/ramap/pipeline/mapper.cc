@@ -513,7 +513,7 @@ RotationGraph AcceptedPoseGraph(const FeatureDatabase& database,
       continue;
     }
     graph.edges.push_back({edge.image_id1, edge.image_id2, edge.estimate.rotation,
-                           static_cast<double>(edge.estimate.num_inliers)});
+                           RelativeRotationWeight(edge.estimate.num_inliers)});
     graph_to_view_edge->push_back(k);
     nodes.insert({edge.image_id1, edge.image_id2});
   }

@@ -4,11 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "ramap/averaging/rotation_averaging.h"
 #include "ramap/graph/keyframes.h"
 #include "ramap/graph/rotation_graph.h"
+#include "ramap/io/relative_pose_file.h"
 
 namespace ramap {
 
@@ -24,5 +26,14 @@ RotationStageResult AverageViewGraphRotations(const RotationGraph& graph,
                                               const std::vector<uint32_t>& capture_order,
                                               bool sequential, const KeyframeOptions& pose_graph,
                                               const RotationAveragingOptions& options);
+
+// The weight of a relative rotation in averaging: its number of inliers (at least 1, for records
+// read from a file that gives none).
+double RelativeRotationWeight(int num_inliers);
+
+// The rotation graph of relative pose records, its nodes numbered 0, 1, ... by image name in order
+// of first appearance (`names`, by node); the first record of two images counts.
+RotationGraph RotationGraphOfRecords(const std::vector<RelativePoseRecord>& records,
+                                     std::vector<std::string>* names);
 
 }  // namespace ramap

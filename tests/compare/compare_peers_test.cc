@@ -55,14 +55,20 @@ std::vector<std::string> CallsOf(const std::string& calls, const std::string& co
   return found;
 }
 
+// A synthetic orbit of `num_images` in FOLDER/scene (database.db, ground_truth/).
+void SynthesizeOrbit(const TempDir& dir, int num_images, int seed) {
+  const CommandResult synthesize = RunCommand(
+      "'" + RamapBinary() + "' synthesize --output_path '" + (dir / "scene") +
+      "' --Synthetic.path circle --Synthetic.num_points 800 --Synthetic.pixel_noise 0.3" +
+      " --Synthetic.num_images " + std::to_string(num_images) + " --Synthetic.seed " +
+      std::to_string(seed));
+  ASSERT_EQ(synthesize.exit_code, 0) << synthesize.output;
+}
+
 TEST(ComparePeers, ReportHasColmap4AndGlomapRowsRunOnCopiesOfTheDatabase) {
   TempDir dir;
   const std::string ramap = "'" + RamapBinary() + "' ";
-  ASSERT_EQ(RunCommand(ramap + "synthesize --output_path '" + (dir / "scene") +
-                       "' --Synthetic.path circle --Synthetic.num_images 12 "
-                       "--Synthetic.num_points 800 --Synthetic.pixel_noise 0.3 --Synthetic.seed 3")
-                .exit_code,
-            0);
+  ASSERT_NO_FATAL_FAILURE(SynthesizeOrbit(dir, 12, 3));
   const std::string db = dir / "scene/database.db", gt = dir / "scene/ground_truth";
   const std::string database_before = ReadText(db);
   WriteStandInColmap(dir / "colmap38", "3.8", dir / "calls38.txt", gt, false);
@@ -118,11 +124,7 @@ TEST(ComparePeers, ReportHasColmap4AndGlomapRowsRunOnCopiesOfTheDatabase) {
 TEST(ComparePeers, WithoutAPeerTheReportHasNoPeerRows) {
   TempDir dir;
   const std::string ramap = "'" + RamapBinary() + "' ";
-  ASSERT_EQ(RunCommand(ramap + "synthesize --output_path '" + (dir / "scene") +
-                       "' --Synthetic.path circle --Synthetic.num_images 8 "
-                       "--Synthetic.num_points 500 --Synthetic.seed 4")
-                .exit_code,
-            0);
+  ASSERT_NO_FATAL_FAILURE(SynthesizeOrbit(dir, 8, 4));
   WriteStandInColmap(dir / "colmap38", "3.8", dir / "calls38.txt", dir / "scene/ground_truth",
                      false);
   const CommandResult compare = RunCommand(

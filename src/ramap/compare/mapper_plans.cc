@@ -11,33 +11,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// COLMAP's incremental mapper (3.8 and 4 share its options) on `database_path`.
-std::string ColmapMapperCommand(const std::string& binary, const std::string& database_path,
+// A COLMAP mapper on `database_path`: `subcommand` "mapper" (incremental, whose options 3.8 and 4
+// share, in section "Mapper") or "global_mapper" (GLOMAP, section "GlobalMapper").
+std::string ColmapMapperCommand(const std::string& binary, const std::string& subcommand,
+                                const std::string& section, const std::string& database_path,
                                 const std::string& output_folder, const CompareOptions& options) {
-  std::string command =
-      ShellQuote(binary) + " mapper --database_path " + ShellQuote(database_path) +
-      " --image_path " + ShellQuote(options.image_path) + " --output_path " +
-      ShellQuote(output_folder) + " --Mapper.num_threads " + std::to_string(options.num_threads);
-  if (!options.refine_intrinsics) {
-    command +=
-        " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0"
-        " --Mapper.ba_refine_extra_params 0";
-  }
-  return command;
-}
-
-// COLMAP 4's global mapper (GLOMAP) on `database_path`.
-std::string GlobalMapperCommand(const std::string& binary, const std::string& database_path,
-                                const std::string& output_folder, const CompareOptions& options) {
-  std::string command = ShellQuote(binary) + " global_mapper --database_path " +
+  std::string command = ShellQuote(binary) + " " + subcommand + " --database_path " +
                         ShellQuote(database_path) + " --image_path " +
                         ShellQuote(options.image_path) + " --output_path " +
-                        ShellQuote(output_folder) + " --GlobalMapper.num_threads " +
+                        ShellQuote(output_folder) + " --" + section + ".num_threads " +
                         std::to_string(options.num_threads);
   if (!options.refine_intrinsics) {
-    command +=
-        " --GlobalMapper.ba_refine_focal_length 0 --GlobalMapper.ba_refine_principal_point 0"
-        " --GlobalMapper.ba_refine_extra_params 0";
+    for (const char* what : {"focal_length", "principal_point", "extra_params"}) {
+      command += " --" + section + ".ba_refine_" + what + " 0";
+    }
   }
   return command;
 }
@@ -87,21 +74,22 @@ std::vector<MapperPlan> MapperPlans(const CompareOptions& options,
   auto folder_path = [&](const std::string& folder) { return options.output_path + "/" + folder; };
   std::vector<MapperPlan> plans;
   plans.push_back({mapper_row::kColmap, "colmap",
-                   ColmapMapperCommand(options.colmap_binary, options.database_path,
-                                       folder_path("colmap"), options),
+                   ColmapMapperCommand(options.colmap_binary, "mapper", "Mapper",
+                                       options.database_path, folder_path("colmap"), options),
                    options.database_path, false});
   if (!options.peer_colmap_binary.empty()) {
     // Each peer gets its own copy: COLMAP 4 upgrades a 3.8 database when it opens it.
     const std::string incremental_copy = folder_path("colmap_peer.database.db");
     plans.push_back({std::string(mapper_row::kColmap) + " " + peer_version, "colmap_peer",
-                     ColmapMapperCommand(options.peer_colmap_binary, incremental_copy,
-                                         folder_path("colmap_peer"), options),
+                     ColmapMapperCommand(options.peer_colmap_binary, "mapper", "Mapper",
+                                         incremental_copy, folder_path("colmap_peer"), options),
                      incremental_copy, true});
     const std::string global_copy = folder_path("glomap.database.db");
-    plans.push_back({mapper_row::kGlomap, "glomap",
-                     GlobalMapperCommand(options.peer_colmap_binary, global_copy,
-                                         folder_path("glomap"), options),
-                     global_copy, true});
+    plans.push_back(
+        {mapper_row::kGlomap, "glomap",
+         ColmapMapperCommand(options.peer_colmap_binary, "global_mapper", "GlobalMapper",
+                             global_copy, folder_path("glomap"), options),
+         global_copy, true});
   }
   plans.push_back({mapper_row::kRamap, "ramap",
                    RamapMapperCommand(ramap, folder_path("ramap"), options, false),

@@ -1,0 +1,96 @@
+#include "synthetic_options.h"
+
+#include <map>
+
+#include "options.h"
+#include "ramap/io/trajectory.h"
+#include "ramap/util/error.h"
+
+namespace ramap::cli {
+
+void AddSceneOptions(CLI::App& app, SyntheticSceneOptions* options, SceneOptionText* text) {
+  app.add_option("--Synthetic.layout", text->layout,
+                 "sequential (a path) or unordered (around an object)")
+      ->check(CLI::IsMember({"sequential", "unordered"}))
+      ->capture_default_str();
+  app.add_option("--Synthetic.path", text->path,
+                 "sequential path: line (forward motion), circle (orbit of an object), loop (a "
+                 "closed drive)")
+      ->check(CLI::IsMember({"line", "circle", "loop"}))
+      ->capture_default_str();
+  app.add_option("--Synthetic.trajectory_path", text->trajectory_path,
+                 "KITTI odometry pose file whose poses the sequential cameras take (instead of "
+                 "--Synthetic.path); --Synthetic.num_images 0 takes all")
+      ->check(CLI::ExistingFile);
+  app.add_option("--Synthetic.num_images", options->num_images, "number of images")
+      ->capture_default_str();
+  app.add_option("--Synthetic.num_points", options->num_points, "number of random 3D points")
+      ->capture_default_str();
+  app.add_option("--Synthetic.pixel_noise", options->pixel_noise_sigma,
+                 "standard deviation of keypoint noise, pixels")
+      ->capture_default_str();
+  app.add_option("--Synthetic.outlier_ratio", options->outlier_ratio,
+                 "fraction of each pair's raw matches that are wrong")
+      ->capture_default_str();
+  app.add_option("--Synthetic.num_outlier_pairs", options->num_outlier_pairs,
+                 "pairs with only wrong matches and a wrong verified geometry")
+      ->capture_default_str();
+  app.add_option("--Synthetic.overlap", options->overlap,
+                 "sequential: match each image with its next N images")
+      ->capture_default_str();
+  app.add_option("--Synthetic.min_num_inliers", options->min_num_inliers,
+                 "fewest true matches of a pair with a two-view geometry")
+      ->capture_default_str();
+  app.add_option("--Synthetic.min_shared_points", options->min_shared_points,
+                 "unordered: fewest shared points of a matched pair")
+      ->capture_default_str();
+  app.add_option("--Synthetic.step_length", options->step_length,
+                 "generated paths: distance between frames")
+      ->capture_default_str();
+  app.add_option("--Synthetic.min_depth", options->min_depth, "nearest point depth")
+      ->capture_default_str();
+  app.add_option("--Synthetic.max_depth", options->max_depth, "farthest point depth")
+      ->capture_default_str();
+  text->camera_model = CameraModelName(options->camera.model);
+  app.add_option("--Synthetic.camera_model", text->camera_model, "COLMAP camera model name")
+      ->capture_default_str();
+  app.add_option("--Synthetic.camera_params", text->camera_params,
+                 "camera parameters in COLMAP's order, comma-separated")
+      ->capture_default_str();
+  app.add_option("--Synthetic.width", options->camera.width, "image width, pixels")
+      ->capture_default_str();
+  app.add_option("--Synthetic.height", options->camera.height, "image height, pixels")
+      ->capture_default_str();
+  app.add_option("--Synthetic.seed", options->seed, "random seed (same seed, same scene)")
+      ->capture_default_str();
+}
+
+void FinishSceneOptions(const SceneOptionText& text, bool num_images_given,
+                        SyntheticSceneOptions* options) {
+  options->layout =
+      text.layout == "unordered" ? SyntheticLayout::kUnordered : SyntheticLayout::kSequential;
+  const std::map<std::string, SyntheticPath> paths = {{"line", SyntheticPath::kLine},
+                                                      {"circle", SyntheticPath::kCircle},
+                                                      {"loop", SyntheticPath::kLoop}};
+  options->path = paths.at(text.path);
+  const std::optional<CameraModel> model = CameraModelFromName(text.camera_model);
+  if (!model) {
+    throw InputError("--Synthetic.camera_model", "unknown model '" + text.camera_model + "'");
+  }
+  options->camera.model = *model;
+  options->camera.params = ParseCameraParams(text.camera_params, "--Synthetic.camera_params");
+  if (!text.trajectory_path.empty()) {
+    if (options->layout != SyntheticLayout::kSequential) {
+      throw InputError("--Synthetic.trajectory_path", "needs --Synthetic.layout sequential");
+    }
+    const GroundTruth trajectory = ReadGroundTruth(text.trajectory_path, GroundTruthFormat::kKitti);
+    options->path = SyntheticPath::kGiven;
+    for (const GroundTruthPose& pose : trajectory.poses) {
+      options->given_poses.push_back(pose.cam_from_world);
+    }
+    if (!num_images_given) options->num_images = 0;
+  }
+  options->Check();
+}
+
+}  // namespace ramap::cli

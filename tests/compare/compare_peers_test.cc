@@ -31,7 +31,15 @@ void WriteStandInColmap(const std::string& path, const std::string& version,
   std::ofstream script(path);
   script << "#!/bin/sh\n"
          << "if [ \"$1\" = help ]; then echo 'COLMAP " << version << " (stand-in)'; exit 0; fi\n"
-         << "echo \"$*\" >> '" << calls << "'\n"
+         << "echo \"$*\" >> '" << calls
+         << "'\n"
+         // GLOMAP's stage lines, as its glog output has them.
+         << "if [ \"$1\" = global_mapper ]; then\n"
+         << "  echo 'I1201 10:00:00.000 7 global_mapper.cc:495] Rotation averaging done in 0.25 "
+            "seconds'\n"
+         << "  echo 'I1201 10:00:01.000 7 global_pipeline.cc:110] Reconstruction done in 1.5 "
+            "seconds'\n"
+         << "fi\n"
          << "while [ $# -gt 0 ]; do\n"
          << "  case \"$1\" in\n"
          << "    --database_path) db=$2 ;;\n"
@@ -99,6 +107,9 @@ TEST(ComparePeers, ReportHasColmap4AndGlomapRowsRunOnCopiesOfTheDatabase) {
       EXPECT_NEAR(evaluation["relative"]["auc_by_threshold_deg"]["1"].get<double>(), 1.0, 1e-9);
     }
   }
+  // GLOMAP's stages from its log (its total left out); COLMAP's incremental mapper prints none.
+  EXPECT_EQ(report["runs"][2]["stage_seconds"], (nlohmann::json{{"Rotation averaging", 0.25}}));
+  EXPECT_FALSE(report["runs"][1].contains("stage_seconds"));
   const std::string markdown = ReadText(dir / "cmp/report.md");
   EXPECT_NE(markdown.find("speed-up over GLOMAP"), std::string::npos) << markdown;
   EXPECT_NE(markdown.find("Against GLOMAP (AUC@3 100.0"), std::string::npos) << markdown;

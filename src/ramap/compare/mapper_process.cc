@@ -7,6 +7,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <regex>
 #include <system_error>
 
 #include "ramap/geometry/camera_projection.h"
@@ -57,6 +58,25 @@ std::vector<std::pair<std::string, double>> StageSeconds(const std::string& summ
   for (const std::string& stage : TimedMapperStages()) {
     if (summary["stage_seconds"].contains(stage)) {
       stages.push_back({stage, summary["stage_seconds"][stage].get<double>()});
+    }
+  }
+  return stages;
+}
+
+// Stage seconds from a COLMAP log: GLOMAP's global mapper prints "<stage> done in <s> seconds"
+// for each stage ("Reconstruction done in" is their sum, left out). Empty for logs without them
+// (COLMAP's incremental mapper).
+std::vector<std::pair<std::string, double>> LoggedStageSeconds(const std::string& log_path) {
+  std::vector<std::pair<std::string, double>> stages;
+  std::ifstream in(log_path);
+  const std::regex done("\\] ([A-Z][A-Za-z ]*) done in ([0-9.eE+-]+) seconds");
+  std::smatch match;
+  for (std::string line; std::getline(in, line);) {
+    if (!std::regex_search(line, match, done) || match[1] == "Reconstruction") continue;
+    try {
+      stages.push_back({match[1], std::stod(match[2])});
+    } catch (const std::exception&) {
+      // Not a number after all: the stage is left out of the figure.
     }
   }
   return stages;
@@ -132,6 +152,7 @@ MapperRun RunMapperPlan(const MapperPlan& plan, const CompareOptions& options, s
     }
   }
   run.stage_seconds = StageSeconds(folder + "/summary.json");
+  if (run.stage_seconds.empty()) run.stage_seconds = LoggedStageSeconds(folder + ".log");
   std::cout << "[ramap compare] " << plan.name << ": " << run.num_registered << " of " << num_images
             << " images in " << run.seconds << " s" << std::endl;
   return run;

@@ -20,11 +20,13 @@ constexpr int kHeight = 640;
 constexpr int kMarginLeft = 80, kMarginRight = 30, kMarginTop = 50, kMarginBottom = 60;
 const cv::Scalar kWhite(255, 255, 255), kBlack(0, 0, 0), kGrey(200, 200, 200);
 
-// Colours of the stages in a time plot (BGR), distinct from one another.
+// Colours of the stages in a time plot (BGR), distinct from one another: enough for ramap's
+// stages and GLOMAP's in one figure.
 cv::Scalar StageColor(size_t k) {
   static const cv::Scalar colors[] = {
       {180, 119, 31}, {14, 127, 255},  {44, 160, 44},   {40, 39, 214},  {189, 103, 148},
-      {75, 86, 140},  {194, 119, 227}, {127, 127, 127}, {34, 189, 188}, {207, 190, 23}};
+      {75, 86, 140},  {194, 119, 227}, {127, 127, 127}, {34, 189, 188}, {207, 190, 23},
+      {128, 0, 0},    {0, 128, 128},   {128, 128, 0},   {0, 215, 255},  {60, 20, 120}};
   return colors[k % (sizeof(colors) / sizeof(colors[0]))];
 }
 

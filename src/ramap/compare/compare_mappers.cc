@@ -10,6 +10,7 @@
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/util/error.h"
+#include "ramap/util/option_check.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
 
@@ -24,10 +25,7 @@ void CheckOptions(const CompareOptions& options) {
   if (options.ground_truth_path.empty() != options.ground_truth_format.empty()) {
     throw InputError("--ground_truth", "give both --ground_truth and --ground_truth_format");
   }
-  if (options.num_threads < 1) {
-    throw InputError("--Compare.num_threads",
-                     "must be >= 1, got " + std::to_string(options.num_threads));
-  }
+  CheckOption(options.num_threads >= 1, "--Compare.num_threads", ">= 1", options.num_threads);
   CheckFolderOutput("--output_path", options.output_path,
                     {options.database_path, options.image_path, options.ground_truth_path});
 }

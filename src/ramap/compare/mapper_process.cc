@@ -31,21 +31,27 @@ std::pair<double, bool> RunTimed(const std::string& command, const std::string& 
   return {seconds, status == 0};
 }
 
-// The numbered model folder under `output_path` with the most images.
-void PickLargestModel(const std::string& output_path, MapperRun* run) {
-  if (!fs::is_directory(output_path)) return;
-  size_t best = 0;
+// The numbered model folder under `output_path` with the most images (at least one), read once:
+// its path and size go to `run`, the model is returned (none when no folder holds such a model).
+std::optional<Reconstruction> ReadLargestModel(const std::string& output_path, MapperRun* run) {
+  if (!fs::is_directory(output_path)) return std::nullopt;
+  std::optional<Reconstruction> largest;
   for (const fs::directory_entry& entry : fs::directory_iterator(output_path)) {
     if (!entry.is_directory()) continue;
     try {
-      const size_t size = ReadColmapModel(entry.path().string()).images.size();
+      Reconstruction model = ReadColmapModel(entry.path().string());
       ++run->num_models;
-      if (size > best) best = size, run->model_path = entry.path().string();
+      // A model without images counts as none, as before any model is found.
+      if (model.images.size() > (largest ? largest->images.size() : 0)) {
+        run->model_path = entry.path().string();
+        largest = std::move(model);
+      }
     } catch (const InputError&) {
       // Not a model (ramap's staging folders, a half-written COLMAP snapshot).
     }
   }
-  run->num_registered = static_cast<int>(best);
+  if (largest) run->num_registered = static_cast<int>(largest->images.size());
+  return largest;
 }
 
 // Stage seconds from ramap's summary.json, in the order the stages ran.
@@ -140,14 +146,13 @@ MapperRun RunMapperPlan(const MapperPlan& plan, const CompareOptions& options, s
     run.seconds = seconds;
     run.succeeded = exited_cleanly;
   }
-  PickLargestModel(folder, &run);
-  run.succeeded = run.succeeded && !run.model_path.empty();
+  const std::optional<Reconstruction> model = ReadLargestModel(folder, &run);
+  run.succeeded = run.succeeded && model.has_value();
   if (!run.succeeded) {
     std::cerr << "ramap compare: " << plan.name << " failed (see " << folder << ".log)\n";
   } else {
-    const Reconstruction model = ReadColmapModel(run.model_path);
-    *poses = PosesByName(model, run.model_path);
-    for (const auto& [camera_id, camera] : model.cameras) {
+    *poses = PosesByName(*model, run.model_path);
+    for (const auto& [camera_id, camera] : model->cameras) {
       run.focal_lengths_px[camera_id] = MeanFocalLength(camera);
     }
   }

@@ -16,8 +16,6 @@
 #include "ramap/util/timer.h"
 
 namespace ramap::cli {
-namespace {}  // namespace
-
 int RunRelativePoses(int argc, char** argv) {
   CLI::App app("Relative pose of every verified image pair of a COLMAP database.",
                "ramap relative_poses");

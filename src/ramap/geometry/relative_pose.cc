@@ -494,12 +494,14 @@ std::optional<RelativePoseEstimate> PureRotationOutcome(const Bearings& f1, cons
 // The paper's hypothesis: six grid-selected (or random, or ROI) correspondences, the rotation
 // candidates of the six-point solver on them and on each five of them, ranked by preemptive
 // scoring (Nister, "Preemptive RANSAC", ICCV 2003: the up to ~40 candidates on an even subset of
-// the matches, only the best scored on all). False when no six could be selected
-// (`*no_six`) or no solver returned a rotation.
-bool SixPointHypothesis(const TwoViewCorrespondences& matches, const Bearings& f1,
-                        const Bearings& f2, const std::vector<int>& all,
-                        const RelativePoseOptions& options, double max_epipolar_error,
-                        Eigen::Matrix3d* R, Eigen::Vector3d* t, bool* no_six) {
+// the matches, only the best scored on all). A rejection when no six could be selected or no
+// solver returned a rotation.
+std::optional<RelativePoseEstimate> SixPointHypothesis(const TwoViewCorrespondences& matches,
+                                                       const Bearings& f1, const Bearings& f2,
+                                                       const std::vector<int>& all,
+                                                       const RelativePoseOptions& options,
+                                                       double max_epipolar_error,
+                                                       Eigen::Matrix3d* R, Eigen::Vector3d* t) {
   std::vector<int> six;
   switch (options.sampler) {
     case CorrespondenceSampler::kGrid:
@@ -515,8 +517,9 @@ bool SixPointHypothesis(const TwoViewCorrespondences& matches, const Bearings& f
     case CorrespondenceSampler::kRansac5:
       break;
   }
-  *no_six = static_cast<int>(six.size()) < kNumSamples;
-  if (*no_six) return false;
+  if (static_cast<int>(six.size()) < kNumSamples) {
+    return Reject(Rejection::kNoHypothesis, "could not select six correspondences");
+  }
   Bearings f1_subset, f2_subset;
   for (const int k : EvenSubset(all, kNumPreemptiveMatches)) {
     f1_subset.push_back(f1[k]);
@@ -541,7 +544,10 @@ bool SixPointHypothesis(const TwoViewCorrespondences& matches, const Bearings& f
   for (int leave_out = 0; leave_out < kNumSamples; ++leave_out) {
     consider(RotationCandidatesFromSix(f1, f2, six, leave_out));
   }
-  return std::isfinite(best_subset_cost);
+  if (!std::isfinite(best_subset_cost)) {
+    return Reject(Rejection::kNoHypothesis, "the six-point solvers returned no rotation");
+  }
+  return std::nullopt;
 }
 
 // The best hypothesis (the paper's six-point rotation, or the RANSAC baseline) scored on every
@@ -561,11 +567,9 @@ std::optional<RelativePoseEstimate> BestHypothesis(const TwoViewCorrespondences&
     }
     best = ScoreRotation(f1, f2, *R, t_ransac, max_epipolar_error, t);
   } else {
-    bool no_six = false;
-    if (!SixPointHypothesis(matches, f1, f2, all, options, max_epipolar_error, R, t, &no_six)) {
-      return Reject(Rejection::kNoHypothesis, no_six
-                                                  ? "could not select six correspondences"
-                                                  : "the six-point solvers returned no rotation");
+    if (auto rejected =
+            SixPointHypothesis(matches, f1, f2, all, options, max_epipolar_error, R, t)) {
+      return rejected;
     }
     best = ScoreRotation(f1, f2, *R, *t, max_epipolar_error, t);
   }

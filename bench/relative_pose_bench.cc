@@ -62,12 +62,12 @@ void BenchDataset(const std::string& name, const std::string& database_path,
                                                   ? (variant.use_ratios ? " (ratio)" : " (Sampson)")
                                                   : "");
     Timer timer;
-    const std::vector<ViewGraphEdge> edges =
+    const std::vector<ImagePair> edges =
         EstimateRelativePoses(database, bearings, options, /*num_threads=*/1);
     const double seconds = timer.ElapsedSeconds();
     std::vector<double> rotation_errors, translation_errors;
     int rejected = 0;
-    for (const ViewGraphEdge& edge : edges) {
+    for (const ImagePair& edge : edges) {
       if (!edge.estimate.success) {
         ++rejected;
         continue;

@@ -35,14 +35,14 @@ int RunRelativePoses(int argc, char** argv) {
   const FeatureDatabase database = ReadColmapDatabase(database_path);
   const ImageBearings bearings = ComputeBearings(database, database_path);
   Timer timer;
-  const std::vector<ViewGraphEdge> edges = EstimateRelativePoses(
+  const std::vector<ImagePair> edges = EstimateRelativePoses(
       database, bearings, options.relative_pose, options.num_threads, &std::cout);
   const double seconds = timer.ElapsedSeconds();
 
   const std::vector<RelativePoseRecord> records = AcceptedRelativePoses(database, edges);
   // Rejections by kind, each with its first pair's reason as the example.
   std::map<RelativePoseRejection, std::pair<int, std::string>> rejected;
-  for (const ViewGraphEdge& edge : edges) {
+  for (const ImagePair& edge : edges) {
     if (edge.estimate.success) continue;
     auto& [count, example] = rejected[edge.estimate.rejection];
     if (count++ == 0) example = edge.estimate.reason;

@@ -141,11 +141,11 @@ TEST(RelativePoseRealData, TempleRingLongLensPairsAreNotPureRotations) {
   const std::map<std::string, Rigid3d> truth = GroundTruthByImageName(
       ReadGroundTruth(folder + "/templeR_par.txt", GroundTruthFormat::kMiddlebury), names);
 
-  const std::vector<ViewGraphEdge> edges = EstimateRelativePoses(
+  const std::vector<ImagePair> edges = EstimateRelativePoses(
       database, ComputeBearings(database, database_path), RelativePoseOptions(), 2);
   std::vector<double> rotation_errors;
   int pure_rotations = 0;
-  for (const ViewGraphEdge& edge : edges) {
+  for (const ImagePair& edge : edges) {
     if (!edge.estimate.success) continue;
     const Rigid3d expected = truth.at(database.images.at(edge.image_id2).name) *
                              truth.at(database.images.at(edge.image_id1).name).Inverse();

@@ -13,6 +13,7 @@
 
 #include "ramap/averaging/block_normal_equations.h"
 #include "ramap/geometry/rotation.h"
+#include "ramap/util/error.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/timer.h"
 
@@ -223,7 +224,7 @@ void FactorizeWithRidge(const Eigen::SparseMatrix<double>& matrix, SparseCholesk
     solver->factorize(matrix);
     if (solver->info() == Eigen::Success) return;
   }
-  throw std::runtime_error("translation averaging: factorisation failed");
+  throw StageFailure("translation averaging: factorisation failed");
 }
 
 Eigen::VectorXd ProjectScales(Eigen::VectorXd v, const StackedSystem& system) {
@@ -601,14 +602,13 @@ TranslationAveragingResult AverageTranslations(
       BuildConstraints(rotations, directions, tracks, options, &result.num_tracks_used);
   std::vector<PairRow> pairs = UsablePairRows(rotations, pair_directions);
   if (pairs.empty()) {
-    throw std::runtime_error(
-        "translation averaging: no pair direction (every pair is a pure rotation?)");
+    throw StageFailure("translation averaging: no pair direction (every pair is a pure rotation?)");
   }
   // Solve the largest set of cameras that the constraints connect.
   const std::vector<uint32_t> solved =
       LargestConnectedImages(rotations, constraints, pairs, &result.unconstrained_images);
   if (solved.size() < 2)
-    throw std::runtime_error("translation averaging: fewer than two cameras connected");
+    throw StageFailure("translation averaging: fewer than two cameras connected");
   // Priors of positioned cameras; with any, they fix the gauge and no camera is held.
   const std::vector<CenterPrior> used_priors = PriorsOfSolvedImages(solved, priors);
   const bool has_priors = !used_priors.empty();
@@ -639,8 +639,7 @@ TranslationAveragingResult AverageTranslations(
     projected += pair.direction.dot(CenterIn(x, column, pair.j) - CenterIn(x, column, pair.i));
   }
   if (!(projected > 0)) {
-    throw std::runtime_error(
-        "translation averaging: the solution does not fit the pair directions");
+    throw StageFailure("translation averaging: the solution does not fit the pair directions");
   }
   result.l1_cost = (system.B * x).lpNorm<1>();
   result.num_constraints = static_cast<int>(constraints.size() + pairs.size());

@@ -132,7 +132,7 @@ struct TranslationAveragingResult {
 
 // Positions for the cameras of `rotations` (cam_from_world). Cameras linked by no constraint are
 // listed in `unconstrained_images`. `priors` of cameras that get positioned are used (see above).
-// Throws std::runtime_error when fewer than two cameras can be positioned.
+// Throws StageFailure (util/error.h) when fewer than two cameras can be positioned.
 TranslationAveragingResult AverageTranslations(
     const std::map<uint32_t, Eigen::Quaterniond>& rotations,
     const std::vector<PairDirection>& pair_directions, const std::vector<TranslationTrack>& tracks,

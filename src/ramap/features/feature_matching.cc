@@ -10,6 +10,7 @@
 #include <set>
 
 #include "ramap/geometry/camera_projection.h"
+#include "ramap/geometry/pair_correspondences.h"
 #include "ramap/geometry/relative_pose.h"
 #include "ramap/scene/image_order.h"
 #include "ramap/util/error.h"
@@ -254,24 +255,11 @@ cv::Mat EssentialInlierMask(const std::vector<cv::Point2d>& points1,
 RelativePoseEstimate GridPairPose(const Camera& camera1, const Camera& camera2,
                                   const Keypoints& keypoints1, const Keypoints& keypoints2,
                                   const TwoViewGeometry& geometry, double focal) {
-  TwoViewCorrespondences correspondences;
-  correspondences.width1 = static_cast<int>(camera1.width);
-  correspondences.height1 = static_cast<int>(camera1.height);
-  correspondences.width2 = static_cast<int>(camera2.width);
-  correspondences.height2 = static_cast<int>(camera2.height);
-  correspondences.focal_length_px = focal;
-  for (const FeatureMatch& match : geometry.inlier_matches) {
-    const Eigen::Vector2d xy1 = keypoints1.xy(match.point2D_idx1);
-    const Eigen::Vector2d xy2 = keypoints2.xy(match.point2D_idx2);
-    correspondences.pixels1.push_back(xy1);
-    correspondences.pixels2.push_back(xy2);
-    correspondences.bearings1.push_back(PixelToBearing(camera1, xy1));
-    correspondences.bearings2.push_back(PixelToBearing(camera2, xy2));
-  }
-  // Ranked for the grid as the mapper ranks them by default (relative_poses.h).
-  correspondences.confidence =
-      SampsonErrors(geometry.F, correspondences.pixels1, correspondences.pixels2);
-  return EstimateRelativePose(correspondences, RelativePoseOptions());
+  // Matches ranked and estimated as the mapper does with its default options.
+  const RelativePoseOptions options;
+  return EstimateRelativePose(PairCorrespondences({camera1, keypoints1}, {camera2, keypoints2},
+                                                  geometry, focal, options.use_descriptor_ratios),
+                              options);
 }
 
 }  // namespace

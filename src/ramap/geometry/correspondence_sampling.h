@@ -13,26 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "ramap/scene/view_graph.h"
+
 namespace ramap {
-
-// The verified matches of one image pair, as the relative-pose estimator consumes them.
-// Entry k of every vector describes the same match.
-struct TwoViewCorrespondences {
-  std::vector<Eigen::Vector3d> bearings1;  // unit, undistorted, in camera 1
-  std::vector<Eigen::Vector3d> bearings2;  // unit, undistorted, in camera 2
-  std::vector<Eigen::Vector2d> pixels1;    // keypoint positions in image 1 (for the grid)
-  std::vector<Eigen::Vector2d> pixels2;    // keypoint positions in image 2
-  int width1 = 0, height1 = 0;             // image sizes in pixels
-  int width2 = 0, height2 = 0;
-  // Mean focal length of the two cameras in pixels: turns the estimator's pixel thresholds into
-  // angles. 0 (unknown) makes the estimator reject the pair.
-  double focal_length_px = 0.0;
-  // Per-match confidence, lower is better (e.g. Sampson error or descriptor distance); the caller
-  // fills it. Empty means all matches are equally good (ties broken by index).
-  std::vector<double> confidence;
-
-  size_t size() const { return bearings1.size(); }
-};
 
 enum class CorrespondenceSampler {
   kGrid,     // the paper's grid selection (default)

@@ -333,36 +333,6 @@ Eigen::Vector3d TranslationFromRotation(const std::vector<Eigen::Vector3d>& bear
   return eig.eigenvectors().col(0).normalized();
 }
 
-const char* RelativePoseRejectionName(RelativePoseRejection rejection) {
-  switch (rejection) {
-    case RelativePoseRejection::kNone:
-      return "accepted";
-    case RelativePoseRejection::kInvalidInput:
-      return "invalid input";
-    case RelativePoseRejection::kUnknownFocalLength:
-      return "focal length unknown";
-    case RelativePoseRejection::kTooFewMatches:
-      return "too few matches";
-    case RelativePoseRejection::kTooLittleSpread:
-      return "too little spread (one grid cell or collinear)";
-    case RelativePoseRejection::kNoMotion:
-      return "no motion between the images";
-    case RelativePoseRejection::kPureRotationTooFewInliers:
-      return "pure rotation with too few inliers";
-    case RelativePoseRejection::kNoHypothesis:
-      return "no rotation hypothesis";
-    case RelativePoseRejection::kTooFewInliers:
-      return "too few inliers";
-    case RelativePoseRejection::kRefinementDiverged:
-      return "refinement diverged";
-    case RelativePoseRejection::kLowInlierRatio:
-      return "inlier ratio below min_inlier_ratio";
-    case RelativePoseRejection::kNonFiniteEstimate:
-      return "non-finite estimate";
-  }
-  return "unknown";
-}
-
 namespace {
 
 using Bearings = std::vector<Eigen::Vector3d>;

@@ -80,53 +80,6 @@ struct RelativePoseOptions {
   void Check() const;
 };
 
-// Flags of an accepted edge.
-enum RelativePoseFlags : uint32_t {
-  kRelativePoseNone = 0,
-  // Median parallax after rotation compensation is below pure_rotation_parallax_px: the
-  // translation direction is undetermined and set to zero.
-  kRelativePosePureRotation = 1u << 0,
-};
-
-// Why a pair's relative pose was rejected, by kind (the estimate's `reason` has the numbers).
-enum class RelativePoseRejection {
-  kNone,                // success
-  kInvalidInput,        // inconsistent lengths, sizes, non-finite or zero bearings
-  kUnknownFocalLength,  // pixel thresholds cannot become angles
-  kTooFewMatches,       // fewer than six / min_num_inliers
-  kTooLittleSpread,     // one grid cell, or bearings on one great circle
-  kNoMotion,            // identical or duplicate views
-  kPureRotationTooFewInliers,
-  kNoHypothesis,   // no six correspondences, no solver root, no essential matrix
-  kTooFewInliers,  // the hypothesis or its refinement explains too few matches
-  kRefinementDiverged,
-  kLowInlierRatio,  // below min_inlier_ratio: the paper's consistency check
-  kNonFiniteEstimate,
-};
-
-// "too few matches", ...: the kind as the relative_poses summary groups it.
-const char* RelativePoseRejectionName(RelativePoseRejection rejection);
-
-struct RelativePoseEstimate {
-  bool success = false;
-  // cam2_from_cam1 (R_ij) and its unit translation (zero when kRelativePosePureRotation).
-  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
-  int num_inliers = 0;
-  // Indices (into the input) of the inliers of the final estimate.
-  std::vector<int> inliers;
-  // Median epipolar error of the inliers (radians).
-  double median_residual = 0;
-  // Median angle between R f1 and f2 over the inliers (degrees).
-  double median_parallax_deg = 0;
-  // Fraction of inliers in front of both cameras (1 for pure rotation).
-  double cheirality_ratio = 0;
-  uint32_t flags = kRelativePoseNone;
-  // Why the edge was rejected: the kind, and in words with its numbers (empty on success).
-  RelativePoseRejection rejection = RelativePoseRejection::kNone;
-  std::string reason;
-};
-
 // Estimates cam2_from_cam1 from the matches of one pair. Never throws on degenerate data: bad
 // input (fewer than six / min_num_inliers matches, non-finite values, no focal length, all
 // keypoints in one grid cell, collinear bearings, no motion) gives success = false and a reason.

@@ -167,4 +167,17 @@ RotationGraph Subgraph(const RotationGraph& graph, const std::vector<bool>& keep
   return sub;
 }
 
+std::vector<RotationGraph> ComponentSubgraphs(const RotationGraph& graph,
+                                              const std::vector<int>& labels) {
+  const int num_components =
+      labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
+  std::vector<RotationGraph> components(num_components);
+  for (size_t k = 0; k < graph.node_ids.size(); ++k)
+    components[labels[k]].node_ids.push_back(graph.node_ids[k]);
+  const auto index = NodeIndex(graph);
+  for (const RelativeRotationEdge& edge : graph.edges)
+    components[labels[index.at(edge.i)]].edges.push_back(edge);
+  return components;
+}
+
 }  // namespace ramap

@@ -43,4 +43,9 @@ void PropagateAlongTree(const RotationGraph& graph, const std::vector<size_t>& t
 RotationGraph Subgraph(const RotationGraph& graph, const std::vector<bool>& keep,
                        std::vector<size_t>* edge_map);
 
+// One graph per component label of `labels` (as ConnectedComponents gives them, per node
+// position): its nodes in graph.node_ids order and its edges in graph.edges order.
+std::vector<RotationGraph> ComponentSubgraphs(const RotationGraph& graph,
+                                              const std::vector<int>& labels);
+
 }  // namespace ramap

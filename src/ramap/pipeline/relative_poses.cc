@@ -1,5 +1,6 @@
 #include "ramap/pipeline/relative_poses.h"
 
+#include "ramap/geometry/pair_correspondences.h"
 #include "ramap/pipeline/stage_log.h"
 #include "ramap/util/parallel.h"
 
@@ -10,11 +11,11 @@ bool IsUsableTwoViewConfig(TwoViewConfig config) {
          config == TwoViewConfig::kPlanar || config == TwoViewConfig::kPlanarOrPanoramic;
 }
 
-std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database,
-                                                 const ImageBearings& bearings,
-                                                 const RelativePoseOptions& options,
-                                                 int num_threads, std::ostream* progress) {
-  std::vector<ViewGraphEdge> edges;
+std::vector<ImagePair> EstimateRelativePoses(const FeatureDatabase& database,
+                                             const ImageBearings& bearings,
+                                             const RelativePoseOptions& options, int num_threads,
+                                             std::ostream* progress) {
+  std::vector<ImagePair> pairs;
   for (const auto& [pair_id, geometry] : database.two_view_geometries) {
     if (!IsUsableTwoViewConfig(geometry.config)) continue;
     if (static_cast<int>(geometry.inlier_matches.size()) < options.min_num_inliers) continue;
@@ -23,59 +24,70 @@ std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database
     if (b1 == bearings.bearings.end() || b2 == bearings.bearings.end()) continue;
     const Camera& camera1 = database.cameras.at(database.images.at(geometry.image_id1).camera_id);
     const Camera& camera2 = database.cameras.at(database.images.at(geometry.image_id2).camera_id);
-    const Keypoints& keypoints1 = database.keypoints.at(geometry.image_id1);
-    const Keypoints& keypoints2 = database.keypoints.at(geometry.image_id2);
-    ViewGraphEdge edge;
-    edge.image_id1 = geometry.image_id1;
-    edge.image_id2 = geometry.image_id2;
-    edge.num_verified_matches = static_cast<int>(geometry.inlier_matches.size());
-    TwoViewCorrespondences& c = edge.correspondences;
-    c.width1 = static_cast<int>(camera1.width);
-    c.height1 = static_cast<int>(camera1.height);
-    c.width2 = static_cast<int>(camera2.width);
-    c.height2 = static_cast<int>(camera2.height);
-    c.focal_length_px = 0.5 * (bearings.focal_lengths_px.at(camera1.camera_id) +
-                               bearings.focal_lengths_px.at(camera2.camera_id));
-    const bool use_ratios = options.use_descriptor_ratios && !geometry.inlier_ratios.empty();
-    for (size_t k = 0; k < geometry.inlier_matches.size(); ++k) {
-      const FeatureMatch& match = geometry.inlier_matches[k];
-      // Keypoints past a strong distortion's fold have no bearing (NaN): leave them out.
-      if (!b1->second[match.point2D_idx1].allFinite() ||
-          !b2->second[match.point2D_idx2].allFinite())
-        continue;
-      if (use_ratios) c.confidence.push_back(geometry.inlier_ratios[k]);
-      c.bearings1.push_back(b1->second[match.point2D_idx1]);
-      c.bearings2.push_back(b2->second[match.point2D_idx2]);
-      c.pixels1.push_back(keypoints1.xy(match.point2D_idx1));
-      c.pixels2.push_back(keypoints2.xy(match.point2D_idx2));
-    }
-    // Without ramap's descriptor ratios (a COLMAP-matched database), the match confidence for
-    // the grid selection is the Sampson error under the F COLMAP stored for every verified pair.
-    if (!use_ratios && !geometry.F.isZero()) {
-      c.confidence = SampsonErrors(geometry.F, c.pixels1, c.pixels2);
-    }
-    edges.push_back(std::move(edge));
+    ImagePair pair;
+    pair.image_id1 = geometry.image_id1;
+    pair.image_id2 = geometry.image_id2;
+    pair.num_verified_matches = static_cast<int>(geometry.inlier_matches.size());
+    pair.correspondences = PairCorrespondences(
+        {camera1, database.keypoints.at(geometry.image_id1), &b1->second},
+        {camera2, database.keypoints.at(geometry.image_id2), &b2->second}, geometry,
+        0.5 * (bearings.focal_lengths_px.at(camera1.camera_id) +
+               bearings.focal_lengths_px.at(camera2.camera_id)),
+        options.use_descriptor_ratios);
+    pairs.push_back(std::move(pair));
   }
 
   ParallelFor(
-      edges.size(), num_threads,
+      pairs.size(), num_threads,
       [&](size_t k) {
-        edges[k].estimate = EstimateRelativePose(edges[k].correspondences, options);
+        pairs[k].estimate = EstimateRelativePose(pairs[k].correspondences, options);
       },
       progress, stage::kRelativePoses, "pairs");
-  return edges;
+  return pairs;
 }
 
 std::vector<RelativePoseRecord> AcceptedRelativePoses(const FeatureDatabase& database,
-                                                      const std::vector<ViewGraphEdge>& edges) {
+                                                      const std::vector<ImagePair>& pairs) {
   std::vector<RelativePoseRecord> records;
-  for (const ViewGraphEdge& edge : edges) {
-    if (!edge.estimate.success) continue;
-    records.push_back({database.images.at(edge.image_id1).name,
-                       database.images.at(edge.image_id2).name, edge.estimate.rotation,
-                       edge.estimate.translation, edge.estimate.num_inliers, edge.estimate.flags});
+  for (const ImagePair& pair : pairs) {
+    if (!pair.accepted()) continue;
+    records.push_back({database.images.at(pair.image_id1).name,
+                       database.images.at(pair.image_id2).name, pair.estimate.rotation,
+                       pair.estimate.translation, pair.estimate.num_inliers, pair.estimate.flags});
   }
   return records;
+}
+
+std::string WhyNoVerifiedPairs(const FeatureDatabase& database, int min_num_inliers) {
+  if (database.two_view_geometries.empty()) {
+    return "no image pair has verified matches (two_view_geometries is empty); run a matcher "
+           "first";
+  }
+  int panoramic = 0, unusable = 0, few_inliers = 0;
+  for (const auto& [pair_id, geometry] : database.two_view_geometries) {
+    if (geometry.config == TwoViewConfig::kPanoramic) {
+      ++panoramic;
+    } else if (!IsUsableTwoViewConfig(geometry.config)) {
+      ++unusable;
+    } else if (static_cast<int>(geometry.inlier_matches.size()) < min_num_inliers) {
+      ++few_inliers;
+    }
+  }
+  const size_t total = database.two_view_geometries.size();
+  std::string problem = "none of the " + std::to_string(total) + " verified pairs can be used: ";
+  if (panoramic > 0) {
+    problem += std::to_string(panoramic) +
+               " PANORAMIC (pure rotation, as in a panorama: averaging needs the cameras to move "
+               "between views), ";
+  }
+  if (unusable > 0) {
+    problem += std::to_string(unusable) + " degenerate, watermark or of unknown geometry, ";
+  }
+  if (few_inliers > 0) {
+    problem += std::to_string(few_inliers) + " with fewer than --RelativePose.min_num_inliers " +
+               std::to_string(min_num_inliers) + " inliers, ";
+  }
+  return problem.substr(0, problem.size() - 2);
 }
 
 }  // namespace ramap

@@ -1,4 +1,5 @@
-// Stage 1 of the mapper: the relative pose of every verified image pair, estimated in parallel.
+// Stage 1 of the mapper: the view graph, the relative pose of every verified image pair estimated
+// in parallel.
 #pragma once
 
 #include <cstdint>
@@ -11,16 +12,9 @@
 #include "ramap/io/relative_pose_file.h"
 #include "ramap/pipeline/bearings.h"
 #include "ramap/scene/features.h"
+#include "ramap/scene/view_graph.h"
 
 namespace ramap {
-
-struct ViewGraphEdge {
-  uint32_t image_id1 = 0;  // image_id1 < image_id2, as in the database
-  uint32_t image_id2 = 0;
-  int num_verified_matches = 0;
-  TwoViewCorrespondences correspondences;  // the verified inlier matches, as bearings and pixels
-  RelativePoseEstimate estimate;           // cam2_from_cam1; estimate.success may be false
-};
 
 // Whether COLMAP's verification left a geometry this stage can use (calibrated or uncalibrated
 // epipolar geometry, or a planar scene; not degenerate, watermark or pure panorama).
@@ -32,13 +26,16 @@ bool IsUsableTwoViewConfig(TwoViewConfig config);
 // the grid selection) is its descriptor ratio when ramap's matcher stored one (and
 // options.use_descriptor_ratios), else its Sampson error under the fundamental matrix. With
 // `progress`, one line there counts the pairs done in tens of percent.
-std::vector<ViewGraphEdge> EstimateRelativePoses(const FeatureDatabase& database,
-                                                 const ImageBearings& bearings,
-                                                 const RelativePoseOptions& options,
-                                                 int num_threads, std::ostream* progress = nullptr);
+std::vector<ImagePair> EstimateRelativePoses(const FeatureDatabase& database,
+                                             const ImageBearings& bearings,
+                                             const RelativePoseOptions& options, int num_threads,
+                                             std::ostream* progress = nullptr);
 
-// The accepted edges (estimate.success) by image name, as `ramap relative_poses` writes them.
+// Why `database` has no pair this stage can use, in the user's terms (for the mapper's error).
+std::string WhyNoVerifiedPairs(const FeatureDatabase& database, int min_num_inliers);
+
+// The accepted pairs by image name, as `ramap relative_poses` writes them.
 std::vector<RelativePoseRecord> AcceptedRelativePoses(const FeatureDatabase& database,
-                                                      const std::vector<ViewGraphEdge>& edges);
+                                                      const std::vector<ImagePair>& pairs);
 
 }  // namespace ramap

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <sstream>
 
-#include "ramap/pipeline/mapper.h"
+#include "ramap/pipeline/mapper_summary.h"
 
 namespace ramap {
 
@@ -31,6 +32,18 @@ void StageLog::Record(const std::string& stage, double seconds, const std::strin
     it->seconds += seconds;
   }
   if (progress_ != nullptr) PrintStageLine(*progress_, stage, seconds, message);
+}
+
+std::string FormatDegrees(double value) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(1) << value << " deg";
+  return out.str();
+}
+
+std::string FormatMetres(double value) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(2) << value << " m";
+  return out.str();
 }
 
 }  // namespace ramap

@@ -29,6 +29,10 @@ const std::vector<std::string>& TimedMapperStages();
 void PrintStageLine(std::ostream& out, const std::string& stage, double seconds,
                     const std::string& message);
 
+// "12.3 deg" and "4.56 m", as progress lines and summaries give angles and distances.
+std::string FormatDegrees(double value);
+std::string FormatMetres(double value);
+
 // Accumulates stage times in `summary->timings` (a stage may run once per component) and prints
 // one line per call to `progress`, when given.
 class StageLog {

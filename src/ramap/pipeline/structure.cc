@@ -3,7 +3,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "ramap/pipeline/mapper_options.h"
+#include "ramap/pipeline/mapper_summary.h"
 #include "ramap/util/option_check.h"
+#include "ramap/util/timer.h"
 
 namespace ramap {
 
@@ -91,6 +94,27 @@ Reconstruction BuildReconstruction(const FeatureDatabase& database,
   counts.mean_reprojection_error_px =
       counts.num_observations ? sum_error_px / counts.num_observations : 0.0;
   if (summary != nullptr) *summary = counts;
+  return reconstruction;
+}
+
+Reconstruction TriangulateComponent(const MapperContext& context,
+                                    const std::map<uint32_t, Rigid3d>& poses,
+                                    const std::vector<Track>& tracks, const ImageBearings& bearings,
+                                    const std::map<uint32_t, Camera>& cameras,
+                                    const std::string& what, MapperComponentSummary* component) {
+  Timer timer;
+  StructureSummary structure;
+  Reconstruction reconstruction =
+      BuildReconstruction(context.database, poses, tracks, bearings.bearings,
+                          bearings.focal_lengths_px, context.options.structure, &structure);
+  for (auto& [camera_id, camera] : reconstruction.cameras) camera = cameras.at(camera_id);
+  component->num_points = structure.num_points;
+  component->num_observations = structure.num_observations;
+  component->mean_reprojection_error_px = structure.mean_reprojection_error_px;
+  context.log.Record(stage::kTriangulation, timer.ElapsedSeconds(),
+                     what + std::to_string(structure.num_points) + " points of " +
+                         std::to_string(tracks.size()) + " tracks, mean reprojection error " +
+                         std::to_string(structure.mean_reprojection_error_px) + " px");
   return reconstruction;
 }
 

@@ -5,10 +5,13 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
+#include <string>
 #include <vector>
 
 #include "ramap/geometry/triangulation.h"
 #include "ramap/graph/tracks.h"
+#include "ramap/pipeline/bearings.h"
+#include "ramap/pipeline/mapper_context.h"
 #include "ramap/scene/features.h"
 #include "ramap/scene/reconstruction.h"
 
@@ -43,5 +46,14 @@ Reconstruction BuildReconstruction(const FeatureDatabase& database,
                                    const std::map<uint32_t, double>& focal_lengths_px,
                                    const StructureOptions& options = StructureOptions(),
                                    StructureSummary* summary = nullptr);
+
+// The mapper's stage 5 on one component: every track triangulated with `poses` fixed, through
+// `bearings` and `cameras` (the refined ones after bundle adjustment), the cameras written into
+// the model; the component's structure figures and the progress line (`what` opens its message).
+Reconstruction TriangulateComponent(const MapperContext& context,
+                                    const std::map<uint32_t, Rigid3d>& poses,
+                                    const std::vector<Track>& tracks, const ImageBearings& bearings,
+                                    const std::map<uint32_t, Camera>& cameras,
+                                    const std::string& what, MapperComponentSummary* component);
 
 }  // namespace ramap

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct RelativeRotationEdge {
   uint32_t j = 0;                                            // node id
   Eigen::Quaterniond R_ij = Eigen::Quaterniond::Identity();  // R_j R_i^T
   double weight = 1.0;  // confidence, e.g. the number of verified inliers; > 0
+  // In a view of the mapper's view graph (scene/view_graph.h), the index of the image pair the
+  // edge was measured on; 0 in graphs read from elsewhere.
+  size_t pair_index = 0;
 };
 
 struct RotationGraph {

@@ -1,4 +1,5 @@
-// Errors a user can act on: each names the input (a file, an option) and what is wrong with it.
+// Errors a user can act on: each names the input (a file, an option) and what is wrong with it;
+// and the typed failure of a stage on an input it cannot use.
 //
 // Stages throw these at the boundary (io, CLI); the CLI prints the message and exits non-zero.
 #pragma once
@@ -18,6 +19,13 @@ class InputError : public std::runtime_error {
 
  private:
   std::string source_;
+};
+
+// A stage that cannot run on this input (e.g. translation averaging with fewer than two cameras
+// connected): the mapper records the reason for the images concerned and goes on with the rest.
+class StageFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 }  // namespace ramap

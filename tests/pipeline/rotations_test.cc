@@ -1,6 +1,6 @@
 // Stage 3 of the mapper as rotation_averager uses it: the rotation graph of relative pose records
 // and the averaging of a sequence through keyframe windows against an unordered collection.
-#include "ramap/pipeline/rotation_stage.h"
+#include "ramap/pipeline/rotations.h"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,94 @@
+#include "ramap/pipeline/calibration_passes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace ramap {
+
+void LogViewGraphCalibration(const ViewGraphCalibrationSummary& calibration, StageLog* log) {
+  if (calibration.cameras.empty()) return;
+  int num_estimated = 0;
+  std::ostringstream focal_lengths;
+  for (const CameraCalibration& camera : calibration.cameras) {
+    num_estimated += camera.estimated;
+    if (focal_lengths.tellp() > 0) focal_lengths << ", ";
+    focal_lengths << std::fixed << std::setprecision(1) << camera.prior_focal_px << " -> "
+                  << (camera.estimated ? camera.estimated_focal_px : camera.prior_focal_px)
+                  << " px";
+  }
+  log->Record(stage::kViewGraphCalibration, calibration.seconds,
+              std::to_string(num_estimated) + " of " + std::to_string(calibration.cameras.size()) +
+                  " uncalibrated cameras estimated (" + focal_lengths.str() + ")");
+}
+
+MapperOptions FirstPassOptions(const MapperOptions& options,
+                               const ViewGraphCalibrationSummary& calibration,
+                               MapperSummary* summary) {
+  const bool unknown_focal =
+      std::any_of(calibration.cameras.begin(), calibration.cameras.end(),
+                  [](const CameraCalibration& camera) { return !camera.estimated; });
+  if (!options.refine || !unknown_focal || options.calibration_num_points == 0 ||
+      !(options.max_focal_change_in_bundle_adjustment > 0) ||
+      !options.bundle_adjustment.refine_focal_length) {
+    return options;
+  }
+  MapperOptions pass = options;
+  BundleAdjustmentOptions& ba = pass.bundle_adjustment;
+  ba.max_num_points = ba.max_num_points == 0
+                          ? options.calibration_num_points
+                          : std::min(ba.max_num_points, options.calibration_num_points);
+  ba.min_observations_per_image = std::min(ba.min_observations_per_image, 50);
+  summary->calibration_pass = true;
+  return pass;
+}
+
+double FocalChangeInBundleAdjustment(const MapperResult& result,
+                                     std::map<uint32_t, Camera>* refined) {
+  double change = 0.0;
+  for (const CameraIntrinsicsSummary& camera : result.summary.cameras) {
+    if (camera.final_params.empty() || camera.prior_params.empty()) continue;
+    // What averaging used: the view graph's estimate, else the database's value.
+    const double used =
+        camera.view_graph.estimated ? camera.view_graph.estimated_focal_px : camera.prior_params[0];
+    change = std::max(change, std::abs(camera.final_params[0] / used - 1.0));
+  }
+  for (const Reconstruction& reconstruction : result.reconstructions) {
+    for (const auto& [camera_id, camera] : reconstruction.cameras)
+      refined->emplace(camera_id, camera);
+  }
+  return change;
+}
+
+MapperOptions SecondPassOptions(const MapperOptions& options) {
+  MapperOptions second = options;
+  BundleAdjustmentOptions& ba = second.bundle_adjustment;
+  ba.intrinsics_function_tolerance =
+      std::max(ba.intrinsics_function_tolerance, ba.function_tolerance);
+  return second;
+}
+
+void MergePassSummaries(const MapperSummary& first, MapperSummary* second) {
+  for (CameraIntrinsicsSummary& camera : second->cameras) {
+    for (const CameraIntrinsicsSummary& earlier : first.cameras) {
+      if (earlier.camera_id != camera.camera_id) continue;
+      camera.view_graph = earlier.view_graph;
+      camera.prior_params = earlier.prior_params;
+    }
+  }
+  for (const MapperStageTiming& timing : first.timings) {
+    auto it = std::find_if(second->timings.begin(), second->timings.end(),
+                           [&](const MapperStageTiming& t) { return t.stage == timing.stage; });
+    if (it == second->timings.end()) {
+      second->timings.push_back(timing);
+    } else {
+      it->seconds += timing.seconds;
+    }
+  }
+  second->total_seconds += first.total_seconds;
+  second->num_averaging_passes = 2;
+  second->calibration_pass = first.calibration_pass;
+}
+
+}  // namespace ramap

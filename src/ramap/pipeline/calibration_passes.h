@@ -1,0 +1,39 @@
+// Self-calibration across two passes of the mapper. Cameras whose focal length the database does
+// not know are first estimated from the view graph (pipeline/view_graph_calibration.h); when
+// bundle adjustment then moves a focal length far (MapperOptions::
+// max_focal_change_in_bundle_adjustment), or the view graph could not estimate it (a calibration
+// pass), the whole pipeline runs a second time through the intrinsics BA found.
+#pragma once
+
+#include <cstdint>
+#include <map>
+
+#include "ramap/pipeline/mapper.h"
+#include "ramap/pipeline/stage_log.h"
+
+namespace ramap {
+
+// One progress line for the view-graph calibration: each unknown camera's guess and estimate.
+void LogViewGraphCalibration(const ViewGraphCalibrationSummary& calibration, StageLog* log);
+
+// The options of the first pass: a calibration pass's BA (summary->calibration_pass set) adjusts
+// at most calibration_num_points points when the view graph left some camera's focal length
+// unknown, since a second pass follows.
+MapperOptions FirstPassOptions(const MapperOptions& options,
+                               const ViewGraphCalibrationSummary& calibration,
+                               MapperSummary* summary);
+
+// The largest relative change of a focal length between the intrinsics averaging used and those
+// bundle adjustment wrote, over the cameras of the models; `refined` receives those cameras.
+double FocalChangeInBundleAdjustment(const MapperResult& result,
+                                     std::map<uint32_t, Camera>* refined);
+
+// The options of the second pass: the intrinsics start where BA left them, so the ordinary
+// tolerance suffices (measured: templeRing 62 -> 20 iterations, the same AUC).
+MapperOptions SecondPassOptions(const MapperOptions& options);
+
+// One summary for both passes in `second`: the first pass's view-graph estimates, both passes'
+// stage times.
+void MergePassSummaries(const MapperSummary& first, MapperSummary* second);
+
+}  // namespace ramap

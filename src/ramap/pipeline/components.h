@@ -1,0 +1,29 @@
+// Stage 2 of the mapper: the pose graph of the accepted relative poses, cut into its connected
+// components; each component large enough is reconstructed on its own (pipeline/mapper.cc).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "ramap/pipeline/mapper_summary.h"
+#include "ramap/scene/features.h"
+#include "ramap/scene/relative_rotations.h"
+#include "ramap/scene/view_graph.h"
+
+namespace ramap {
+
+// The accepted pairs of the view graph as a rotation graph (scene/view_graph.h). Every rejected
+// pair goes to summary->dropped_edges with its reason, and every image left without an accepted
+// pair gets the reason of its rejected ones in `image_reasons`.
+RotationGraph AcceptedPoseGraph(const FeatureDatabase& database,
+                                const std::vector<ImagePair>& pairs, MapperSummary* summary,
+                                std::map<uint32_t, std::string>* image_reasons);
+
+// The connected components of `graph`, largest first. Those with fewer than `min_size` images are
+// left out and their images get the reason in `image_reasons`.
+std::vector<RotationGraph> ComponentsToReconstruct(const RotationGraph& graph, int min_size,
+                                                   std::map<uint32_t, std::string>* image_reasons);
+
+}  // namespace ramap

@@ -1,0 +1,58 @@
+// Every option of the mapper's stages, with their defaults (`ramap mapper --help` lists them).
+#pragma once
+
+#include "ramap/averaging/pair_directions.h"
+#include "ramap/averaging/rotation_averaging.h"
+#include "ramap/averaging/translation_averaging.h"
+#include "ramap/geometry/relative_pose.h"
+#include "ramap/graph/keyframes.h"
+#include "ramap/pipeline/georegistration.h"
+#include "ramap/pipeline/structure.h"
+#include "ramap/pipeline/view_graph_calibration.h"
+#include "ramap/refine/bundle_adjustment.h"
+#include "ramap/scene/image_order.h"
+
+namespace ramap {
+
+struct MapperOptions {
+  // Focal lengths of uncalibrated cameras (prior_focal_length 0) from the view graph, first.
+  ViewGraphCalibrationOptions view_graph_calibration;
+  RelativePoseOptions relative_pose;
+  InputOrder order = InputOrder::kAuto;
+  KeyframeOptions pose_graph;
+  RotationAveragingOptions rotation_averaging;
+  PairDirectionOptions pair_direction;
+  TranslationAveragingOptions translation_averaging;
+  StructureOptions structure;
+  // What to do with position priors, when RunMapper is given any.
+  GeoregistrationOptions georegistration;
+  // Final bundle adjustment ("averaging + BA"), on by default: averaging alone gives up 2-33 AUC@3
+  // points to COLMAP on the benchmark sets (BENCHMARKS.md, mapper table) and cannot fix a focal
+  // length the view graph leaves free; with BA ramap matches COLMAP. Averaging alone (false) is
+  // the fast option, 3-10x quicker.
+  bool refine = true;
+  BundleAdjustmentOptions bundle_adjustment;
+  // When bundle adjustment moves a focal length by more than this fraction from the value
+  // averaging used (a guess the view graph could not correct: forward motion, a turntable), the
+  // whole pipeline runs again through the refined intrinsics: averaging through a focal length 2x
+  // off bends the model more than BA can straighten (kitti07_first160 from COLMAP's guess). 0:
+  // never.
+  double max_focal_change_in_bundle_adjustment = 0.05;
+  // When some camera's focal length is unknown and the view graph could not estimate it, the first
+  // bundle adjustment only finds the intrinsics for a second pass (averaging through them, then
+  // the final BA), so it adjusts at most this many points, each image keeping at least 50 of its
+  // observations. A focal length far from the guess takes BA 100-400 iterations to reach; on fewer
+  // points each is cheaper (measured: templeRing 12.3 -> 4.4 s; kitti07_first160, when its guess
+  // was kept, 111 -> 21 s; the same focal length after the second pass within 0.3%). 0: the
+  // first BA is a full one.
+  int calibration_num_points = 2000;
+  // Components with fewer images are not written (COLMAP's Mapper.min_model_size is 10; ramap
+  // writes smaller ones too because small data sets are common among its users).
+  int min_component_size = 3;
+  // Threads for the per-pair relative pose estimation.
+  int num_threads = 2;
+
+  void Check() const;
+};
+
+}  // namespace ramap

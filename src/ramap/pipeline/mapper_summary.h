@@ -1,0 +1,88 @@
+// What the mapper reports besides its models: per stage, per component and per camera, and why each
+// image or edge missing from the output is missing (summary.json).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "ramap/pipeline/georegistration.h"
+#include "ramap/pipeline/view_graph_calibration.h"
+#include "ramap/refine/bundle_adjustment.h"
+#include "ramap/scene/features.h"
+#include "ramap/scene/reconstruction.h"
+
+namespace ramap {
+
+struct MapperStageTiming {
+  std::string stage;
+  double seconds = 0.0;
+};
+
+// Why an image or an edge is missing from the output.
+struct DroppedItem {
+  std::string what;  // "IMAGE_NAME" or "NAME1 NAME2"
+  std::string reason;
+};
+
+struct MapperComponentSummary {
+  int num_images = 0;
+  int num_points = 0;
+  int num_observations = 0;
+  double mean_reprojection_error_px = 0.0;
+  int num_rotation_edges = 0;
+  int num_pruned_edges = 0;
+  bool rotation_certified = false;
+  double certificate_bound_deg = 0.0;
+  double max_rotation_residual_deg = 0.0;
+  int num_translation_constraints = 0;
+  int num_solver_iterations = 0;
+  BundleAdjustmentSummary bundle_adjustment;  // zeros when not refined
+  GeoregistrationSummary georegistration;     // num_priors 0 when run without priors
+};
+
+// The intrinsics of one camera through the stages.
+struct CameraIntrinsicsSummary {
+  uint32_t camera_id = 0;
+  std::string model;
+  bool prior_focal_length_known = false;  // the database's prior_focal_length flag
+  std::vector<double> prior_params;       // as the database gives them
+  CameraCalibration view_graph;           // camera_id 0 when not calibrated from the view graph
+  std::vector<double> final_params;       // as written (after BA, when refined)
+};
+
+struct MapperSummary {
+  int num_images = 0;
+  // 2 when bundle adjustment moved the intrinsics enough that averaging ran again through them.
+  int num_averaging_passes = 1;
+  // The first pass's bundle adjustment only calibrated (a camera the view graph could not
+  // estimate; MapperOptions::calibration_num_points): a second pass always follows.
+  bool calibration_pass = false;
+  std::vector<CameraIntrinsicsSummary> cameras;
+  int num_verified_pairs = 0;
+  int num_relative_poses = 0;
+  int num_registered_images = 0;
+  bool sequential = false;
+  int num_keyframes = 0;
+  int num_loop_edges = 0;
+  std::vector<MapperComponentSummary> components;
+  std::vector<DroppedItem> dropped_images;
+  std::vector<DroppedItem> dropped_edges;
+  std::vector<DroppedItem> prior_outliers;  // position priors the georegistration rejected
+  std::vector<MapperStageTiming> timings;
+  double total_seconds = 0.0;
+};
+
+// Each camera's intrinsics as given, as the view graph estimated them, and as written (from the
+// largest model that holds the camera).
+std::vector<CameraIntrinsicsSummary> SummariseIntrinsics(
+    const FeatureDatabase& database, const ViewGraphCalibrationSummary& calibration,
+    const std::vector<Reconstruction>& reconstructions);
+
+// Counts the registered images and lists every other one with its reason from `image_reasons`.
+void ListUnregisteredImages(const FeatureDatabase& database,
+                            const std::vector<Reconstruction>& reconstructions,
+                            std::map<uint32_t, std::string>* image_reasons, MapperSummary* summary);
+
+}  // namespace ramap

@@ -1,0 +1,22 @@
+// Stage 6 of the mapper on one component (optional, on by default): bundle adjustment of the
+// averaged model (refine/bundle_adjustment.h), then every track triangulated again.
+#pragma once
+
+#include <vector>
+
+#include "ramap/graph/tracks.h"
+#include "ramap/pipeline/georegistration.h"
+#include "ramap/pipeline/mapper_context.h"
+#include "ramap/scene/reconstruction.h"
+
+namespace ramap {
+
+// Bundle adjustment on the best-connected points of `reconstruction` (with the inlier priors of a
+// georegistered component when use_in_bundle_adjustment), then `tracks` triangulated again with
+// the refined poses into `reconstruction`, through the refined intrinsics when BA refined them
+// (they change every bearing of the component's images).
+void RefineComponent(const MapperContext& context, const std::vector<Track>& tracks,
+                     bool georegistered, PriorAlignment* georegistration,
+                     MapperComponentSummary* component, Reconstruction* reconstruction);
+
+}  // namespace ramap

@@ -1,0 +1,118 @@
+#include "ramap/pipeline/rotations.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "ramap/pipeline/mapper_options.h"
+#include "ramap/pipeline/mapper_summary.h"
+#include "ramap/util/timer.h"
+
+namespace ramap {
+
+RotationStageResult AverageViewGraphRotations(const RotationGraph& graph,
+                                              const std::vector<uint32_t>& capture_order,
+                                              bool sequential, const KeyframeOptions& pose_graph,
+                                              const RotationAveragingOptions& options) {
+  RotationStageResult result;
+  if (!sequential) {
+    result.rotations = AverageRotations(graph, options);
+    return result;
+  }
+  const std::set<uint32_t> members(graph.node_ids.begin(), graph.node_ids.end());
+  std::vector<uint32_t> frames;
+  for (const uint32_t id : capture_order) {
+    if (members.count(id)) frames.push_back(id);
+  }
+  const Keyframes keyframes = SelectKeyframes(frames, pose_graph);
+  result.num_keyframes = static_cast<int>(keyframes.keyframe_ids.size());
+  const std::vector<EdgeKind> kinds = ClassifyEdges(graph, keyframes);
+  result.num_loop_edges = static_cast<int>(std::count(kinds.begin(), kinds.end(), EdgeKind::kLoop));
+  result.rotations = AverageRotationsInWindows(graph, keyframes, options);
+  return result;
+}
+
+RotationStageResult AverageComponentRotations(
+    const MapperContext& context, const RotationGraph& graph, MapperComponentSummary* component,
+    std::map<uint32_t, Eigen::Quaterniond>* world_rotations) {
+  const MapperOptions& options = context.options;
+  Timer timer;
+  RotationStageResult stage = AverageViewGraphRotations(
+      graph, context.order, context.sequential, options.pose_graph, options.rotation_averaging);
+  const RotationAveragingResult& rotations = stage.rotations;
+  context.summary.num_keyframes += stage.num_keyframes;
+  context.summary.num_loop_edges += stage.num_loop_edges;
+  for (size_t k = 0; k < rotations.node_ids.size(); ++k) {
+    if (rotations.estimated[k]) {
+      (*world_rotations)[rotations.node_ids[k]] = rotations.rotations[k];
+    } else {
+      context.image_reasons[rotations.node_ids[k]] =
+          "rotation not estimated (cut off by pruned edges)";
+    }
+  }
+  for (const PrunedEdge& pruned : rotations.pruned_edges) {
+    const RelativeRotationEdge& edge = graph.edges[pruned.edge_index];
+    context.summary.dropped_edges.push_back(
+        {PairName(context.database, edge.i, edge.j),
+         pruned.reason == EdgeStatus::kPrunedResidual
+             ? "rotation residual " + FormatDegrees(pruned.residual_deg) + " > alpha_max " +
+                   FormatDegrees(pruned.threshold_deg) + " (pruning round " +
+                   std::to_string(pruned.round) + ")"
+             : "outside the largest connected component after pruning"});
+  }
+  component->num_rotation_edges = static_cast<int>(graph.edges.size());
+  component->num_pruned_edges = static_cast<int>(rotations.pruned_edges.size());
+  component->rotation_certified = rotations.certificate.certified;
+  component->certificate_bound_deg = rotations.certificate.bound_deg;
+  component->max_rotation_residual_deg = rotations.certificate.max_robust_residual_deg;
+  context.log.Record(
+      stage::kRotationAveraging, timer.ElapsedSeconds(),
+      std::to_string(world_rotations->size()) + " rotations, " +
+          std::to_string(rotations.pruned_edges.size()) + " edges pruned, " +
+          (rotations.certificate.certified ? "certified globally optimal" : "not certified"));
+  return stage;
+}
+
+RotationGraph RotationGraphOfRecords(const std::vector<RelativePoseRecord>& records,
+                                     std::vector<std::string>* names) {
+  std::map<std::string, uint32_t> ids;
+  auto id_of = [&](const std::string& name) {
+    auto [it, inserted] = ids.emplace(name, static_cast<uint32_t>(names->size()));
+    if (inserted) names->push_back(name);
+    return it->second;
+  };
+  RotationGraph graph;
+  for (const RelativePoseRecord& r : records) {
+    graph.edges.push_back({id_of(r.image_name1), id_of(r.image_name2), r.rotation,
+                           RelativeRotationWeight(r.num_inliers)});
+  }
+  for (uint32_t k = 0; k < names->size(); ++k) graph.node_ids.push_back(k);
+  return graph;
+}
+
+RecordRotations AverageRecordRotations(const std::vector<RelativePoseRecord>& records,
+                                       InputOrder order, const KeyframeOptions& pose_graph,
+                                       const RotationAveragingOptions& options) {
+  RecordRotations result;
+  const RotationGraph graph = RotationGraphOfRecords(records, &result.names);
+  result.num_edges = static_cast<int>(graph.edges.size());
+  std::vector<uint32_t> capture_order;
+  for (const size_t k : CaptureOrder(result.names))
+    capture_order.push_back(static_cast<uint32_t>(k));
+  result.sequential = IsSequentialInput(order, result.names);
+  Timer timer;
+  result.stage =
+      AverageViewGraphRotations(graph, capture_order, result.sequential, pose_graph, options);
+  result.seconds = timer.ElapsedSeconds();
+  const RotationAveragingResult& averaged = result.stage.rotations;
+  for (size_t k = 0; k < averaged.node_ids.size(); ++k) {
+    if (averaged.estimated[k])
+      result.rotations.push_back({result.names[averaged.node_ids[k]], averaged.rotations[k]});
+  }
+  std::sort(
+      result.rotations.begin(), result.rotations.end(),
+      [](const RotationRecord& a, const RotationRecord& b) { return a.image_name < b.image_name; });
+  return result;
+}
+
+}  // namespace ramap

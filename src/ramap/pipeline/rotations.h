@@ -1,0 +1,61 @@
+// Stage 3 of the mapper on one connected view graph: keyframe windows first for sequences, the
+// whole graph at once for unordered collections (DESIGN.md steps 2 and 3). The graph-level step is
+// shared by `ramap mapper` and `ramap rotation_averager`.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "ramap/averaging/rotation_averaging.h"
+#include "ramap/graph/keyframes.h"
+#include "ramap/graph/rotation_graph.h"
+#include "ramap/io/relative_pose_file.h"
+#include "ramap/pipeline/mapper_context.h"
+#include "ramap/scene/image_order.h"
+#include "ramap/scene/view_graph.h"
+
+namespace ramap {
+
+struct RotationStageResult {
+  RotationAveragingResult rotations;
+  int num_keyframes = 0;   // 0 for unordered input
+  int num_loop_edges = 0;  // edges joining frames of no common keyframe window
+};
+
+// `capture_order` lists node ids in capture order (ids not in the graph are ignored); it is only
+// used when `sequential`.
+RotationStageResult AverageViewGraphRotations(const RotationGraph& graph,
+                                              const std::vector<uint32_t>& capture_order,
+                                              bool sequential, const KeyframeOptions& pose_graph,
+                                              const RotationAveragingOptions& options);
+
+// The mapper's stage 3 on one component: AverageViewGraphRotations, the estimated rotations to
+// `world_rotations`; images left without one and pruned edges recorded with their reasons, the
+// progress line and the component's rotation figures.
+RotationStageResult AverageComponentRotations(
+    const MapperContext& context, const RotationGraph& graph, MapperComponentSummary* component,
+    std::map<uint32_t, Eigen::Quaterniond>* world_rotations);
+
+// The rotation graph of relative pose records, its nodes numbered 0, 1, ... by image name in order
+// of first appearance (`names`, by node); the first record of two images counts.
+RotationGraph RotationGraphOfRecords(const std::vector<RelativePoseRecord>& records,
+                                     std::vector<std::string>* names);
+
+// `ramap rotation_averager` on relative pose records: their graph (RotationGraphOfRecords), in
+// capture order of the names when `order` makes them a sequence, averaged as the mapper does.
+struct RecordRotations {
+  std::vector<std::string> names;  // by node id
+  int num_edges = 0;
+  bool sequential = false;
+  RotationStageResult stage;
+  std::vector<RotationRecord> rotations;  // the estimated ones, by image name
+  double seconds = 0.0;                   // averaging alone
+};
+RecordRotations AverageRecordRotations(const std::vector<RelativePoseRecord>& records,
+                                       InputOrder order, const KeyframeOptions& pose_graph,
+                                       const RotationAveragingOptions& options);
+
+}  // namespace ramap

@@ -1,0 +1,150 @@
+#include "ramap/pipeline/translations.h"
+
+#include <set>
+
+#include "ramap/graph/tracks.h"
+#include "ramap/pipeline/mapper_options.h"
+#include "ramap/pipeline/mapper_summary.h"
+#include "ramap/util/error.h"
+#include "ramap/util/timer.h"
+
+namespace ramap {
+namespace {
+
+// The direction of every edge rotation averaging kept between two rotated images (pure rotations
+// aside), from its inlier bearings and the averaged rotations; `kept_pairs` gets every kept pair.
+std::vector<PairDirection> KeptPairDirections(
+    const MapperContext& context, const RotationGraph& graph,
+    const std::vector<EdgeStatus>& edge_status,
+    const std::map<uint32_t, Eigen::Quaterniond>& world_rotations, std::set<uint64_t>* kept_pairs) {
+  std::vector<PairDirection> directions;
+  for (size_t e = 0; e < graph.edges.size(); ++e) {
+    if (edge_status[e] != EdgeStatus::kKept) continue;
+    const ImagePair& pair = context.pairs[graph.edges[e].pair_index];
+    if (!world_rotations.count(pair.image_id1) || !world_rotations.count(pair.image_id2)) continue;
+    kept_pairs->insert(ImagePairToPairId(pair.image_id1, pair.image_id2));
+    if (pair.estimate.flags & kRelativePosePureRotation) continue;
+    std::vector<Eigen::Vector3d> f1, f2;
+    for (const int k : pair.estimate.inliers) {
+      f1.push_back(pair.correspondences.bearings1[k]);
+      f2.push_back(pair.correspondences.bearings2[k]);
+    }
+    const std::optional<Eigen::Vector3d> direction = EstimatePairDirection(
+        world_rotations.at(pair.image_id1), world_rotations.at(pair.image_id2), f1, f2,
+        context.options.pair_direction);
+    if (direction) directions.push_back({pair.image_id1, pair.image_id2, *direction});
+  }
+  return directions;
+}
+
+// The tracks' observations by rotated images, as bearings; tracks left with fewer than two are
+// dropped.
+std::vector<TranslationTrack> TranslationTracks(
+    const std::vector<Track>& tracks, const ImageBearings& bearings,
+    const std::map<uint32_t, Eigen::Quaterniond>& world_rotations) {
+  std::vector<TranslationTrack> translation_tracks;
+  translation_tracks.reserve(tracks.size());
+  for (const Track& track : tracks) {
+    TranslationTrack observations;
+    for (const TrackElement& element : track) {
+      if (!world_rotations.count(element.image_id)) continue;
+      observations.push_back(
+          {element.image_id, bearings.bearings.at(element.image_id)[element.point2D_idx]});
+    }
+    if (observations.size() >= 2) translation_tracks.push_back(std::move(observations));
+  }
+  return translation_tracks;
+}
+
+// The georegistration's progress line.
+std::string GeoregistrationLine(const GeoregistrationSummary& geo) {
+  if (!geo.georegistered) return "not georegistered: " + geo.problem;
+  return std::to_string(geo.num_inliers) + " of " + std::to_string(geo.num_priors) +
+         " priors within " + FormatMetres(geo.threshold_m) + ", RMSE " + FormatMetres(geo.rmse_m) +
+         ", " + std::to_string(geo.outliers.size()) + " outliers" +
+         (geo.used_in_translation_averaging ? ", used in translation averaging" : "");
+}
+
+// The alignment to the priors, and translation averaging again with them (GeoregisterComponent).
+PriorAlignment RefitWithPriors(const MapperContext& context,
+                               const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+                               ComponentTranslations* translations) {
+  TranslationAveragingResult* positions = &translations->positions;
+  const GeoregistrationOptions& options = context.options.georegistration;
+  PriorAlignment alignment = AlignCentersToPriors(positions->centers, context.priors, options);
+  if (!alignment.summary.georegistered || !options.use_in_translation_averaging) return alignment;
+  try {
+    TranslationAveragingResult constrained =
+        AverageTranslations(rotations, translations->directions, translations->translation_tracks,
+                            context.options.translation_averaging, PriorsInModelFrame(alignment));
+    PriorAlignment refit = AlignCentersToPriors(constrained.centers, context.priors, options);
+    if (!refit.summary.georegistered) return alignment;
+    refit.summary.used_in_translation_averaging = true;
+    *positions = std::move(constrained);
+    return refit;
+  } catch (const StageFailure&) {
+    return alignment;  // the positions without priors stand
+  }
+}
+
+}  // namespace
+
+std::optional<ComponentTranslations> AverageComponentTranslations(
+    const MapperContext& context, const RotationGraph& graph,
+    const std::vector<EdgeStatus>& edge_status,
+    const std::map<uint32_t, Eigen::Quaterniond>& world_rotations,
+    MapperComponentSummary* component) {
+  Timer timer;
+  ComponentTranslations result;
+  std::set<uint64_t> kept_pairs;
+  result.directions = KeptPairDirections(context, graph, edge_status, world_rotations, &kept_pairs);
+  result.tracks = BuildTracks(context.database.two_view_geometries, kept_pairs);
+  result.translation_tracks = TranslationTracks(result.tracks, context.bearings, world_rotations);
+  const std::vector<PairDirection>& directions = result.directions;
+  TranslationAveragingResult& positions = result.positions;
+  try {
+    positions = AverageTranslations(world_rotations, directions, result.translation_tracks,
+                                    context.options.translation_averaging);
+  } catch (const StageFailure& error) {
+    for (const auto& [id, rotation] : world_rotations) context.image_reasons[id] = error.what();
+    context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(), error.what());
+    return std::nullopt;
+  }
+  for (const uint32_t id : positions.unconstrained_images) {
+    context.image_reasons[id] =
+        "no translation constraint links it to the rest (too little parallax?)";
+  }
+  component->num_translation_constraints = positions.num_constraints;
+  component->num_solver_iterations = positions.num_solver_iterations;
+  context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(),
+                     std::to_string(positions.centers.size()) + " positions from " +
+                         std::to_string(directions.size()) + " pair directions and " +
+                         std::to_string(positions.num_tracks_used) + " tracks, " +
+                         std::to_string(positions.num_solver_iterations) + " solver iterations");
+  return result;
+}
+
+PriorAlignment GeoregisterComponent(const MapperContext& context,
+                                    const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+                                    ComponentTranslations* translations) {
+  Timer timer;
+  PriorAlignment alignment = RefitWithPriors(context, rotations, translations);
+  context.log.Record(stage::kGeoregistration, timer.ElapsedSeconds(),
+                     GeoregistrationLine(alignment.summary));
+  return alignment;
+}
+
+void ReportPriorErrors(const MapperContext& context, const Reconstruction& reconstruction,
+                       PriorAlignment* georegistration) {
+  MeasurePriorErrors(reconstruction, context.priors, georegistration->inliers,
+                     &georegistration->summary);
+  const GeoregistrationSummary& geo = georegistration->summary;
+  for (const PriorOutlier& outlier : geo.outliers) {
+    context.summary.prior_outliers.push_back({context.database.images.at(outlier.image_id).name,
+                                              "prior " + FormatMetres(outlier.error_m) +
+                                                  " from the aligned camera centre (> " +
+                                                  FormatMetres(geo.threshold_m) + "): not used"});
+  }
+}
+
+}  // namespace ramap

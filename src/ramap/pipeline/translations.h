@@ -1,0 +1,51 @@
+// Stage 4 of the mapper on one component: the direction of every pair rotation averaging kept,
+// from the averaged rotations (averaging/pair_directions.h), then translation averaging on them
+// and on feature tracks (averaging/translation_averaging.h). With position priors, the positions
+// are georegistered and, by default, solved again with the priors as rows.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "ramap/averaging/pair_directions.h"
+#include "ramap/averaging/rotation_averaging.h"
+#include "ramap/averaging/translation_averaging.h"
+#include "ramap/graph/tracks.h"
+#include "ramap/pipeline/georegistration.h"
+#include "ramap/pipeline/mapper_context.h"
+#include "ramap/scene/reconstruction.h"
+#include "ramap/scene/relative_rotations.h"
+
+namespace ramap {
+
+struct ComponentTranslations {
+  std::vector<PairDirection> directions;
+  std::vector<Track> tracks;  // feature tracks over the kept pairs (triangulated later)
+  std::vector<TranslationTrack> translation_tracks;  // their observations by rotated images
+  TranslationAveragingResult positions;
+};
+
+// The pair directions and tracks of the edges with edge_status kKept, then the camera centres;
+// none when translation averaging fails (the component's images get the reason).
+std::optional<ComponentTranslations> AverageComponentTranslations(
+    const MapperContext& context, const RotationGraph& graph,
+    const std::vector<EdgeStatus>& edge_status,
+    const std::map<uint32_t, Eigen::Quaterniond>& world_rotations,
+    MapperComponentSummary* component);
+
+// Fits the averaged centres to context.priors; with the fit and use_in_translation_averaging,
+// solves translation averaging again with the inlier priors as rows (in the model frame) and fits
+// once more, so that the outliers and the residuals reported are those of the final positions
+// (`translations->positions` then holds them). Records the progress line.
+PriorAlignment GeoregisterComponent(const MapperContext& context,
+                                    const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+                                    ComponentTranslations* translations);
+
+// After the final model: the priors' errors, and the outliers reported in the summary.
+void ReportPriorErrors(const MapperContext& context, const Reconstruction& reconstruction,
+                       PriorAlignment* georegistration);
+
+}  // namespace ramap

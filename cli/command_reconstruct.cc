@@ -8,6 +8,7 @@
 
 #include "feature_options.h"
 #include "mapper_options.h"
+#include "mapper_report.h"
 #include "options.h"
 #include "pose_prior_options.h"
 #include "ramap/io/colmap_database.h"
@@ -94,9 +95,7 @@ int RunReconstruct(int argc, char** argv) {
   // COLMAP gets the loop pairs too.
   if (closed.database_changed) WriteColmapDatabaseMatches(database, database_path);
   MapperResult& result = closed.result;
-  for (Reconstruction& reconstruction : result.reconstructions) {
-    ColorPointsFromImages(image_path, &reconstruction);
-  }
+  ColorModelsFromImages(image_path, &result.reconstructions);
   const nlohmann::json run = {
       {"command", "reconstruct"},
       {"image_path", image_path},

@@ -12,11 +12,9 @@
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/relative_pose_file.h"
 #include "ramap/pipeline/relative_poses.h"
-#include "ramap/pipeline/rotation_stage.h"
-#include "ramap/scene/image_order.h"
+#include "ramap/pipeline/rotations.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
-#include "ramap/util/timer.h"
 
 namespace ramap::cli {
 namespace {
@@ -41,6 +39,38 @@ size_t NumDisconnectedEdges(const RotationAveragingResult& result) {
   return std::count_if(
       result.pruned_edges.begin(), result.pruned_edges.end(),
       [](const PrunedEdge& e) { return e.reason == EdgeStatus::kPrunedDisconnected; });
+}
+
+// One line for the run, the phase times and the certificate.
+void PrintRotationSummary(const RecordRotations& averaged, const std::string& output_path) {
+  const RotationAveragingResult& result = averaged.stage.rotations;
+  const RotationCertificate& certificate = result.certificate;
+  const RotationAveragingTimings& t = result.timings;
+  const size_t num_disconnected = NumDisconnectedEdges(result);
+  std::cout << std::fixed << std::setprecision(3)
+            << "ramap rotation_averager: " << averaged.rotations.size() << " of "
+            << averaged.names.size() << " images, " << averaged.num_edges << " edges ("
+            << result.pruned_edges.size() - num_disconnected << " pruned";
+  if (num_disconnected > 0) {
+    std::cout << ", " << num_disconnected
+              << " outside the largest connected component, whose images are not written";
+  }
+  std::cout << "), "
+            << (averaged.sequential
+                    ? std::to_string(averaged.stage.num_keyframes) + " keyframes, " +
+                          std::to_string(averaged.stage.num_loop_edges) + " loop edges, "
+                    : std::string("unordered, "))
+            << averaged.seconds << " s -> " << output_path << "\n"
+            << "  phases (s): windows " << t.windows << ", init " << t.init << ", L1 " << t.l1
+            << ", IRLS " << t.irls << ", pruning " << t.pruning << ", certificate " << t.certificate
+            << "\n";
+  if (certificate.computed) {
+    std::cout << "  certificate: "
+              << (certificate.certified ? "certified globally optimal" : "not certified")
+              << " (max kept residual " << certificate.max_residual_deg << " deg, bound "
+              << certificate.bound_deg << " deg, lambda2 " << certificate.fiedler_value
+              << ", d_max " << certificate.max_degree << ")\n";
+  }
 }
 
 }  // namespace
@@ -69,51 +99,10 @@ int RunRotationAverager(int argc, char** argv) {
 
   const std::vector<RelativePoseRecord> records =
       LoadRelativePoses(database_path, relative_poses_path, options);
-  std::vector<std::string> names;
-  const RotationGraph graph = RotationGraphOfRecords(records, &names);
-  std::vector<uint32_t> order;
-  for (const size_t k : CaptureOrder(names)) order.push_back(static_cast<uint32_t>(k));
-  const bool sequential = IsSequentialInput(options.order, names);
-
-  Timer timer;
-  const RotationStageResult stage = AverageViewGraphRotations(
-      graph, order, sequential, options.pose_graph, options.rotation_averaging);
-  const double seconds = timer.ElapsedSeconds();
-  const RotationAveragingResult& result = stage.rotations;
-  std::vector<RotationRecord> rotations;
-  for (size_t k = 0; k < result.node_ids.size(); ++k) {
-    if (result.estimated[k]) rotations.push_back({names[result.node_ids[k]], result.rotations[k]});
-  }
-  std::sort(
-      rotations.begin(), rotations.end(),
-      [](const RotationRecord& a, const RotationRecord& b) { return a.image_name < b.image_name; });
-  WriteRotations(rotations, output_path);
-
-  const RotationCertificate& certificate = result.certificate;
-  const RotationAveragingTimings& t = result.timings;
-  const size_t num_disconnected = NumDisconnectedEdges(result);
-  std::cout << std::fixed << std::setprecision(3) << "ramap rotation_averager: " << rotations.size()
-            << " of " << names.size() << " images, " << graph.edges.size() << " edges ("
-            << result.pruned_edges.size() - num_disconnected << " pruned";
-  if (num_disconnected > 0) {
-    std::cout << ", " << num_disconnected
-              << " outside the largest connected component, whose images are not written";
-  }
-  std::cout << "), "
-            << (sequential ? std::to_string(stage.num_keyframes) + " keyframes, " +
-                                 std::to_string(stage.num_loop_edges) + " loop edges, "
-                           : std::string("unordered, "))
-            << seconds << " s -> " << output_path << "\n"
-            << "  phases (s): windows " << t.windows << ", init " << t.init << ", L1 " << t.l1
-            << ", IRLS " << t.irls << ", pruning " << t.pruning << ", certificate " << t.certificate
-            << "\n";
-  if (certificate.computed) {
-    std::cout << "  certificate: "
-              << (certificate.certified ? "certified globally optimal" : "not certified")
-              << " (max kept residual " << certificate.max_residual_deg << " deg, bound "
-              << certificate.bound_deg << " deg, lambda2 " << certificate.fiedler_value
-              << ", d_max " << certificate.max_degree << ")\n";
-  }
+  const RecordRotations averaged = AverageRecordRotations(
+      records, options.order, options.pose_graph, options.rotation_averaging);
+  WriteRotations(averaged.rotations, output_path);
+  PrintRotationSummary(averaged, output_path);
   return 0;
 }
 

@@ -90,27 +90,6 @@ LocalizedPriors LoadPosePriors(const PosePriorOptionText& text, const FeatureDat
   return priors;
 }
 
-void PrintGeoregistration(const MapperSummary& summary, std::ostream& out) {
-  for (size_t k = 0; k < summary.components.size(); ++k) {
-    const GeoregistrationSummary& geo = summary.components[k].georegistration;
-    if (geo.georegistered) {
-      out << "  model " << k << " georegistered: " << geo.num_inliers << " of " << geo.num_priors
-          << " priors, RMSE " << std::fixed << std::setprecision(2) << geo.rmse_m << " m, "
-          << geo.outliers.size() << " outlier(s)\n";
-    } else if (!geo.problem.empty()) {
-      out << "  model " << k << " not georegistered: " << geo.problem << "\n";
-    }
-  }
-  if (!summary.prior_outliers.empty()) {
-    out << "  position priors rejected as outliers (" << summary.prior_outliers.size() << "):\n";
-    for (size_t k = 0; k < summary.prior_outliers.size() && k < 10; ++k) {
-      out << "    " << summary.prior_outliers[k].what << ": " << summary.prior_outliers[k].reason
-          << "\n";
-    }
-    if (summary.prior_outliers.size() > 10) out << "    ... (all in summary.json)\n";
-  }
-}
-
 nlohmann::json PosePriorOptionsToJson(const PosePriorOptionText& text,
                                       const GeoregistrationOptions& g) {
   return {{"path", text.path},

@@ -34,10 +34,6 @@ void AddPosePriorOptions(CLI::App& app, PosePriorOptionText* text,
 LocalizedPriors LoadPosePriors(const PosePriorOptionText& text, const FeatureDatabase& database,
                                const std::string& command, std::ostream& log);
 
-// One line per model saying whether (and how well) it was georegistered, then the rejected priors
-// (ten at most); nothing when the run had no priors.
-void PrintGeoregistration(const MapperSummary& summary, std::ostream& out);
-
 nlohmann::json PosePriorOptionsToJson(const PosePriorOptionText& text,
                                       const GeoregistrationOptions& georegistration);
 

@@ -5,6 +5,7 @@
 #include "options.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/util/error.h"
+#include "ramap/util/number_list.h"
 
 namespace ramap::cli {
 
@@ -78,7 +79,7 @@ void FinishSceneOptions(const SceneOptionText& text, bool num_images_given,
     throw InputError("--Synthetic.camera_model", "unknown model '" + text.camera_model + "'");
   }
   options->camera.model = *model;
-  options->camera.params = ParseCameraParams(text.camera_params, "--Synthetic.camera_params");
+  options->camera.params = ParseNumberList(text.camera_params, "--Synthetic.camera_params");
   if (!text.trajectory_path.empty()) {
     if (options->layout != SyntheticLayout::kSequential) {
       throw InputError("--Synthetic.trajectory_path", "needs --Synthetic.layout sequential");

@@ -12,6 +12,7 @@
 #include "ramap/io/exif.h"
 #include "ramap/io/image_list.h"
 #include "ramap/util/error.h"
+#include "ramap/util/number_list.h"
 #include "ramap/util/parallel.h"
 #include "ramap/util/timer.h"
 
@@ -38,7 +39,7 @@ Camera MakeCamera(const ImageReaderOptions& options, int width, int height,
   camera.width = static_cast<uint64_t>(width);
   camera.height = static_cast<uint64_t>(height);
   if (!options.camera_params.empty()) {
-    camera.params = ParseCameraParams(options.camera_params, "--ImageReader.camera_params");
+    camera.params = ParseNumberList(options.camera_params, "--ImageReader.camera_params");
     camera.has_prior_focal_length = true;
     return camera;
   }
@@ -68,7 +69,7 @@ void ImageReaderOptions::Check() const {
   }
   if (!camera_params.empty()) {
     const std::vector<double> params =
-        ParseCameraParams(camera_params, "--ImageReader.camera_params");
+        ParseNumberList(camera_params, "--ImageReader.camera_params");
     if (static_cast<int>(params.size()) != NumCameraParams(*model)) {
       throw InputError("--ImageReader.camera_params",
                        camera_model + " takes " + std::to_string(NumCameraParams(*model)) +

@@ -695,6 +695,17 @@ std::string ImageNameProblem(const std::string& name, ModelFormat format) {
   return "";
 }
 
+void CheckImageNamesFit(const FeatureDatabase& database, ModelFormat format,
+                        const std::string& source, const std::string& why_format) {
+  for (const auto& [image_id, image] : database.images) {
+    const std::string problem = ImageNameProblem(image.name, format);
+    if (!problem.empty()) {
+      throw InputError(source, "image " + std::to_string(image_id) + " '" + image.name +
+                                   "': " + problem + " (" + why_format + ")");
+    }
+  }
+}
+
 Reconstruction ReadColmapModel(const std::string& path) {
   std::error_code ec;
   if (!fs::is_directory(path, ec)) throw InputError(path, "model folder not found");

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "ramap/scene/features.h"
 #include "ramap/scene/reconstruction.h"
 
 namespace ramap {
@@ -31,6 +32,11 @@ Reconstruction ReadColmapModelText(const std::string& path);
 // Why an image of this name cannot be written in `format` (empty, NUL, white space in text); empty
 // when it can. Commands check their input's names with it before any work starts.
 std::string ImageNameProblem(const std::string& name, ModelFormat format);
+
+// Throws InputError naming `source` and the first image of `database` whose name cannot be
+// written in `format`; `why_format` (e.g. "--output_type TXT") ends the message.
+void CheckImageNamesFit(const FeatureDatabase& database, ModelFormat format,
+                        const std::string& source, const std::string& why_format);
 
 void WriteColmapModel(const Reconstruction& reconstruction, const std::string& path,
                       ModelFormat format = ModelFormat::kBinary);

@@ -38,4 +38,16 @@ PointColorSummary ColorPointsFromImages(const std::string& image_path,
   return summary;
 }
 
+PointColorSummary ColorModelsFromImages(const std::string& image_path,
+                                        std::vector<Reconstruction>* models) {
+  PointColorSummary total;
+  for (Reconstruction& model : *models) {
+    const PointColorSummary colors = ColorPointsFromImages(image_path, &model);
+    total.num_images_read += colors.num_images_read;
+    total.unreadable_images.insert(total.unreadable_images.end(), colors.unreadable_images.begin(),
+                                   colors.unreadable_images.end());
+  }
+  return total;
+}
+
 }  // namespace ramap

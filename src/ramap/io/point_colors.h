@@ -21,4 +21,8 @@ struct PointColorSummary {
 PointColorSummary ColorPointsFromImages(const std::string& image_path,
                                         Reconstruction* reconstruction);
 
+// The same for every model of a run, the images read and unreadable summed over them.
+PointColorSummary ColorModelsFromImages(const std::string& image_path,
+                                        std::vector<Reconstruction>* models);
+
 }  // namespace ramap

@@ -49,20 +49,4 @@ std::optional<CameraModel> CameraModelFromId(int id) {
   return kModels[id].model;
 }
 
-std::vector<double> ParseCameraParams(const std::string& text, const std::string& option) {
-  std::vector<double> params;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    try {
-      size_t used = 0;
-      params.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw InputError(option, "'" + item + "' is not a number");
-    }
-  }
-  return params;
-}
-
 }  // namespace ramap

@@ -44,8 +44,4 @@ std::optional<CameraModel> CameraModelFromName(const std::string& name);
 // The model with COLMAP's integer id, if there is one.
 std::optional<CameraModel> CameraModelFromId(int id);
 
-// Parameters written as COLMAP's options take them, "a,b,c,..."; throws InputError naming `option`
-// for an item that is not a number.
-std::vector<double> ParseCameraParams(const std::string& text, const std::string& option);
-
 }  // namespace ramap

@@ -30,54 +30,25 @@ int RunDatabaseInfo(int argc, char** argv) {
   options.read_descriptors = true;
   const FeatureDatabase database = ReadColmapDatabase(database_path, options);
 
-  size_t num_keypoints = 0;
-  for (const auto& [image_id, keypoints] : database.keypoints) num_keypoints += keypoints.size();
-  size_t num_descriptors = 0;
-  for (const auto& [image_id, descriptors] : database.descriptors) {
-    num_descriptors += descriptors.size();
-  }
-  size_t num_pairs_with_matches = 0;
-  size_t num_matches = 0;
-  for (const auto& [pair_id, matches] : database.matches) {
-    num_pairs_with_matches += matches.empty() ? 0 : 1;
-    num_matches += matches.size();
-  }
-  std::map<int, size_t> pairs_by_config;
-  size_t num_verified_pairs = 0;
-  size_t num_inliers = 0;
-  for (const auto& [pair_id, geometry] : database.two_view_geometries) {
-    if (geometry.inlier_matches.empty()) continue;
-    ++num_verified_pairs;
-    num_inliers += geometry.inlier_matches.size();
-    ++pairs_by_config[static_cast<int>(geometry.config)];
-  }
-
+  const DatabaseCounts c = CountDatabase(database);
   std::cout << "Database: " << database_path << "\n"
             << "  cameras:                 " << database.cameras.size() << "\n"
             << "  images:                  " << database.images.size() << "\n"
-            << "  keypoints:               " << num_keypoints << " in " << database.keypoints.size()
-            << " images\n"
-            << "  descriptors:             " << num_descriptors << " in "
+            << "  keypoints:               " << c.num_keypoints << " in "
+            << database.keypoints.size() << " images\n"
+            << "  descriptors:             " << c.num_descriptors << " in "
             << database.descriptors.size() << " images\n"
-            << "  pairs with matches:      " << num_pairs_with_matches << " (" << num_matches
+            << "  pairs with matches:      " << c.num_pairs_with_matches << " (" << c.num_matches
             << " matches)\n"
-            << "  verified pairs:          " << num_verified_pairs << " (" << num_inliers
+            << "  verified pairs:          " << c.num_verified_pairs << " (" << c.num_inliers
             << " inlier matches)\n";
-  for (const auto& [config, count] : pairs_by_config) {
-    std::cout << "    " << kConfigNames.at(config) << ": " << count << "\n";
+  for (const auto& [config, count] : c.verified_pairs_by_config) {
+    std::cout << "    " << kConfigNames.at(static_cast<int>(config)) << ": " << count << "\n";
   }
-  size_t num_position_priors = 0, num_rotation_priors = 0, num_pairs_with_ratios = 0;
-  for (const auto& [image_id, image] : database.images) {
-    num_position_priors += image.prior_translation ? 1 : 0;
-    num_rotation_priors += image.prior_rotation ? 1 : 0;
-  }
-  for (const auto& [pair_id, geometry] : database.two_view_geometries) {
-    num_pairs_with_ratios += geometry.inlier_ratios.empty() ? 0 : 1;
-  }
-  std::cout << "  position priors:         " << num_position_priors
+  std::cout << "  position priors:         " << c.num_position_priors
             << " images (prior_tx/ty/tz; GPS from EXIF as latitude, longitude, altitude)\n"
-            << "  rotation priors:         " << num_rotation_priors << " images\n"
-            << "  descriptor ratios:       " << num_pairs_with_ratios
+            << "  rotation priors:         " << c.num_rotation_priors << " images\n"
+            << "  descriptor ratios:       " << c.num_pairs_with_ratios
             << " verified pairs (ramap's ramap_match_confidence table)\n";
   return 0;
 }

@@ -37,13 +37,10 @@ int RunMapper(int argc, char** argv) {
   AddPosePriorOptions(app, &prior_text, &options.georegistration, /*with_uses=*/true);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   FinishMapperOptions(text, &options);
-  if (output_type != "BIN" && output_type != "TXT") {
-    throw InputError("--output_type", "'" + output_type + "' is not BIN or TXT");
-  }
+  const ModelFormat format = ModelFormatFromName(output_type, "--output_type");
   CheckFolderOutput("--output_path", output_path, {database_path, image_path, prior_text.path});
 
   const FeatureDatabase database = ReadColmapDatabase(database_path);
-  const ModelFormat format = output_type == "TXT" ? ModelFormat::kText : ModelFormat::kBinary;
   CheckImageNamesFit(database, format, database_path, "--output_type " + output_type);
   const LocalizedPriors priors = LoadPosePriors(prior_text, database, "ramap mapper", std::cerr);
   MapperResult result = ramap::RunMapper(database, options, database_path,

@@ -40,9 +40,7 @@ int RunModelAligner(int argc, char** argv) {
   GeoregistrationOptions georegistration;
   AddPosePriorOptions(app, &prior_text, &georegistration, /*with_uses=*/false);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  if (output_type != "BIN" && output_type != "TXT") {
-    throw InputError("--output_type", "'" + output_type + "' is not BIN or TXT");
-  }
+  const ModelFormat format = ModelFormatFromName(output_type, "--output_type");
   if (prior_text.path.empty() && database_path.empty()) {
     throw InputError("ramap model_aligner", "give --PosePrior.path or --database_path");
   }
@@ -50,34 +48,17 @@ int RunModelAligner(int argc, char** argv) {
 
   Reconstruction model = ReadColmapModel(input_path);
   // The priors are matched to the model's images by name.
-  FeatureDatabase images;
-  if (prior_text.path.empty()) {
-    DatabaseReadOptions read_options;
-    read_options.read_matches = false;
-    const FeatureDatabase database = ReadColmapDatabase(database_path, read_options);
-    std::map<std::string, const Image*> by_name;
-    for (const auto& [id, image] : database.images) by_name[image.name] = &image;
-    for (const auto& [id, image] : model.images) {
-      Image copy = image;
-      const auto found = by_name.find(image.name);
-      if (found != by_name.end()) copy.prior_translation = found->second->prior_translation;
-      images.images[id] = copy;
-    }
-  } else {
-    images.images = model.images;
-  }
+  const FeatureDatabase images = prior_text.path.empty()
+                                     ? ModelImagesWithDatabasePriors(model, database_path)
+                                     : FeatureDatabase{{}, model.images};
   const LocalizedPriors priors =
       LoadPosePriors(prior_text, images, "ramap model_aligner", std::cerr);
-  std::map<uint32_t, Eigen::Vector3d> centers;
-  for (const auto& [id, image] : model.images) centers[id] = CameraCenter(image.cam_from_world);
-  const PriorAlignment alignment = AlignCentersToPriors(centers, priors.priors, georegistration);
+  const PriorAlignment alignment = GeoregisterModel(priors.priors, georegistration, &model);
   const GeoregistrationSummary& summary = alignment.summary;
   if (!summary.georegistered) {
     throw InputError(input_path, "cannot georegister the model: " + summary.problem);
   }
-  TransformReconstruction(alignment.prior_from_model, &model);
 
-  const ModelFormat format = output_type == "BIN" ? ModelFormat::kBinary : ModelFormat::kText;
   if (!std::filesystem::exists(output_path)) {
     StagedPath staged(output_path);
     std::filesystem::create_directories(staged.path());

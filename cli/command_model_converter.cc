@@ -24,18 +24,13 @@ int RunModelConverter(int argc, char** argv) {
   app.add_option("--output_type", output_type, "BIN or TXT")->required();
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
 
-  std::string type = output_type;
-  std::transform(type.begin(), type.end(), type.begin(),
-                 [](unsigned char c) { return std::toupper(c); });
-  if (type != "BIN" && type != "TXT") {
-    throw InputError("--output_type", "'" + output_type + "' is not BIN or TXT");
-  }
+  const ModelFormat format = ModelFormatFromName(output_type, "--output_type");
   CheckFolderOutput("--output_path", output_path, {input_path});
   const Reconstruction model = ReadColmapModel(input_path);
-  WriteColmapModel(model, output_path, type == "BIN" ? ModelFormat::kBinary : ModelFormat::kText);
+  WriteColmapModel(model, output_path, format);
   std::cout << "Wrote " << model.cameras.size() << " cameras, " << model.images.size()
-            << " images, " << model.points3D.size() << " points to " << output_path << " (" << type
-            << ")\n";
+            << " images, " << model.points3D.size() << " points to " << output_path << " ("
+            << (format == ModelFormat::kBinary ? "BIN" : "TXT") << ")\n";
   return 0;
 }
 

@@ -5,8 +5,6 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
-#include <map>
-#include <sstream>
 #include <string>
 
 #include "options.h"
@@ -34,17 +32,12 @@ void WriteScene(const SyntheticScene& scene, const std::string& output_path, Mod
 }
 
 void PrintScene(const SyntheticScene& scene, const std::string& output_path, std::ostream& out) {
-  size_t num_matches = 0;
-  for (const auto& [pair_id, matches] : scene.database.matches) num_matches += matches.size();
-  size_t num_inliers = 0;
-  for (const auto& [pair_id, geometry] : scene.database.two_view_geometries) {
-    num_inliers += geometry.inlier_matches.size();
-  }
+  const DatabaseCounts counts = CountDatabase(scene.database);
   out << "Synthetic scene in " << output_path << ": " << scene.ground_truth.images.size()
       << " images, " << scene.ground_truth.points3D.size() << " points3D, "
       << scene.database.two_view_geometries.size() << " verified pairs ("
-      << scene.outlier_pair_ids.size() << " outlier pairs), " << num_matches << " matches, "
-      << num_inliers << " inliers\n";
+      << scene.outlier_pair_ids.size() << " outlier pairs), " << counts.num_matches << " matches, "
+      << counts.num_inliers << " inliers\n";
 }
 
 }  // namespace

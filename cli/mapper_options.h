@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "ramap/pipeline/loop_closure.h"
 #include "ramap/pipeline/mapper.h"
 
 namespace ramap::cli {
@@ -34,5 +35,9 @@ void FinishMapperOptions(const MapperOptionText& text, MapperOptions* options);
 
 // The options as JSON, for summary.json and reports.
 nlohmann::json MapperOptionsToJson(const MapperOptions& options);
+
+// --LoopClosure.*: whether `ramap reconstruct` closes loops after sequential matching, and how it
+// finds the candidates (pipeline/loop_closure.h).
+void AddLoopClosureOptions(CLI::App& app, bool* close_loops, LoopClosureOptions* options);
 
 }  // namespace ramap::cli

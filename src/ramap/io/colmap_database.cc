@@ -808,4 +808,28 @@ void WriteColmapDatabaseMatches(const FeatureDatabase& database, const std::stri
   db.Execute("COMMIT");
 }
 
+DatabaseCounts CountDatabase(const FeatureDatabase& database) {
+  DatabaseCounts counts;
+  for (const auto& [image_id, keypoints] : database.keypoints)
+    counts.num_keypoints += keypoints.size();
+  for (const auto& [image_id, descriptors] : database.descriptors)
+    counts.num_descriptors += descriptors.size();
+  for (const auto& [pair_id, matches] : database.matches) {
+    counts.num_pairs_with_matches += matches.empty() ? 0 : 1;
+    counts.num_matches += matches.size();
+  }
+  for (const auto& [pair_id, geometry] : database.two_view_geometries) {
+    counts.num_pairs_with_ratios += geometry.inlier_ratios.empty() ? 0 : 1;
+    if (geometry.inlier_matches.empty()) continue;
+    ++counts.num_verified_pairs;
+    counts.num_inliers += geometry.inlier_matches.size();
+    ++counts.verified_pairs_by_config[geometry.config];
+  }
+  for (const auto& [image_id, image] : database.images) {
+    counts.num_position_priors += image.prior_translation ? 1 : 0;
+    counts.num_rotation_priors += image.prior_rotation ? 1 : 0;
+  }
+  return counts;
+}
+
 }  // namespace ramap

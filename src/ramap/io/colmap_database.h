@@ -56,4 +56,19 @@ void WriteColmapDatabase(const FeatureDatabase& database, const std::string& pat
 // not know, is kept; on any failure the file is left as it was.
 void WriteColmapDatabaseMatches(const FeatureDatabase& database, const std::string& path);
 
+// What `ramap database_info` reports: the counts of each kind of row.
+struct DatabaseCounts {
+  size_t num_keypoints = 0;
+  size_t num_descriptors = 0;
+  size_t num_pairs_with_matches = 0;
+  size_t num_matches = 0;
+  size_t num_verified_pairs = 0;  // two-view geometries with inlier matches
+  size_t num_inliers = 0;
+  std::map<TwoViewConfig, size_t> verified_pairs_by_config;
+  size_t num_position_priors = 0;
+  size_t num_rotation_priors = 0;
+  size_t num_pairs_with_ratios = 0;  // ramap's ramap_match_confidence table
+};
+DatabaseCounts CountDatabase(const FeatureDatabase& database);
+
 }  // namespace ramap

@@ -1,5 +1,7 @@
 #include "ramap/io/colmap_model.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -685,6 +687,15 @@ void CheckNamesWritable(const Reconstruction& model, const ModelFiles& files, Mo
 }
 
 }  // namespace
+
+ModelFormat ModelFormatFromName(const std::string& name, const std::string& option) {
+  std::string upper = name;
+  std::transform(upper.begin(), upper.end(), upper.begin(),
+                 [](unsigned char c) { return std::toupper(c); });
+  if (upper == "BIN") return ModelFormat::kBinary;
+  if (upper == "TXT") return ModelFormat::kText;
+  throw InputError(option, "'" + name + "' is not BIN or TXT");
+}
 
 std::string ImageNameProblem(const std::string& name, ModelFormat format) {
   if (name.empty()) return "has no name";

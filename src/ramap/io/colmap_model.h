@@ -10,6 +10,9 @@ namespace ramap {
 
 enum class ModelFormat { kBinary, kText };
 
+// "BIN" or "TXT" (any case), as COLMAP's --output_type; throws InputError naming `option` else.
+ModelFormat ModelFormatFromName(const std::string& name, const std::string& option);
+
 // Reads the model in folder `path`: binary when cameras.bin exists, else text. Throws InputError
 // naming the file and the item on any defect: missing or truncated file ("images.bin: truncated
 // while reading image 3 (of 12)"), trailing bytes, unknown camera model, wrong parameter count,

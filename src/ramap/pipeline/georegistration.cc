@@ -161,4 +161,13 @@ void TransformReconstruction(const Sim3d& new_from_old, Reconstruction* reconstr
   for (auto& [id, point] : reconstruction->points3D) point.xyz = new_from_old * point.xyz;
 }
 
+PriorAlignment GeoregisterModel(const PositionPriors& priors, const GeoregistrationOptions& options,
+                                Reconstruction* model) {
+  std::map<uint32_t, Eigen::Vector3d> centers;
+  for (const auto& [id, image] : model->images) centers[id] = CameraCenter(image.cam_from_world);
+  PriorAlignment alignment = AlignCentersToPriors(centers, priors, options);
+  if (alignment.summary.georegistered) TransformReconstruction(alignment.prior_from_model, model);
+  return alignment;
+}
+
 }  // namespace ramap

@@ -81,6 +81,11 @@ void MeasurePriorErrors(const Reconstruction& reconstruction, const PositionPrio
                         GeoregistrationSummary* summary);
 
 // Every pose and point mapped by `new_from_old`.
+// Fits `model`'s camera centres to `priors` (AlignCentersToPriors) and, when that succeeds, moves
+// the model into the priors' frame (`ramap model_aligner`).
+PriorAlignment GeoregisterModel(const PositionPriors& priors, const GeoregistrationOptions& options,
+                                Reconstruction* model);
+
 void TransformReconstruction(const Sim3d& new_from_old, Reconstruction* reconstruction);
 
 }  // namespace ramap

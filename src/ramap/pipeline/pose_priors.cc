@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "ramap/geometry/geodetic.h"
+#include "ramap/io/colmap_database.h"
 #include "ramap/util/error.h"
 #include "ramap/util/statistics.h"
 
@@ -179,6 +180,23 @@ LocalizedPriors LocalizePriors(const std::vector<PriorRecord>& records,
     result.priors.by_image[id] = {position, record.std_dev_m.value_or(options.std_dev_m)};
   }
   return result;
+}
+
+FeatureDatabase ModelImagesWithDatabasePriors(const Reconstruction& model,
+                                              const std::string& database_path) {
+  DatabaseReadOptions read_options;
+  read_options.read_matches = false;
+  const FeatureDatabase database = ReadColmapDatabase(database_path, read_options);
+  std::map<std::string, const Image*> by_name;
+  for (const auto& [id, image] : database.images) by_name[image.name] = &image;
+  FeatureDatabase images;
+  for (const auto& [id, image] : model.images) {
+    Image copy = image;
+    const auto found = by_name.find(image.name);
+    if (found != by_name.end()) copy.prior_translation = found->second->prior_translation;
+    images.images[id] = copy;
+  }
+  return images;
 }
 
 }  // namespace ramap

@@ -13,6 +13,7 @@
 #include "ramap/io/pose_prior_file.h"
 #include "ramap/scene/features.h"
 #include "ramap/scene/position_prior.h"
+#include "ramap/scene/reconstruction.h"
 
 namespace ramap {
 
@@ -47,5 +48,10 @@ std::vector<PriorRecord> PriorRecordsFromDatabase(const FeatureDatabase& databas
 // throws on a bad record: it is skipped with a warning.
 LocalizedPriors LocalizePriors(const std::vector<PriorRecord>& records,
                                const FeatureDatabase& database, const PosePriorOptions& options);
+
+// The images of `model` with the prior_tx/ty/tz the database at `database_path` gives the image of
+// the same name (none for names it lacks), for matching priors to a model made elsewhere.
+FeatureDatabase ModelImagesWithDatabasePriors(const Reconstruction& model,
+                                              const std::string& database_path);
 
 }  // namespace ramap

@@ -10,6 +10,7 @@
 #include "ramap/graph/fiedler.h"
 #include "ramap/graph/keyframes.h"
 #include "ramap/graph/synthetic_rotation_graph.h"
+#include "ramap/util/error.h"
 
 namespace ramap {
 namespace {
@@ -47,8 +48,8 @@ TEST(RotationAveraging, ExactRecoveryWithoutNoise) {
 TEST(RotationAveraging, RejectsBadOptions) {
   RotationAveragingOptions options;
   options.sigma_deg = 0.0;
-  EXPECT_FALSE(options.Check());
-  EXPECT_THROW(AverageRotations(PathWithLoops(1.0, 0.0, 1).graph, options), std::invalid_argument);
+  EXPECT_THROW(options.Check(), InputError);
+  EXPECT_THROW(AverageRotations(PathWithLoops(1.0, 0.0, 1).graph, options), InputError);
 }
 
 // Median error of the robust solver versus the chordal optimum of the graph with the outliers

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "ramap/graph/rotation_graph.h"
+#include "ramap/util/error.h"
 
 namespace ramap {
 namespace {
@@ -33,7 +34,7 @@ TEST(Keyframes, ExactMultipleAndTinySequences) {
   EXPECT_TRUE(one.windows.empty());
   EXPECT_TRUE(SelectKeyframes({}, options).keyframe_ids.empty());
   options.keyframe_interval = 0;
-  EXPECT_THROW(SelectKeyframes({0, 1}, options), std::invalid_argument);
+  EXPECT_THROW(SelectKeyframes({0, 1}, options), InputError);
 }
 
 TEST(Keyframes, ClassifiesLocalAndLoopEdges) {

@@ -13,6 +13,7 @@
 
 #include "ramap/geometry/rotation.h"
 #include "ramap/graph/fiedler.h"
+#include "ramap/util/option_check.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
@@ -302,37 +303,28 @@ double KeptGraphBound(const RotationGraph& graph, const std::vector<bool>& keep,
 
 }  // namespace
 
-std::string RotationAveragingOptions::Problem() const {
-  const struct {
-    bool ok;
-    const char* name;
-    const char* requirement;
-    double value;
-  } checks[] = {
-      {max_l1_iterations >= 0, "max_l1_iterations", ">= 0", double(max_l1_iterations)},
-      {l1_inner_iterations >= 1, "l1_inner_iterations", ">= 1", double(l1_inner_iterations)},
-      {l1_step_tolerance_deg >= 0.0, "l1_step_tolerance_deg", ">= 0", l1_step_tolerance_deg},
-      {l1_min_residual_deg > 0.0, "l1_min_residual_deg", "> 0", l1_min_residual_deg},
-      {max_irls_iterations >= 0, "max_irls_iterations", ">= 0", double(max_irls_iterations)},
-      {irls_step_tolerance_deg >= 0.0, "irls_step_tolerance_deg", ">= 0", irls_step_tolerance_deg},
-      {sigma_deg > 0.0 && std::isfinite(sigma_deg), "sigma_deg", "finite and > 0", sigma_deg},
-      {alpha_max_deg > 0.0 && alpha_max_deg <= 180.0, "alpha_max_deg", "in (0, 180]",
-       alpha_max_deg},
-      {max_pruning_rounds >= 0, "max_pruning_rounds", ">= 0", double(max_pruning_rounds)},
-      {max_certificate_iterations >= 0, "max_certificate_iterations", ">= 0",
-       double(max_certificate_iterations)},
-      {certificate_step_tolerance_deg >= 0.0, "certificate_step_tolerance_deg", ">= 0",
-       certificate_step_tolerance_deg},
-  };
-  for (const auto& check : checks) {
-    if (!check.ok) {
-      std::ostringstream problem;
-      problem << "RotationAveraging." << check.name << " must be " << check.requirement << ", got "
-              << check.value;
-      return problem.str();
-    }
-  }
-  return "";
+void RotationAveragingOptions::Check() const {
+  const std::string prefix = "--RotationAveraging.";
+  CheckOption(max_l1_iterations >= 0, prefix + "max_l1_iterations", ">= 0", max_l1_iterations);
+  CheckOption(l1_inner_iterations >= 1, prefix + "l1_inner_iterations", ">= 1",
+              l1_inner_iterations);
+  CheckOption(l1_step_tolerance_deg >= 0.0, prefix + "l1_step_tolerance_deg", ">= 0",
+              l1_step_tolerance_deg);
+  CheckOption(l1_min_residual_deg > 0.0, prefix + "l1_min_residual_deg", "> 0",
+              l1_min_residual_deg);
+  CheckOption(max_irls_iterations >= 0, prefix + "max_irls_iterations", ">= 0",
+              max_irls_iterations);
+  CheckOption(irls_step_tolerance_deg >= 0.0, prefix + "irls_step_tolerance_deg", ">= 0",
+              irls_step_tolerance_deg);
+  CheckOption(sigma_deg > 0.0 && std::isfinite(sigma_deg), prefix + "sigma_deg", "finite and > 0",
+              sigma_deg);
+  CheckOption(alpha_max_deg > 0.0 && alpha_max_deg <= 180.0, prefix + "alpha_max_deg",
+              "in (0, 180]", alpha_max_deg);
+  CheckOption(max_pruning_rounds >= 0, prefix + "max_pruning_rounds", ">= 0", max_pruning_rounds);
+  CheckOption(max_certificate_iterations >= 0, prefix + "max_certificate_iterations", ">= 0",
+              max_certificate_iterations);
+  CheckOption(certificate_step_tolerance_deg >= 0.0, prefix + "certificate_step_tolerance_deg",
+              ">= 0", certificate_step_tolerance_deg);
 }
 
 double EdgeResidualDeg(const RelativeRotationEdge& edge, const Eigen::Quaterniond& R_i,
@@ -540,7 +532,7 @@ RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
                                              const std::vector<Eigen::Quaterniond>& initial,
                                              const std::vector<bool>& initial_known,
                                              const RotationAveragingOptions& options) {
-  if (!options.Check()) throw std::invalid_argument("RotationAveragingOptions: Check() failed");
+  options.Check();
   Timer total_timer;
   Timer timer;
   const size_t n = graph.node_ids.size();
@@ -606,7 +598,7 @@ RotationAveragingResult AverageRotations(const RotationGraph& graph,
 RotationAveragingResult AverageRotationsInWindows(const RotationGraph& graph,
                                                   const Keyframes& keyframes,
                                                   const RotationAveragingOptions& options) {
-  if (!options.Check()) throw std::invalid_argument("RotationAveragingOptions: Check() failed");
+  options.Check();
   Timer timer;
   const auto index = NodeIndex(graph);
   const IndexedEdges indexed = IndexEdges(graph);

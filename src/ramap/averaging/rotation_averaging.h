@@ -77,11 +77,9 @@ struct RotationAveragingOptions {
   int max_certificate_iterations = 200;
   double certificate_step_tolerance_deg = 1e-8;
 
-  // Whether every option is in range.
-  bool Check() const { return Problem().empty(); }
-  // The first option out of range, as "RotationAveraging.<option> must be ..., got V"; empty when
-  // all are in range.
-  std::string Problem() const;
+  // Throws InputError("--RotationAveraging.<option>", "must be ..., got V") for the first option
+  // out of range.
+  void Check() const;
 };
 
 enum class EdgeStatus {

@@ -7,6 +7,7 @@
 
 #include "ramap/geometry/rotation.h"
 #include "ramap/util/error.h"
+#include "ramap/util/option_check.h"
 
 namespace ramap {
 
@@ -19,12 +20,9 @@ FeatureType FeatureTypeFromName(const std::string& name) {
 std::string FeatureTypeName(FeatureType type) { return type == FeatureType::kOrb ? "orb" : "sift"; }
 
 void FeatureExtractionOptions::Check() const {
-  if (max_image_size < 32) {
-    throw InputError("--FeatureExtraction.max_image_size", "must be at least 32 pixels");
-  }
-  if (max_num_features < 16) {
-    throw InputError("--FeatureExtraction.max_num_features", "must be at least 16");
-  }
+  CheckOption(max_image_size >= 32, "--FeatureExtraction.max_image_size", ">= 32", max_image_size);
+  CheckOption(max_num_features >= 16, "--FeatureExtraction.max_num_features", ">= 16",
+              max_num_features);
 }
 
 ImageFeatures ExtractFeatures(const cv::Mat& grey, const FeatureExtractionOptions& options) {

@@ -176,22 +176,18 @@ MatchingMode ResolveMatchingMode(const FeatureMatchingOptions& options,
 }
 
 void FeatureMatchingOptions::Check() const {
-  if (overlap < 1) throw InputError("--Matching.overlap", "must be >= 1");
-  if (!(max_ratio > 0 && max_ratio <= 1)) throw InputError("--Matching.max_ratio", "not in (0, 1]");
-  if (!(max_error_px > 0)) throw InputError("--Matching.max_error_px", "must be > 0");
-  if (!(confidence > 0 && confidence < 1)) {
-    throw InputError("--Matching.confidence", "not in (0, 1)");
-  }
-  if (min_num_inliers < 5) throw InputError("--Matching.min_num_inliers", "must be >= 5");
+  CheckOption(overlap >= 1, "--Matching.overlap", ">= 1", overlap);
+  CheckOption(max_ratio > 0 && max_ratio <= 1, "--Matching.max_ratio", "in (0, 1]", max_ratio);
+  CheckOption(max_error_px > 0, "--Matching.max_error_px", "> 0", max_error_px);
+  CheckOption(confidence > 0 && confidence < 1, "--Matching.confidence", "in (0, 1)", confidence);
+  CheckOption(min_num_inliers >= 5, "--Matching.min_num_inliers", ">= 5", min_num_inliers);
   CheckOption(auto_exhaustive_max_images >= 0, "--Matching.auto_exhaustive_max_images", ">= 0",
               auto_exhaustive_max_images);
-  if (preemptive_num_features < 0) {
-    throw InputError("--Matching.preemptive_num_features", "must be >= 0");
-  }
-  if (preemptive_min_matches < 1) {
-    throw InputError("--Matching.preemptive_min_matches", "must be >= 1");
-  }
-  if (num_threads < 1) throw InputError("--Matching.num_threads", "must be >= 1");
+  CheckOption(preemptive_num_features >= 0, "--Matching.preemptive_num_features", ">= 0",
+              preemptive_num_features);
+  CheckOption(preemptive_min_matches >= 1, "--Matching.preemptive_min_matches", ">= 1",
+              preemptive_min_matches);
+  CheckOption(num_threads >= 1, "--Matching.num_threads", ">= 1", num_threads);
 }
 
 std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,

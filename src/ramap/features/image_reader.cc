@@ -13,6 +13,7 @@
 #include "ramap/io/image_list.h"
 #include "ramap/util/error.h"
 #include "ramap/util/number_list.h"
+#include "ramap/util/option_check.h"
 #include "ramap/util/parallel.h"
 #include "ramap/util/timer.h"
 
@@ -76,10 +77,9 @@ void ImageReaderOptions::Check() const {
                            " parameters, " + std::to_string(params.size()) + " given");
     }
   }
-  if (!(default_focal_length_factor > 0)) {
-    throw InputError("--ImageReader.default_focal_length_factor", "must be > 0");
-  }
-  if (num_threads < 1) throw InputError("--FeatureExtraction.num_threads", "must be >= 1");
+  CheckOption(default_focal_length_factor > 0, "--ImageReader.default_focal_length_factor", "> 0",
+              default_focal_length_factor);
+  CheckOption(num_threads >= 1, "--FeatureExtraction.num_threads", ">= 1", num_threads);
 }
 
 std::vector<std::string> ListImages(const std::string& image_path,

@@ -3,11 +3,17 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "ramap/util/option_check.h"
+
 namespace ramap {
+
+void KeyframeOptions::Check() const {
+  CheckOption(keyframe_interval >= 1, "--PoseGraph.keyframe_interval", ">= 1", keyframe_interval);
+}
 
 Keyframes SelectKeyframes(const std::vector<uint32_t>& frames_in_order,
                           const KeyframeOptions& options) {
-  if (!options.Check()) throw std::invalid_argument("KeyframeOptions: keyframe_interval < 1");
+  options.Check();
   Keyframes result;
   const size_t n = frames_in_order.size();
   if (n == 0) return result;

@@ -14,7 +14,8 @@ namespace ramap {
 struct KeyframeOptions {
   // A keyframe every this many frames (the paper uses 30).
   int keyframe_interval = 30;
-  bool Check() const { return keyframe_interval >= 1; }
+  // Throws InputError("--PoseGraph.keyframe_interval", ...) when out of range.
+  void Check() const;
 };
 
 struct KeyframeWindow {

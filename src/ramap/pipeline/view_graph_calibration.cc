@@ -9,6 +9,7 @@
 #include "ramap/geometry/camera_distortion.h"
 #include "ramap/geometry/camera_projection.h"
 #include "ramap/util/error.h"
+#include "ramap/util/option_check.h"
 #include "ramap/util/statistics.h"
 #include "ramap/util/timer.h"
 
@@ -150,22 +151,17 @@ void ViewGraphCalibrationOptions::Check() const {
     throw InputError("--ViewGraphCalibration.min_focal_factor / max_focal_factor",
                      "must satisfy 0 < min < 1 < max");
   }
-  if (min_num_pairs < 1) throw InputError("--ViewGraphCalibration.min_num_pairs", "must be >= 1");
-  if (min_num_inliers < 8) {
-    throw InputError("--ViewGraphCalibration.min_num_inliers", "must be >= 8");
-  }
-  if (max_pairs_per_camera < 1) {
-    throw InputError("--ViewGraphCalibration.max_pairs_per_camera", "must be >= 1");
-  }
-  if (!(loss_scale > 0)) throw InputError("--ViewGraphCalibration.loss_scale", "must be > 0");
-  if (!(prior_weight >= 0)) throw InputError("--ViewGraphCalibration.prior_weight", "must be >= 0");
-  if (num_rounds < 1) throw InputError("--ViewGraphCalibration.num_rounds", "must be >= 1");
-  if (!(max_median_cost > 0)) {
-    throw InputError("--ViewGraphCalibration.max_median_cost", "must be > 0");
-  }
-  if (!(min_cost_rise >= 0)) {
-    throw InputError("--ViewGraphCalibration.min_cost_rise", "must be >= 0");
-  }
+  CheckOption(min_num_pairs >= 1, "--ViewGraphCalibration.min_num_pairs", ">= 1", min_num_pairs);
+  CheckOption(min_num_inliers >= 8, "--ViewGraphCalibration.min_num_inliers", ">= 8",
+              min_num_inliers);
+  CheckOption(max_pairs_per_camera >= 1, "--ViewGraphCalibration.max_pairs_per_camera", ">= 1",
+              max_pairs_per_camera);
+  CheckOption(loss_scale > 0, "--ViewGraphCalibration.loss_scale", "> 0", loss_scale);
+  CheckOption(prior_weight >= 0, "--ViewGraphCalibration.prior_weight", ">= 0", prior_weight);
+  CheckOption(num_rounds >= 1, "--ViewGraphCalibration.num_rounds", ">= 1", num_rounds);
+  CheckOption(max_median_cost > 0, "--ViewGraphCalibration.max_median_cost", "> 0",
+              max_median_cost);
+  CheckOption(min_cost_rise >= 0, "--ViewGraphCalibration.min_cost_rise", ">= 0", min_cost_rise);
 }
 
 double EssentialMatrixCost(const Eigen::Matrix3d& F, const Eigen::Matrix3d& K1,

@@ -36,8 +36,9 @@ void PrintScene(const SyntheticScene& scene, const std::string& output_path, std
   out << "Synthetic scene in " << output_path << ": " << scene.ground_truth.images.size()
       << " images, " << scene.ground_truth.points3D.size() << " points3D, "
       << scene.database.two_view_geometries.size() << " verified pairs ("
-      << scene.outlier_pair_ids.size() << " outlier pairs), " << counts.num_matches << " matches, "
-      << counts.num_inliers << " inliers\n";
+      << scene.outlier_pair_ids.size() << " outlier pairs, " << scene.aliased_pair_ids.size()
+      << " aliased pairs), " << counts.num_matches << " matches, " << counts.num_inliers
+      << " inliers\n";
 }
 
 }  // namespace

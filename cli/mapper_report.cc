@@ -31,7 +31,8 @@ void PrintGeoregistration(const MapperSummary& summary, std::ostream& out) {
 void PrintMapperSummary(const MapperSummary& s, const std::string& output_path, std::ostream& out) {
   out << "\nramap mapper: " << s.num_registered_images << " of " << s.num_images
       << " images registered in " << s.components.size() << " model(s), " << std::fixed
-      << std::setprecision(2) << s.total_seconds << " s -> " << output_path << "\n";
+      << std::setprecision(2) << s.total_seconds << " s, peak memory " << std::setprecision(0)
+      << s.peak_rss_mib << " MiB -> " << output_path << "\n";
   out << "  model  images  points  reproj(px)  rot.edges  pruned  certified\n";
   for (size_t k = 0; k < s.components.size(); ++k) {
     const MapperComponentSummary& c = s.components[k];

@@ -15,6 +15,7 @@ struct SceneOptionText {
   std::string trajectory_path;
   std::string camera_model;
   std::string camera_params = "500,500,320,240";
+  bool prior_focal_length = false;
 };
 
 void AddSceneOptions(CLI::App& app, SyntheticSceneOptions* options, SceneOptionText* text);

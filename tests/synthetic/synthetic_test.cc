@@ -282,6 +282,62 @@ TEST(Synthetic, RevisitingPathsGetLoopPairs) {
   }
 }
 
+TEST(Synthetic, AliasedPairsAreConsistentWithARotationOffByTheGivenAngles) {
+  SyntheticSceneOptions options = SmallOptions();
+  options.num_aliased_pairs = 4;
+  const SyntheticScene scene = BuildSyntheticScene(options);
+  ASSERT_EQ(scene.aliased_pair_ids.size(), 4u);
+  for (const uint64_t pair_id : scene.aliased_pair_ids) {
+    const TwoViewGeometry& geometry = scene.database.two_view_geometries.at(pair_id);
+    const Rigid3d truth = scene.ground_truth.images.at(geometry.image_id2).cam_from_world *
+                          scene.ground_truth.images.at(geometry.image_id1).cam_from_world.Inverse();
+    const double off_deg =
+        geometry.cam2_from_cam1.rotation.angularDistance(truth.rotation) * 180.0 / M_PI;
+    EXPECT_GE(off_deg, 12.0 - 1e-9);
+    EXPECT_LE(off_deg, 40.0 + 1e-9);
+    // The matches obey the aliased pose, not the true one: tiny epipolar residuals under F up to
+    // the pixel noise.
+    const Keypoints& k1 = scene.database.keypoints.at(geometry.image_id1);
+    const Keypoints& k2 = scene.database.keypoints.at(geometry.image_id2);
+    ASSERT_GE(geometry.inlier_matches.size(), 15u);
+    for (const FeatureMatch& match : geometry.inlier_matches) {
+      const Eigen::Vector3d x1 = k1.xy(match.point2D_idx1).homogeneous();
+      const Eigen::Vector3d x2 = k2.xy(match.point2D_idx2).homogeneous();
+      const Eigen::Vector3d line = geometry.F * x1;
+      EXPECT_LT(std::abs(x2.dot(line)) / line.head<2>().norm(), 5.0);  // px, 0.5 px noise
+    }
+  }
+  // A ratio of the matched pairs, when it asks for more.
+  options.num_aliased_pairs = 0;
+  options.aliased_pair_ratio = 0.1;
+  const SyntheticScene by_ratio = BuildSyntheticScene(options);
+  EXPECT_NEAR(
+      static_cast<double>(by_ratio.aliased_pair_ids.size()),
+      0.1 * (by_ratio.database.two_view_geometries.size() - by_ratio.aliased_pair_ids.size()), 1.0);
+}
+
+TEST(Synthetic, ViewDistanceLimitsTracksAndFrameGapLimitsLoops) {
+  SyntheticSceneOptions options = Layout(SyntheticLayout::kSequential, SyntheticPath::kLoop);
+  options.num_images = 60;
+  options.overlap = 3;
+  options.loop_min_frame_gap = 50;
+  options.max_view_distance = 12.0;
+  const SyntheticScene scene = BuildSyntheticScene(options);
+  for (const auto& [id, point] : scene.ground_truth.points3D) {
+    for (const TrackElement& element : point.track) {
+      const Rigid3d& pose = scene.ground_truth.images.at(element.image_id).cam_from_world;
+      EXPECT_LE((pose * point.xyz).norm(), 12.0 + 1e-9);
+    }
+  }
+  bool has_loop = false;
+  for (const auto& [pair_id, geometry] : scene.database.two_view_geometries) {
+    if (geometry.image_id2 - geometry.image_id1 <= 3) continue;
+    EXPECT_GT(geometry.image_id2 - geometry.image_id1, 50u);
+    has_loop = true;
+  }
+  EXPECT_TRUE(has_loop);
+}
+
 TEST(Synthetic, UnorderedPairsShareEnoughPoints) {
   SyntheticSceneOptions options = Layout(SyntheticLayout::kUnordered, SyntheticPath::kLine);
   options.outlier_ratio = 0.0;

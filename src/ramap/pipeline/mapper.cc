@@ -13,6 +13,7 @@
 #include "ramap/pipeline/stage_log.h"
 #include "ramap/pipeline/translations.h"
 #include "ramap/util/error.h"
+#include "ramap/util/memory.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
@@ -187,6 +188,7 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
                        const PositionPriors& priors) {
   options.Check();
   MapperResult first = RunMapperPass(database, options, source, progress, priors, nullptr);
+  first.summary.peak_rss_mib = PeakResidentMebibytes();
   if (!options.refine || !(options.max_focal_change_in_bundle_adjustment > 0)) return first;
   std::map<uint32_t, Camera> refined = database.cameras;
   std::map<uint32_t, Camera> written;
@@ -203,6 +205,7 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
   MapperResult second =
       RunMapperPass(database, SecondPassOptions(options), source, progress, priors, &refined);
   MergePassSummaries(first.summary, &second.summary);
+  second.summary.peak_rss_mib = PeakResidentMebibytes();
   return second;
 }
 

@@ -51,6 +51,7 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
   json["num_keyframes"] = summary.num_keyframes;
   json["num_loop_edges"] = summary.num_loop_edges;
   json["total_seconds"] = summary.total_seconds;
+  json["peak_rss_mib"] = summary.peak_rss_mib;
   json["gauge"] =
       "translation averaging: the first registered image of each component at the origin, mean "
       "projected pair baseline 1; bundle adjustment (when run) holds the first image fixed; "

@@ -72,6 +72,8 @@ struct MapperSummary {
   std::vector<DroppedItem> prior_outliers;  // position priors the georegistration rejected
   std::vector<MapperStageTiming> timings;
   double total_seconds = 0.0;
+  // The process's peak resident memory when the mapper returned (MiB): what the run needed.
+  double peak_rss_mib = 0.0;
 };
 
 // Each camera's intrinsics as given, as the view graph estimated them, and as written (from the

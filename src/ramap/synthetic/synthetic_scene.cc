@@ -7,6 +7,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 #include "ramap/geometry/camera_projection.h"
@@ -324,6 +325,20 @@ void SyntheticSceneOptions::Check() const {
     throw InputError("Synthetic.overlap", "must be at least 1, got " + std::to_string(overlap));
   }
   CheckNonNegative(loop_max_distance, "loop_max_distance");
+  CheckNonNegative(max_view_distance, "max_view_distance");
+  if (loop_min_frame_gap < 0) throw InputError("Synthetic.loop_min_frame_gap", "must be >= 0");
+  if (num_aliased_pairs < 0) throw InputError("Synthetic.num_aliased_pairs", "must be >= 0");
+  if (!(aliased_pair_ratio >= 0.0 && aliased_pair_ratio <= 1.0)) {
+    throw InputError("Synthetic.aliased_pair_ratio", "must be in [0, 1]");
+  }
+  if (!(aliased_min_angle_deg >= 0.0 && aliased_min_angle_deg <= aliased_max_angle_deg &&
+        aliased_max_angle_deg <= 180.0)) {
+    throw InputError("Synthetic.aliased_min_angle_deg",
+                     "must satisfy 0 <= aliased_min_angle_deg <= aliased_max_angle_deg <= 180");
+  }
+  if (num_aliased_pair_matches < 8) {
+    throw InputError("Synthetic.num_aliased_pair_matches", "must be at least 8");
+  }
   CheckNonNegative(loop_max_angle_deg, "loop_max_angle_deg");
   if (min_shared_points < 1) {
     throw InputError("Synthetic.min_shared_points", "must be at least 1");
@@ -353,8 +368,73 @@ struct SceneObservations {
   std::vector<double> noise_sum;
 };
 
-// Observations: in front of the camera (not closer than half the minimum depth, which no real
-// camera could focus on), facing the camera on an object, and inside the image after noise.
+// Observes point `j` in image `i` when it is in front of the camera (not closer than half the
+// minimum depth, which no real camera could focus on, nor beyond max_view_distance), facing the
+// camera on an object, and inside the image after noise.
+void ObservePoint(const SyntheticSceneOptions& options, const std::vector<Rigid3d>& poses,
+                  const std::vector<Eigen::Vector3d>& centers,
+                  const std::vector<Eigen::Vector3d>& points, size_t j, size_t i, Rng& rng,
+                  SceneObservations* seen) {
+  if (UsesObjectPoints(options) && points[j].dot(centers[i] - points[j]) <= 0.0) return;
+  const Eigen::Vector3d in_camera = poses[i] * points[j];
+  if (in_camera.norm() < 0.5 * options.min_depth) return;
+  if (options.max_view_distance > 0.0 && in_camera.norm() > options.max_view_distance) return;
+  const Camera& camera = CameraOf(options, i);
+  const Eigen::Vector2d projection = ProjectToPixel(camera, in_camera);
+  if (!InsideImage(camera, projection)) return;
+  const double dx = Gaussian(rng, options.pixel_noise_sigma);
+  const double dy = Gaussian(rng, options.pixel_noise_sigma);
+  const Eigen::Vector2d observed = projection + Eigen::Vector2d(dx, dy);
+  if (!InsideImage(camera, observed)) return;
+  const uint32_t point2D_idx = static_cast<uint32_t>(seen->points2D[i].size());
+  Point2D point2D;
+  point2D.xy = observed;
+  seen->points2D[i].push_back(point2D);
+  seen->observations[i].push_back({static_cast<uint32_t>(j), point2D_idx});
+  seen->tracks[j].push_back({static_cast<uint32_t>(i + 1), point2D_idx});
+  seen->noise_sum[j] += std::hypot(dx, dy);
+}
+
+// The cameras whose centres lie in the cells of a grid of max_view_distance around a point: the
+// only ones that can see it.
+class CameraGrid {
+ public:
+  CameraGrid(const std::vector<Eigen::Vector3d>& centers, double cell) : cell_(cell) {
+    for (size_t i = 0; i < centers.size(); ++i) cells_[Key(Cell(centers[i]))].push_back(i);
+  }
+
+  // In increasing index order, so that tracks list their images in order.
+  std::vector<size_t> Near(const Eigen::Vector3d& point) const {
+    std::vector<size_t> near;
+    const Eigen::Vector3i center = Cell(point);
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto found = cells_.find(Key(center + Eigen::Vector3i(dx, dy, dz)));
+          if (found != cells_.end())
+            near.insert(near.end(), found->second.begin(), found->second.end());
+        }
+      }
+    }
+    std::sort(near.begin(), near.end());
+    return near;
+  }
+
+ private:
+  Eigen::Vector3i Cell(const Eigen::Vector3d& x) const {
+    return (x / cell_).array().floor().cast<int>();
+  }
+  static uint64_t Key(const Eigen::Vector3i& c) {
+    return (static_cast<uint64_t>(static_cast<uint32_t>(c.x()) & 0x1fffff) << 42) |
+           (static_cast<uint64_t>(static_cast<uint32_t>(c.y()) & 0x1fffff) << 21) |
+           (static_cast<uint64_t>(static_cast<uint32_t>(c.z()) & 0x1fffff));
+  }
+
+  double cell_;
+  std::unordered_map<uint64_t, std::vector<size_t>> cells_;
+};
+
+// Every point in every camera that sees it (only the cameras near it with max_view_distance).
 SceneObservations ObservePoints(const SyntheticSceneOptions& options,
                                 const std::vector<Rigid3d>& poses,
                                 const std::vector<Eigen::Vector3d>& centers,
@@ -365,27 +445,17 @@ SceneObservations ObservePoints(const SyntheticSceneOptions& options,
   seen.observations.resize(num_images);
   seen.tracks.resize(points.size());
   seen.noise_sum.assign(points.size(), 0.0);
-  const bool object_points = UsesObjectPoints(options);
-  for (size_t j = 0; j < points.size(); ++j) {
-    for (size_t i = 0; i < num_images; ++i) {
-      if (object_points && points[j].dot(centers[i] - points[j]) <= 0.0) continue;
-      const Eigen::Vector3d in_camera = poses[i] * points[j];
-      if (in_camera.norm() < 0.5 * options.min_depth) continue;
-      const Camera& camera = CameraOf(options, i);
-      const Eigen::Vector2d projection = ProjectToPixel(camera, in_camera);
-      if (!InsideImage(camera, projection)) continue;
-      const double dx = Gaussian(rng, options.pixel_noise_sigma);
-      const double dy = Gaussian(rng, options.pixel_noise_sigma);
-      const Eigen::Vector2d observed = projection + Eigen::Vector2d(dx, dy);
-      if (!InsideImage(camera, observed)) continue;
-      const uint32_t point2D_idx = static_cast<uint32_t>(seen.points2D[i].size());
-      Point2D point2D;
-      point2D.xy = observed;
-      seen.points2D[i].push_back(point2D);
-      seen.observations[i].push_back({static_cast<uint32_t>(j), point2D_idx});
-      seen.tracks[j].push_back({static_cast<uint32_t>(i + 1), point2D_idx});
-      seen.noise_sum[j] += std::hypot(dx, dy);
+  if (options.max_view_distance > 0.0) {
+    const CameraGrid grid(centers, options.max_view_distance);
+    for (size_t j = 0; j < points.size(); ++j) {
+      for (const size_t i : grid.Near(points[j]))
+        ObservePoint(options, poses, centers, points, j, i, rng, &seen);
     }
+    return seen;
+  }
+  for (size_t j = 0; j < points.size(); ++j) {
+    for (size_t i = 0; i < num_images; ++i)
+      ObservePoint(options, poses, centers, points, j, i, rng, &seen);
   }
   return seen;
 }
@@ -419,7 +489,10 @@ std::set<std::pair<size_t, size_t>> CandidatePairs(const SyntheticSceneOptions& 
     const Eigen::Vector3d axis_i = poses[i].rotation.conjugate() * Eigen::Vector3d::UnitZ();
     for (size_t k = i + options.overlap + 1; k < num_images; ++k) {
       if ((centers[k] - centers[i]).norm() > options.loop_max_distance) continue;
-      if (travelled[k] - travelled[i] <= 4.0 * options.loop_max_distance) continue;
+      if (options.loop_min_frame_gap > 0
+              ? k - i <= static_cast<size_t>(options.loop_min_frame_gap)
+              : travelled[k] - travelled[i] <= 4.0 * options.loop_max_distance)
+        continue;
       const Eigen::Vector3d axis_k = poses[k].rotation.conjugate() * Eigen::Vector3d::UnitZ();
       if (axis_i.dot(axis_k) < cos_max_angle) continue;
       candidates.insert({i, k});
@@ -516,6 +589,70 @@ void AddOutlierPairs(const SyntheticSceneOptions& options, size_t num_images, Rn
   }
 }
 
+// Aliased pairs: random pairs not matched yet, with matches consistent with the true relative pose
+// turned by a rotation of aliased_min_angle_deg to aliased_max_angle_deg about a random axis:
+// points at random depths in front of the first camera, seen through the wrong pose.
+void AddAliasedPairs(const SyntheticSceneOptions& options, const std::vector<Rigid3d>& poses,
+                     Rng& rng, std::set<std::pair<size_t, size_t>>* matched_pairs,
+                     SceneObservations* seen, SyntheticScene* scene) {
+  const size_t num_images = poses.size();
+  const size_t wanted = std::max<size_t>(
+      options.num_aliased_pairs,
+      static_cast<size_t>(std::lround(options.aliased_pair_ratio * matched_pairs->size())));
+  const size_t max_pairs = num_images * (num_images - 1) / 2;
+  std::uniform_int_distribution<size_t> random_image(0, num_images - 1);
+  for (size_t attempt = 0;
+       attempt < 100 * wanted + 100 && scene->aliased_pair_ids.size() < wanted &&
+       matched_pairs->size() < max_pairs;
+       ++attempt) {
+    size_t i = random_image(rng);
+    size_t k = random_image(rng);
+    if (i == k) continue;
+    if (i > k) std::swap(i, k);
+    if (matched_pairs->count({i, k})) continue;
+    const double angle =
+        Uniform(rng, options.aliased_min_angle_deg, options.aliased_max_angle_deg) * kDegToRad;
+    const Rigid3d truth = poses[k] * poses[i].Inverse();
+    const Rigid3d aliased(
+        (Eigen::Quaterniond(Eigen::AngleAxisd(angle, RandomUnitVector(rng))) * truth.rotation)
+            .normalized(),
+        truth.translation);
+    const Camera& camera1 = CameraOf(options, i);
+    const Camera& camera2 = CameraOf(options, k);
+    std::vector<FeatureMatch> matches;
+    for (int m = 0; m < options.num_aliased_pair_matches; ++m) {
+      const Eigen::Vector2d xy1(Uniform(rng, 0.0, camera1.width - 0.01),
+                                Uniform(rng, 0.0, camera1.height - 0.01));
+      const Eigen::Vector3d in_camera1 =
+          Uniform(rng, options.min_depth, options.max_depth) * PixelToBearing(camera1, xy1);
+      const Eigen::Vector3d in_camera2 = aliased * in_camera1;
+      if (in_camera2.z() <= 0.0) continue;
+      const Eigen::Vector2d xy2 = ProjectToPixel(camera2, in_camera2) +
+                                  Eigen::Vector2d(Gaussian(rng, options.pixel_noise_sigma),
+                                                  Gaussian(rng, options.pixel_noise_sigma));
+      if (!InsideImage(camera2, xy2) || !in_camera1.allFinite()) continue;
+      Point2D point1, point2;
+      point1.xy = xy1;
+      point2.xy = xy2;
+      seen->points2D[i].push_back(point1);
+      seen->points2D[k].push_back(point2);
+      matches.push_back({static_cast<uint32_t>(seen->points2D[i].size() - 1),
+                         static_cast<uint32_t>(seen->points2D[k].size() - 1)});
+    }
+    if (matches.size() < static_cast<size_t>(std::max(options.min_num_inliers, 8))) continue;
+    matched_pairs->insert({i, k});
+    const uint32_t image_id1 = static_cast<uint32_t>(i + 1);
+    const uint32_t image_id2 = static_cast<uint32_t>(k + 1);
+    const uint64_t pair_id = ImagePairToPairId(image_id1, image_id2);
+    TwoViewGeometry geometry = MakeGeometry(image_id1, image_id2, aliased,
+                                            CalibrationMatrix(camera1), CalibrationMatrix(camera2));
+    geometry.inlier_matches = matches;
+    scene->database.matches[pair_id] = std::move(matches);
+    scene->database.two_view_geometries[pair_id] = std::move(geometry);
+    scene->aliased_pair_ids.push_back(pair_id);
+  }
+}
+
 // Points seen twice or more become the ground-truth points3D, numbered from 1 in point order.
 void AddGroundTruthPoints(const std::vector<Eigen::Vector3d>& points, SceneObservations* seen,
                           Reconstruction* truth) {
@@ -584,6 +721,7 @@ SyntheticScene BuildSyntheticScene(const SyntheticSceneOptions& options) {
   std::set<std::pair<size_t, size_t>> matched_pairs = AddMatchedPairs(
       options, CandidatePairs(options, poses, centers), poses, rng, &seen, &scene.database);
   AddOutlierPairs(options, num_images, rng, &matched_pairs, &seen, &scene);
+  AddAliasedPairs(options, poses, rng, &matched_pairs, &seen, &scene);
   scene.ground_truth.cameras = scene.database.cameras;
   AddGroundTruthPoints(points, &seen, &scene.ground_truth);
   AddImages(options, poses, &seen, &scene);

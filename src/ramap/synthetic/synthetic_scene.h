@@ -83,6 +83,24 @@ struct SyntheticSceneOptions {
   // travelled in between (so that standing still is not a revisit). 0 disables loop pairs.
   double loop_max_distance = 3.0;
   double loop_max_angle_deg = 30.0;
+  // When > 0, a revisit needs at least this many frames between the two instead of the
+  // travelled-distance rule (a KITTI drive: within 8 m and more than 100 frames apart).
+  int loop_min_frame_gap = 0;
+  // Points farther than this from a camera are not seen by it, as features fade with distance
+  // (world units). 0: no limit. With a limit, each point is tested only against the cameras near
+  // it, so that thousands of frames are built in seconds instead of minutes.
+  double max_view_distance = 0.0;
+  // Aliased pairs, as repetitive structure (facades, fences) gives: two frames that are not
+  // matched by the layout get verified matches consistent with a relative pose whose rotation is
+  // aliased_min_angle_deg to aliased_max_angle_deg off the true one (about a random axis). Their
+  // number: num_aliased_pairs, or aliased_pair_ratio of the pairs matched otherwise, whichever is
+  // larger (listed in SyntheticScene::aliased_pair_ids).
+  int num_aliased_pairs = 0;
+  double aliased_pair_ratio = 0.0;
+  double aliased_min_angle_deg = 12.0;
+  double aliased_max_angle_deg = 40.0;
+  // Matches of an aliased pair (before those falling outside the second image are left out).
+  int num_aliased_pair_matches = 100;
   // Unordered: pairs sharing at least this many points are matched.
   int min_shared_points = 30;
   // A matched pair gets a two-view geometry when it has at least this many true matches (COLMAP's
@@ -107,6 +125,8 @@ struct SyntheticScene {
   Reconstruction ground_truth;
   // Pair ids of the num_outlier_pairs pairs whose matches and geometry are wrong.
   std::vector<uint64_t> outlier_pair_ids;
+  // Pair ids of the aliased pairs: verified, consistent, and wrong in rotation.
+  std::vector<uint64_t> aliased_pair_ids;
 };
 
 // Throws InputError when options.Check() fails.

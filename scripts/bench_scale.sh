@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# How ramap scales with the number of frames: synthetic drives along KITTI odometry ground-truth
+# trajectories (../shared/data/gt_trajectories), built by `ramap synthesize` the way issue #15
+# describes them (each frame matched with its next 10 and with every frame within 8 m that is
+# more than 100 frames away; 3% of the pairs aliased, i.e. verified matches of a relative pose
+# 12-40 deg off; 2% outlier matches; landmarks within 40 m of the cameras), then `ramap mapper`
+# (averaging alone, --Mapper.refine 0) and `ramap evaluate` against the drive's ground truth.
+# Prints one markdown table row per drive (stage times from summary.json, peak memory, ATE as a
+# share of the path, rotation error) and the log-log slopes of time and memory against frames.
+#
+#   scripts/bench_scale.sh                       KITTI 00: 500, 1000, 2000, 4541 frames; KITTI 06
+#   scripts/bench_scale.sh 00:500 06:1101 ...    SEQUENCE:FRAMES (FRAMES 0: the whole sequence)
+#
+# Scenes are cached under build/bench-scale (RAMAP_SCALE_DIR); RAMAP_DATA_DIR as elsewhere;
+# RAMAP_THREADS (default 2) is --Mapper.num_threads.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+data_dir=${RAMAP_DATA_DIR:-$root/../shared/data}
+scale_dir=${RAMAP_SCALE_DIR:-$root/build/bench-scale}
+ramap=${RAMAP_BINARY:-$root/build/ramap}
+threads=${RAMAP_THREADS:-2}
+poses_dir=$data_dir/gt_trajectories/kitti_odometry_poses
+[[ -x $ramap ]] || { echo "bench_scale: $ramap not built (run scripts/build.sh)" >&2; exit 1; }
+[[ -d $poses_dir ]] || { echo "bench_scale: skipped, no KITTI trajectories in $poses_dir" >&2; exit 0; }
+runs=("$@")
+((${#runs[@]})) || runs=(00:500 00:1000 00:2000 00:4541 06:1101)
+mkdir -p "$scale_dir"
+
+rows=()
+for run in "${runs[@]}"; do
+  sequence=${run%%:*}
+  frames=${run##*:}
+  scene=$scale_dir/kitti${sequence}_${frames}
+  if [[ ! -f $scene/scene.done ]]; then
+    rm -rf "$scene"
+    # 20 landmarks per frame; KITTI's camera (image 0 of the odometry calibration).
+    num_points=$((frames > 0 ? 20 * frames : 20 * $(wc -l < "$poses_dir/$sequence.txt")))
+    "$ramap" synthesize --output_path "$scene" \
+      --Synthetic.trajectory_path "$poses_dir/$sequence.txt" --Synthetic.num_images "$frames" \
+      --Synthetic.camera_model PINHOLE --Synthetic.camera_params 718.856,718.856,607.19,185.2 \
+      --Synthetic.width 1241 --Synthetic.height 376 --Synthetic.prior_focal_length 1 \
+      --Synthetic.num_points "$num_points" --Synthetic.max_view_distance 40 \
+      --Synthetic.overlap 10 --Synthetic.loop_radius_m 8 --Synthetic.loop_min_frame_gap 100 \
+      --Synthetic.loop_max_angle_deg 180 --Synthetic.aliased_pair_ratio 0.03 \
+      --Synthetic.outlier_ratio 0.02 >&2
+    touch "$scene/scene.done"
+  fi
+  rm -rf "$scene/sparse" "$scene/eval.json"
+  "$ramap" mapper --database_path "$scene/database.db" --output_path "$scene/sparse" \
+    --Mapper.refine 0 --Mapper.num_threads "$threads" > "$scene/mapper.log"
+  "$ramap" evaluate --model_path "$scene/sparse/0" --ground_truth "$scene/ground_truth.txt" \
+    --ground_truth_format tum --output_path "$scene/eval.json" > /dev/null
+  rows+=("KITTI $sequence|$scene")
+done
+
+python3 - "${rows[@]}" <<'PY'
+import json, math, os, sys
+print("| drive | frames | verified pairs | database (MB) | wall (s) | relative poses (s) | rotation averaging (s) | translation averaging (s) | triangulation (s) | peak RSS (MiB) | ATE / path | rotation error median (deg) |")
+print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+fits = {}
+for arg in sys.argv[1:]:
+    name, scene = arg.split("|")
+    summary = json.load(open(os.path.join(scene, "sparse", "summary.json")))
+    evaluation = json.load(open(os.path.join(scene, "eval.json")))
+    stages = summary["stage_seconds"]
+    frames = summary["num_images"]
+    ate_share = evaluation["ate"]["rmse_over_path_length"]
+    print(f"| {name} | {frames} | {summary['num_verified_pairs']} | "
+          f"{os.path.getsize(os.path.join(scene, 'database.db')) / 1e6:.0f} | "
+          f"{summary['total_seconds']:.1f} | {stages.get('relative poses', 0):.1f} | "
+          f"{stages.get('rotation averaging', 0):.2f} | {stages.get('translation averaging', 0):.1f} | "
+          f"{stages.get('triangulation', 0):.1f} | {summary['peak_rss_mib']:.0f} | "
+          f"{100 * ate_share:.2f}% | {evaluation['rotation_error_deg']['median']:.3f} |")
+    fits.setdefault(name, []).append((frames, summary["total_seconds"], summary["peak_rss_mib"]))
+
+def slope(points):
+    xs = [math.log(p[0]) for p in points]; ys = [math.log(p[1]) for p in points]
+    mx = sum(xs) / len(xs); my = sum(ys) / len(ys)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+
+for name, points in fits.items():
+    if len(points) < 2:
+        continue
+    print(f"\n{name}: log-log slope against frames: time {slope([(f, t) for f, t, m in points]):.2f}, "
+          f"peak memory {slope([(f, m) for f, t, m in points]):.2f} ({len(points)} drives)")
+PY

@@ -40,7 +40,7 @@ int RunMapper(int argc, char** argv) {
   const ModelFormat format = ModelFormatFromName(output_type, "--output_type");
   CheckFolderOutput("--output_path", output_path, {database_path, image_path, prior_text.path});
 
-  const FeatureDatabase database = ReadColmapDatabase(database_path);
+  const FeatureDatabase database = ReadColmapDatabase(database_path, MapperDatabaseReadOptions());
   CheckImageNamesFit(database, format, database_path, "--output_type " + output_type);
   const LocalizedPriors priors = LoadPosePriors(prior_text, database, "ramap mapper", std::cerr);
   MapperResult result = ramap::RunMapper(database, options, database_path,

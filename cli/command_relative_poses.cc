@@ -32,7 +32,7 @@ int RunRelativePoses(int argc, char** argv) {
   FinishMapperOptions(text, &options);
   CheckFileOutput("--output_path", output_path, {database_path});
 
-  const FeatureDatabase database = ReadColmapDatabase(database_path);
+  const FeatureDatabase database = ReadColmapDatabase(database_path, MapperDatabaseReadOptions());
   const ImageBearings bearings = ComputeBearings(database, database_path);
   Timer timer;
   const std::vector<ImagePair> edges = EstimateRelativePoses(

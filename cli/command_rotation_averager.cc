@@ -24,7 +24,7 @@ std::vector<RelativePoseRecord> LoadRelativePoses(const std::string& database_pa
                                                   const std::string& relative_poses_path,
                                                   const MapperOptions& options) {
   if (!relative_poses_path.empty()) return ReadRelativePoses(relative_poses_path);
-  const FeatureDatabase database = ReadColmapDatabase(database_path);
+  const FeatureDatabase database = ReadColmapDatabase(database_path, MapperDatabaseReadOptions());
   const ImageBearings bearings = ComputeBearings(database, database_path);
   const std::vector<RelativePoseRecord> records = AcceptedRelativePoses(
       database, EstimateRelativePoses(database, bearings, options.relative_pose,

@@ -1,10 +1,12 @@
-// Stage 1 of the mapper: which verified pairs become image pairs of the view graph, how their
-// matches are ranked, and the error a database without usable pairs gets.
+// Stage 1 of the mapper: which verified pairs become image pairs of the view graph, what they keep
+// of their matches, and the error a database without usable pairs gets. (How matches are ranked:
+// tests/geometry/pair_correspondences_test.cc.)
 #include "ramap/pipeline/relative_poses.h"
 
 #include <gtest/gtest.h>
 
-#include "ramap/geometry/correspondence_sampling.h"
+#include <algorithm>
+
 #include "ramap/geometry/rotation.h"
 #include "ramap/synthetic/synthetic_scene.h"
 
@@ -37,10 +39,17 @@ TEST(RelativePoses, EveryUsablePairIsEstimatedClose) {
     const TwoViewGeometry& geometry =
         scene.database.two_view_geometries.at(ImagePairToPairId(pair.image_id1, pair.image_id2));
     EXPECT_EQ(pair.num_verified_matches, static_cast<int>(geometry.inlier_matches.size()));
-    EXPECT_EQ(pair.correspondences.size(), geometry.inlier_matches.size());
-    // Ranked by the Sampson error under the stored F: one confidence per match.
-    EXPECT_EQ(pair.correspondences.confidence.size(), pair.correspondences.size());
     ASSERT_TRUE(pair.accepted()) << pair.estimate.reason;
+    // The inliers are kept as matches of the pair (their keypoints' bearings are the stages').
+    ASSERT_EQ(pair.inlier_matches.size(), static_cast<size_t>(pair.estimate.num_inliers));
+    for (const FeatureMatch& match : pair.inlier_matches) {
+      EXPECT_NE(std::find_if(geometry.inlier_matches.begin(), geometry.inlier_matches.end(),
+                             [&](const FeatureMatch& m) {
+                               return m.point2D_idx1 == match.point2D_idx1 &&
+                                      m.point2D_idx2 == match.point2D_idx2;
+                             }),
+                geometry.inlier_matches.end());
+    }
     // 0.5 px noise on a VGA camera with overlapping views: well under a tenth of a degree.
     EXPECT_LT(RotationErrorDeg(scene, pair), 0.1);
   }
@@ -70,23 +79,6 @@ TEST(RelativePoses, UnusableAndThinPairsAreLeftOutAndExplained) {
   EXPECT_NE(why.find("1 degenerate"), std::string::npos) << why;
   scene.database.two_view_geometries.clear();
   EXPECT_NE(WhyNoVerifiedPairs(scene.database, 15).find("run a matcher first"), std::string::npos);
-}
-
-TEST(RelativePoses, DescriptorRatiosRankTheMatchesWhenAskedFor) {
-  SyntheticScene scene = SmallScene();
-  TwoViewGeometry& geometry = scene.database.two_view_geometries.begin()->second;
-  for (size_t k = 0; k < geometry.inlier_matches.size(); ++k)
-    geometry.inlier_ratios.push_back(0.5f + 0.001f * k);
-  const ImageBearings bearings = ComputeBearings(scene.database, "synthetic");
-  RelativePoseOptions options;
-  options.use_descriptor_ratios = true;
-  const ImagePair with_ratios = EstimateRelativePoses(scene.database, bearings, options, 1)[0];
-  ASSERT_EQ(with_ratios.correspondences.confidence.size(), geometry.inlier_ratios.size());
-  EXPECT_FLOAT_EQ(with_ratios.correspondences.confidence[3], geometry.inlier_ratios[3]);
-  options.use_descriptor_ratios = false;
-  const ImagePair with_sampson = EstimateRelativePoses(scene.database, bearings, options, 1)[0];
-  const TwoViewCorrespondences& c = with_sampson.correspondences;
-  EXPECT_EQ(c.confidence, SampsonErrors(geometry.F, c.pixels1, c.pixels2));
 }
 
 }  // namespace

@@ -30,6 +30,14 @@ struct DatabaseReadOptions {
   bool read_matches = true;
 };
 
+// What the mapper's stages read: keypoints and two-view geometries, not the raw matches (which on
+// a long drive are as large as everything else together).
+inline DatabaseReadOptions MapperDatabaseReadOptions() {
+  DatabaseReadOptions options;
+  options.read_matches = false;
+  return options;
+}
+
 // Reads everything `options` asks for. Values the database leaves empty read as: NULL or NaN
 // image priors -> empty optionals; NULL or empty F/E/H -> zero matrices (old databases); NULL,
 // empty or zero qvec -> identity rotation; NULL or empty tvec -> zero translation.

@@ -16,31 +16,44 @@ std::vector<ImagePair> EstimateRelativePoses(const FeatureDatabase& database,
                                              const RelativePoseOptions& options, int num_threads,
                                              std::ostream* progress) {
   std::vector<ImagePair> pairs;
+  std::vector<const TwoViewGeometry*> geometries;
   for (const auto& [pair_id, geometry] : database.two_view_geometries) {
     if (!IsUsableTwoViewConfig(geometry.config)) continue;
     if (static_cast<int>(geometry.inlier_matches.size()) < options.min_num_inliers) continue;
-    const auto b1 = bearings.bearings.find(geometry.image_id1);
-    const auto b2 = bearings.bearings.find(geometry.image_id2);
-    if (b1 == bearings.bearings.end() || b2 == bearings.bearings.end()) continue;
-    const Camera& camera1 = database.cameras.at(database.images.at(geometry.image_id1).camera_id);
-    const Camera& camera2 = database.cameras.at(database.images.at(geometry.image_id2).camera_id);
+    if (!bearings.bearings.count(geometry.image_id1) ||
+        !bearings.bearings.count(geometry.image_id2))
+      continue;
     ImagePair pair;
     pair.image_id1 = geometry.image_id1;
     pair.image_id2 = geometry.image_id2;
     pair.num_verified_matches = static_cast<int>(geometry.inlier_matches.size());
-    pair.correspondences = PairCorrespondences(
-        {camera1, database.keypoints.at(geometry.image_id1), &b1->second},
-        {camera2, database.keypoints.at(geometry.image_id2), &b2->second}, geometry,
-        0.5 * (bearings.focal_lengths_px.at(camera1.camera_id) +
-               bearings.focal_lengths_px.at(camera2.camera_id)),
-        options.use_descriptor_ratios);
     pairs.push_back(std::move(pair));
+    geometries.push_back(&geometry);
   }
-
+  // Each pair's correspondences live only while it is estimated.
   ParallelFor(
       pairs.size(), num_threads,
       [&](size_t k) {
-        pairs[k].estimate = EstimateRelativePose(pairs[k].correspondences, options);
+        const TwoViewGeometry& geometry = *geometries[k];
+        const Camera& camera1 =
+            database.cameras.at(database.images.at(geometry.image_id1).camera_id);
+        const Camera& camera2 =
+            database.cameras.at(database.images.at(geometry.image_id2).camera_id);
+        std::vector<FeatureMatch> matches;
+        const TwoViewCorrespondences correspondences =
+            PairCorrespondences({camera1, database.keypoints.at(geometry.image_id1),
+                                 &bearings.bearings.at(geometry.image_id1)},
+                                {camera2, database.keypoints.at(geometry.image_id2),
+                                 &bearings.bearings.at(geometry.image_id2)},
+                                geometry,
+                                0.5 * (bearings.focal_lengths_px.at(camera1.camera_id) +
+                                       bearings.focal_lengths_px.at(camera2.camera_id)),
+                                options.use_descriptor_ratios, &matches);
+        ImagePair& pair = pairs[k];
+        pair.estimate = EstimateRelativePose(correspondences, options);
+        pair.inlier_matches.reserve(pair.estimate.inliers.size());
+        for (const int inlier : pair.estimate.inliers)
+          pair.inlier_matches.push_back(matches[inlier]);
       },
       progress, stage::kRelativePoses, "pairs");
   return pairs;

@@ -25,9 +25,11 @@ std::vector<PairDirection> KeptPairDirections(
     kept_pairs->insert(ImagePairToPairId(pair.image_id1, pair.image_id2));
     if (pair.estimate.flags & kRelativePosePureRotation) continue;
     std::vector<Eigen::Vector3d> f1, f2;
-    for (const int k : pair.estimate.inliers) {
-      f1.push_back(pair.correspondences.bearings1[k]);
-      f2.push_back(pair.correspondences.bearings2[k]);
+    const std::vector<Eigen::Vector3d>& bearings1 = context.bearings.bearings.at(pair.image_id1);
+    const std::vector<Eigen::Vector3d>& bearings2 = context.bearings.bearings.at(pair.image_id2);
+    for (const FeatureMatch& match : pair.inlier_matches) {
+      f1.push_back(bearings1[match.point2D_idx1]);
+      f2.push_back(bearings2[match.point2D_idx2]);
     }
     const std::optional<Eigen::Vector3d> direction = EstimatePairDirection(
         world_rotations.at(pair.image_id1), world_rotations.at(pair.image_id2), f1, f2,

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "ramap/scene/features.h"
 #include "ramap/scene/relative_rotations.h"
 
 namespace ramap {
@@ -85,8 +86,11 @@ struct ImagePair {
   uint32_t image_id1 = 0;  // image_id1 < image_id2, as in the database
   uint32_t image_id2 = 0;
   int num_verified_matches = 0;
-  TwoViewCorrespondences correspondences;  // the verified inlier matches, as bearings and pixels
-  RelativePoseEstimate estimate;           // cam2_from_cam1; estimate.success may be false
+  RelativePoseEstimate estimate;  // cam2_from_cam1; estimate.success may be false
+  // The matches the estimate explains, as keypoint pairs; the later stages read their bearings.
+  // (A pair's correspondences, bearings and pixels of every match, are not kept: at 100 bytes
+  // per match they were most of the mapper's memory on long drives.)
+  std::vector<FeatureMatch> inlier_matches;
 
   bool accepted() const { return estimate.success; }
 };

@@ -217,28 +217,39 @@ std::vector<RotationCandidate> RotationCandidatesFromSix(const std::vector<Eigen
                                                          const std::vector<Eigen::Vector3d>& f2,
                                                          const std::vector<int>& six,
                                                          int leave_out) {
-  const opengv::bearingVectors_t b1 = ToOpenGv(f1), b2 = ToOpenGv(f2);
+  // The solvers see only the six (numbered 0-5 in the adapter): copying every bearing of the pair
+  // into OpenGV's containers for each call cost more than the solvers.
+  opengv::bearingVectors_t b1, b2;
+  for (const int k : six) {
+    b1.push_back(f1[k]);
+    b2.push_back(f2[k]);
+  }
   std::vector<RotationCandidate> candidates;
   auto add = [&](const opengv::rotation_t& R_2to1, const std::vector<int>& support) {
     if (!R_2to1.allFinite()) return;
     const Eigen::Matrix3d R = Orthonormalize(R_2to1.transpose());
     if (IsRotation(R)) candidates.push_back({R, support});
   };
+  const int num_six = static_cast<int>(six.size());
+  std::vector<int> local_six(num_six);
+  for (int i = 0; i < num_six; ++i) local_six[i] = i;
   try {
     opengv::relative_pose::CentralRelativeAdapter adapter(b1, b2);
     if (leave_out >= 0) {
-      std::vector<int> five;
-      for (int i = 0; i < static_cast<int>(six.size()); ++i) {
-        if (i != leave_out) five.push_back(six[i]);
+      std::vector<int> five, local_five;
+      for (int i = 0; i < num_six; ++i) {
+        if (i == leave_out) continue;
+        five.push_back(six[i]);
+        local_five.push_back(i);
       }
-      for (const auto& R : opengv::relative_pose::fivept_kneip(adapter, five)) add(R, five);
+      for (const auto& R : opengv::relative_pose::fivept_kneip(adapter, local_five)) add(R, five);
       return candidates;
     }
-    add(opengv::relative_pose::eigensolver(adapter, six), six);
+    add(opengv::relative_pose::eigensolver(adapter, local_six), six);
     const Eigen::Matrix3d R_rot = FitPureRotation(f1, f2, six);
     candidates.push_back({R_rot, six});
     opengv::relative_pose::CentralRelativeAdapter started(b1, b2, R_rot.transpose());
-    add(opengv::relative_pose::eigensolver(started, six), six);
+    add(opengv::relative_pose::eigensolver(started, local_six), six);
   } catch (const std::exception&) {
     // A solver failing on a degenerate sample leaves the candidates found so far.
   }

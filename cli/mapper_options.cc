@@ -80,6 +80,10 @@ void AddTranslationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptio
   app.add_option("--TranslationAveraging.max_num_tracks", ta.max_num_tracks)
       ->capture_default_str()
       ->check(AtLeast(1));
+  app.add_option("--TranslationAveraging.min_tracks_per_image", ta.min_tracks_per_image,
+                 "past max_num_tracks, tracks are still used while a camera has fewer (0: off)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--TranslationAveraging.solver", text->translation_solver, "irls|admm")
       ->capture_default_str();
   app.add_option("--TranslationAveraging.max_irls_iterations", ta.max_irls_iterations)
@@ -250,6 +254,7 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
       {"TranslationAveraging",
        {{"min_triangulation_angle_deg", ta.min_triangulation_angle_deg},
         {"max_num_tracks", ta.max_num_tracks},
+        {"min_tracks_per_image", ta.min_tracks_per_image},
         {"solver", ta.solver == TranslationSolver::kIrls ? "irls" : "admm"},
         {"max_irls_iterations", ta.max_irls_iterations},
         {"max_admm_iterations", ta.max_admm_iterations},

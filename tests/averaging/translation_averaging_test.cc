@@ -142,6 +142,30 @@ TEST(TranslationAveraging, AccurateWithNoiseAndRobustToWrongDirections) {
   EXPECT_LT(RelativeCenterError(scene, result), 0.02);
 }
 
+TEST(TranslationAveraging, PerImageQuotaGivesEveryCameraTracksPastTheCap) {
+  std::mt19937 rng(5);
+  const Scene scene = ForwardLine(40, 1500, rng);
+  std::vector<TranslationTrack> tracks;
+  std::vector<PairDirection> directions;
+  Observe(scene, 0.0, rng, &tracks, &directions);
+  // The longest tracks come first and the cap stops there: few tracks for a 40-camera line.
+  TranslationAveragingOptions capped;
+  capped.max_num_tracks = 10;
+  capped.min_tracks_per_image = 0;
+  const TranslationAveragingResult without_quota =
+      AverageTranslations(scene.rotations, directions, tracks, capped);
+  EXPECT_LE(without_quota.num_tracks_used, 10);
+  TranslationAveragingOptions quota = capped;
+  quota.min_tracks_per_image = 5;
+  const TranslationAveragingResult with_quota =
+      AverageTranslations(scene.rotations, directions, tracks, quota);
+  EXPECT_GT(with_quota.num_tracks_used, 10);
+  // Still far fewer than all: the quota stops adding once every camera has its share.
+  EXPECT_LT(with_quota.num_tracks_used, static_cast<int>(tracks.size()) / 2);
+  ASSERT_EQ(with_quota.centers.size(), 40u);
+  EXPECT_LT(RelativeCenterError(scene, with_quota), 1e-6);
+}
+
 TEST(TranslationAveraging, UnconnectedCameraIsReportedNotPositioned) {
   std::mt19937 rng(4);
   Scene scene = ForwardLine(10, 300, rng);

@@ -117,12 +117,30 @@ std::vector<Constraint> BuildConstraints(const std::map<uint32_t, Eigen::Quatern
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t x, size_t y) { return tracks[x].size() > tracks[y].size(); });
-  if (static_cast<int>(order.size()) > options.max_num_tracks) order.resize(options.max_num_tracks);
+  // Past max_num_tracks, a track is still used while one of its cameras has fewer than
+  // min_tracks_per_image tracks: a global cap alone gives the longest tracks, which cluster (slow
+  // stretches, revisits) and leave the rest of a long drive without any.
+  const auto wanted = [&](size_t track_index, const std::unordered_map<uint32_t, int>& tracks_of) {
+    if (*num_tracks_used < options.max_num_tracks) return true;
+    if (options.min_tracks_per_image <= 0) return false;
+    for (const TrackObservation& observation : tracks[track_index]) {
+      const auto found = tracks_of.find(observation.image_id);
+      if (found == tracks_of.end() || found->second < options.min_tracks_per_image) return true;
+    }
+    return false;
+  };
+  if (options.min_tracks_per_image <= 0 && static_cast<int>(order.size()) > options.max_num_tracks)
+    order.resize(options.max_num_tracks);
 
   std::vector<Constraint> constraints;
-  std::unordered_map<uint32_t, int> usage;  // constraints per camera so far
+  std::unordered_map<uint32_t, int> usage;      // constraints per camera so far
+  std::unordered_map<uint32_t, int> tracks_of;  // tracks per camera so far
   *num_tracks_used = 0;
+  int num_tried = 0;
   for (const size_t track_index : order) {
+    // Without a quota, the first max_num_tracks tracks are tried, used or not (as before).
+    if (options.min_tracks_per_image <= 0 && num_tried++ >= options.max_num_tracks) break;
+    if (options.min_tracks_per_image > 0 && !wanted(track_index, tracks_of)) continue;
     // Of a long track, use the cameras with the fewest constraints so far, so that every camera
     // gets its share and none is left out by the cap.
     std::vector<const TrackObservation*> usable;
@@ -182,7 +200,9 @@ std::vector<Constraint> BuildConstraints(const std::map<uint32_t, Eigen::Quatern
       for (const uint32_t id : {ids[k], best->to}) ++usage[id];
       ++added;
     }
-    if (added > 0) ++*num_tracks_used;
+    if (added == 0) continue;
+    ++*num_tracks_used;
+    for (const uint32_t id : ids) ++tracks_of[id];
   }
   return constraints;
 }
@@ -401,6 +421,7 @@ void TranslationAveragingOptions::Check() const {
   CheckOption(max_observations_per_track >= 2, s + "max_observations_per_track", ">= 2",
               max_observations_per_track);
   CheckOption(max_num_tracks >= 1, s + "max_num_tracks", ">= 1", max_num_tracks);
+  CheckOption(min_tracks_per_image >= 0, s + "min_tracks_per_image", ">= 0", min_tracks_per_image);
   CheckOption(admm_rho > 0, s + "admm_rho", "> 0", admm_rho);
   CheckOption(prior_weight > 0, s + "prior_weight", "> 0", prior_weight);
   CheckOption(prior_huber_sigmas > 0, s + "prior_huber_sigmas", "> 0", prior_huber_sigmas);

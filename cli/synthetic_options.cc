@@ -9,6 +9,35 @@
 
 namespace ramap::cli {
 
+namespace {
+
+// Revisits, view distance and aliasing: what makes a long synthetic drive look like a real one.
+void AddDriveOptions(CLI::App& app, SyntheticSceneOptions* options) {
+  app.add_option("--Synthetic.loop_radius_m", options->loop_max_distance,
+                 "sequential: also match frames whose centres are this close (revisits; 0: none)")
+      ->capture_default_str();
+  app.add_option("--Synthetic.loop_min_frame_gap", options->loop_min_frame_gap,
+                 "revisits are at least this many frames apart (0: at least 4 loop radii "
+                 "travelled)")
+      ->capture_default_str();
+  app.add_option("--Synthetic.loop_max_angle_deg", options->loop_max_angle_deg,
+                 "revisits look the same way within this angle")
+      ->capture_default_str();
+  app.add_option("--Synthetic.max_view_distance", options->max_view_distance,
+                 "points farther from a camera are not seen by it (0: no limit; > 0 builds "
+                 "thousands of frames fast)")
+      ->capture_default_str();
+  app.add_option("--Synthetic.num_aliased_pairs", options->num_aliased_pairs,
+                 "pairs with consistent matches of a relative pose rotated 12-40 deg off, as "
+                 "repetitive structure gives")
+      ->capture_default_str();
+  app.add_option("--Synthetic.aliased_pair_ratio", options->aliased_pair_ratio,
+                 "the same as a fraction of the matched pairs (the larger count is used)")
+      ->capture_default_str();
+}
+
+}  // namespace
+
 void AddSceneOptions(CLI::App& app, SyntheticSceneOptions* options, SceneOptionText* text) {
   app.add_option("--Synthetic.layout", text->layout,
                  "sequential (a path) or unordered (around an object)")
@@ -39,27 +68,7 @@ void AddSceneOptions(CLI::App& app, SyntheticSceneOptions* options, SceneOptionT
   app.add_option("--Synthetic.overlap", options->overlap,
                  "sequential: match each image with its next N images")
       ->capture_default_str();
-  app.add_option("--Synthetic.loop_radius_m", options->loop_max_distance,
-                 "sequential: also match frames whose centres are this close (revisits; 0: none)")
-      ->capture_default_str();
-  app.add_option("--Synthetic.loop_min_frame_gap", options->loop_min_frame_gap,
-                 "revisits are at least this many frames apart (0: at least 4 loop radii "
-                 "travelled)")
-      ->capture_default_str();
-  app.add_option("--Synthetic.loop_max_angle_deg", options->loop_max_angle_deg,
-                 "revisits look the same way within this angle")
-      ->capture_default_str();
-  app.add_option("--Synthetic.max_view_distance", options->max_view_distance,
-                 "points farther from a camera are not seen by it (0: no limit; > 0 builds "
-                 "thousands of frames fast)")
-      ->capture_default_str();
-  app.add_option("--Synthetic.num_aliased_pairs", options->num_aliased_pairs,
-                 "pairs with consistent matches of a relative pose rotated 12-40 deg off, as "
-                 "repetitive structure gives")
-      ->capture_default_str();
-  app.add_option("--Synthetic.aliased_pair_ratio", options->aliased_pair_ratio,
-                 "the same as a fraction of the matched pairs (the larger count is used)")
-      ->capture_default_str();
+  AddDriveOptions(app, options);
   app.add_option("--Synthetic.min_num_inliers", options->min_num_inliers,
                  "fewest true matches of a pair with a two-view geometry")
       ->capture_default_str();

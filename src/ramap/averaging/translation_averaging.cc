@@ -106,6 +106,77 @@ class UnionFind {
   std::unordered_map<uint32_t, uint32_t> parent_;
 };
 
+// The cameras of a track that constraints will use, with their world-frame rays: of a long track,
+// those with the fewest constraints so far, so that every camera gets its share and none is left
+// out by the cap.
+void SelectTrackRays(const TranslationTrack& track,
+                     const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+                     const TranslationAveragingOptions& options,
+                     std::unordered_map<uint32_t, int>* usage, std::vector<uint32_t>* ids,
+                     std::vector<Eigen::Vector3d>* rays) {
+  std::vector<const TrackObservation*> usable;
+  for (const TrackObservation& observation : track) {
+    if (rotations.count(observation.image_id) && observation.bearing.allFinite()) {
+      usable.push_back(&observation);
+    }
+  }
+  std::stable_sort(usable.begin(), usable.end(), [&](const auto* x, const auto* y) {
+    return (*usage)[x->image_id] < (*usage)[y->image_id];
+  });
+  for (const TrackObservation* observation : usable) {
+    if (std::find(ids->begin(), ids->end(), observation->image_id) != ids->end()) continue;
+    ids->push_back(observation->image_id);
+    rays->push_back(
+        (rotations.at(observation->image_id).conjugate() * observation->bearing).normalized());
+    if (static_cast<int>(ids->size()) >= options.max_observations_per_track) break;
+  }
+}
+
+// The constraints of one track: its best-conditioned pair (widest ray angle) predicts the point,
+// and every other camera predicts it again from its own best pair. Returns how many were added.
+int AddTrackConstraints(const std::vector<uint32_t>& ids, const std::vector<Eigen::Vector3d>& rays,
+                        const DirectionTable& directions, double min_angle,
+                        std::unordered_map<uint32_t, int>* usage,
+                        std::vector<Constraint>* constraints) {
+  std::optional<PointPrediction> reference;
+  size_t ref_a = 0;
+  for (size_t a = 0; a < ids.size(); ++a) {
+    for (size_t b = 0; b < ids.size(); ++b) {
+      if (a == b) continue;
+      const auto prediction = PredictPoint(ids[a], ids[b], rays[a], rays[b], directions, min_angle);
+      if (prediction && (!reference || prediction->ray_angle > reference->ray_angle)) {
+        reference = prediction;
+        ref_a = a;
+      }
+    }
+  }
+  if (!reference) return 0;
+  int added = 0;
+  for (size_t k = 0; k < ids.size(); ++k) {
+    if (k == ref_a) continue;
+    // Camera k predicts X from its best-conditioned pair with any other camera of the track
+    // (a sequence frame often has no verified pair with the reference cameras themselves).
+    std::optional<PointPrediction> best;
+    for (size_t partner = 0; partner < ids.size(); ++partner) {
+      if (partner == k) continue;
+      const auto prediction =
+          PredictPoint(ids[k], ids[partner], rays[k], rays[partner], directions, min_angle);
+      if (prediction && (!best || prediction->ray_angle > best->ray_angle)) best = prediction;
+    }
+    if (!best) continue;
+    Constraint constraint;
+    constraint.a = *reference;
+    constraint.b = *best;
+    // Residuals are point displacements; dividing by the depth ratio expresses them in baselines,
+    // so that far points do not dominate.
+    constraint.weight = 1.0 / std::max({1.0, reference->depth_ratio, best->depth_ratio});
+    constraints->push_back(constraint);
+    for (const uint32_t id : {ids[k], best->to}) ++(*usage)[id];
+    ++added;
+  }
+  return added;
+}
+
 std::vector<Constraint> BuildConstraints(const std::map<uint32_t, Eigen::Quaterniond>& rotations,
                                          const DirectionTable& directions,
                                          const std::vector<TranslationTrack>& tracks,
@@ -117,90 +188,31 @@ std::vector<Constraint> BuildConstraints(const std::map<uint32_t, Eigen::Quatern
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t x, size_t y) { return tracks[x].size() > tracks[y].size(); });
-  // Past max_num_tracks, a track is still used while one of its cameras has fewer than
-  // min_tracks_per_image tracks: a global cap alone gives the longest tracks, which cluster (slow
-  // stretches, revisits) and leave the rest of a long drive without any.
-  const auto wanted = [&](size_t track_index, const std::unordered_map<uint32_t, int>& tracks_of) {
-    if (*num_tracks_used < options.max_num_tracks) return true;
-    if (options.min_tracks_per_image <= 0) return false;
-    for (const TrackObservation& observation : tracks[track_index]) {
-      const auto found = tracks_of.find(observation.image_id);
-      if (found == tracks_of.end() || found->second < options.min_tracks_per_image) return true;
-    }
-    return false;
-  };
-  if (options.min_tracks_per_image <= 0 && static_cast<int>(order.size()) > options.max_num_tracks)
-    order.resize(options.max_num_tracks);
-
+  const bool quota = options.min_tracks_per_image > 0;
   std::vector<Constraint> constraints;
   std::unordered_map<uint32_t, int> usage;      // constraints per camera so far
   std::unordered_map<uint32_t, int> tracks_of;  // tracks per camera so far
+  // Past max_num_tracks, a track is still used while one of its cameras has fewer than
+  // min_tracks_per_image tracks: a global cap alone gives the longest tracks, which cluster (slow
+  // stretches, revisits) and leave the rest of a long drive without any.
+  const auto wanted = [&](const TranslationTrack& track) {
+    if (*num_tracks_used < options.max_num_tracks) return true;
+    return std::any_of(track.begin(), track.end(), [&](const TrackObservation& observation) {
+      const auto found = tracks_of.find(observation.image_id);
+      return found == tracks_of.end() || found->second < options.min_tracks_per_image;
+    });
+  };
   *num_tracks_used = 0;
   int num_tried = 0;
   for (const size_t track_index : order) {
-    // Without a quota, the first max_num_tracks tracks are tried, used or not (as before).
-    if (options.min_tracks_per_image <= 0 && num_tried++ >= options.max_num_tracks) break;
-    if (options.min_tracks_per_image > 0 && !wanted(track_index, tracks_of)) continue;
-    // Of a long track, use the cameras with the fewest constraints so far, so that every camera
-    // gets its share and none is left out by the cap.
-    std::vector<const TrackObservation*> usable;
-    for (const TrackObservation& observation : tracks[track_index]) {
-      if (rotations.count(observation.image_id) && observation.bearing.allFinite()) {
-        usable.push_back(&observation);
-      }
-    }
-    std::stable_sort(usable.begin(), usable.end(), [&](const auto* x, const auto* y) {
-      return usage[x->image_id] < usage[y->image_id];
-    });
+    // Without a quota, the first max_num_tracks tracks are tried, used or not.
+    if (!quota && num_tried++ >= options.max_num_tracks) break;
+    if (quota && !wanted(tracks[track_index])) continue;
     std::vector<uint32_t> ids;
     std::vector<Eigen::Vector3d> rays;
-    for (const TrackObservation* observation : usable) {
-      if (std::find(ids.begin(), ids.end(), observation->image_id) != ids.end()) continue;
-      ids.push_back(observation->image_id);
-      rays.push_back(
-          (rotations.at(observation->image_id).conjugate() * observation->bearing).normalized());
-      if (static_cast<int>(ids.size()) >= options.max_observations_per_track) break;
-    }
+    SelectTrackRays(tracks[track_index], rotations, options, &usage, &ids, &rays);
     if (ids.size() < 2) continue;
-    // Reference: the best-conditioned pair (widest ray angle).
-    std::optional<PointPrediction> reference;
-    size_t ref_a = 0;
-    for (size_t a = 0; a < ids.size(); ++a) {
-      for (size_t b = 0; b < ids.size(); ++b) {
-        if (a == b) continue;
-        const auto prediction =
-            PredictPoint(ids[a], ids[b], rays[a], rays[b], directions, min_angle);
-        if (prediction && (!reference || prediction->ray_angle > reference->ray_angle)) {
-          reference = prediction;
-          ref_a = a;
-        }
-      }
-    }
-    if (!reference) continue;
-    int added = 0;
-    for (size_t k = 0; k < ids.size(); ++k) {
-      if (k == ref_a) continue;
-      // Camera k predicts X from its best-conditioned pair with any other camera of the track
-      // (a sequence frame often has no verified pair with the reference cameras themselves).
-      std::optional<PointPrediction> best;
-      for (size_t partner = 0; partner < ids.size(); ++partner) {
-        if (partner == k) continue;
-        const auto prediction =
-            PredictPoint(ids[k], ids[partner], rays[k], rays[partner], directions, min_angle);
-        if (prediction && (!best || prediction->ray_angle > best->ray_angle)) best = prediction;
-      }
-      if (!best) continue;
-      Constraint constraint;
-      constraint.a = *reference;
-      constraint.b = *best;
-      // Residuals are point displacements; dividing by the depth ratio expresses them in baselines,
-      // so that far points do not dominate.
-      constraint.weight = 1.0 / std::max({1.0, reference->depth_ratio, best->depth_ratio});
-      constraints.push_back(constraint);
-      for (const uint32_t id : {ids[k], best->to}) ++usage[id];
-      ++added;
-    }
-    if (added == 0) continue;
+    if (AddTrackConstraints(ids, rays, directions, min_angle, &usage, &constraints) == 0) continue;
     ++*num_tracks_used;
     for (const uint32_t id : ids) ++tracks_of[id];
   }

@@ -39,6 +39,13 @@ nlohmann::json CamerasToJson(const std::vector<CameraIntrinsicsSummary>& summari
 
 }  // namespace
 
+// The frame and scale the models are written in, as summary.json states them.
+constexpr const char* kGauge =
+    "translation averaging: the first registered image of each component at the origin, mean "
+    "projected pair baseline 1; bundle adjustment (when run) holds the first image fixed; a "
+    "georegistered component is in the priors' metric frame instead (east-north-up about "
+    "geo_origin.txt when the priors are geodetic)";
+
 nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
   nlohmann::json json;
   json["num_images"] = summary.num_images;
@@ -52,11 +59,7 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
   json["num_loop_edges"] = summary.num_loop_edges;
   json["total_seconds"] = summary.total_seconds;
   json["peak_rss_mib"] = summary.peak_rss_mib;
-  json["gauge"] =
-      "translation averaging: the first registered image of each component at the origin, mean "
-      "projected pair baseline 1; bundle adjustment (when run) holds the first image fixed; "
-      "a georegistered component is in the priors' metric frame instead (east-north-up about "
-      "geo_origin.txt when the priors are geodetic)";
+  json["gauge"] = kGauge;
   for (const MapperStageTiming& timing : summary.timings)
     json["stage_seconds"][timing.stage] = timing.seconds;
   for (size_t k = 0; k < summary.components.size(); ++k) {

@@ -250,6 +250,24 @@ void CheckNonNegative(double value, const char* option) {
   }
 }
 
+// The view-distance, revisit and aliasing options of SyntheticSceneOptions::Check.
+void CheckViewAndAliasingOptions(const SyntheticSceneOptions& o) {
+  CheckNonNegative(o.max_view_distance, "max_view_distance");
+  if (o.loop_min_frame_gap < 0) throw InputError("Synthetic.loop_min_frame_gap", "must be >= 0");
+  if (o.num_aliased_pairs < 0) throw InputError("Synthetic.num_aliased_pairs", "must be >= 0");
+  if (!(o.aliased_pair_ratio >= 0.0 && o.aliased_pair_ratio <= 1.0)) {
+    throw InputError("Synthetic.aliased_pair_ratio", "must be in [0, 1]");
+  }
+  if (!(o.aliased_min_angle_deg >= 0.0 && o.aliased_min_angle_deg <= o.aliased_max_angle_deg &&
+        o.aliased_max_angle_deg <= 180.0)) {
+    throw InputError("Synthetic.aliased_min_angle_deg",
+                     "must satisfy 0 <= aliased_min_angle_deg <= aliased_max_angle_deg <= 180");
+  }
+  if (o.num_aliased_pair_matches < 8) {
+    throw InputError("Synthetic.num_aliased_pair_matches", "must be at least 8");
+  }
+}
+
 }  // namespace
 
 Camera SyntheticSceneOptions::DefaultCamera() {
@@ -325,20 +343,7 @@ void SyntheticSceneOptions::Check() const {
     throw InputError("Synthetic.overlap", "must be at least 1, got " + std::to_string(overlap));
   }
   CheckNonNegative(loop_max_distance, "loop_max_distance");
-  CheckNonNegative(max_view_distance, "max_view_distance");
-  if (loop_min_frame_gap < 0) throw InputError("Synthetic.loop_min_frame_gap", "must be >= 0");
-  if (num_aliased_pairs < 0) throw InputError("Synthetic.num_aliased_pairs", "must be >= 0");
-  if (!(aliased_pair_ratio >= 0.0 && aliased_pair_ratio <= 1.0)) {
-    throw InputError("Synthetic.aliased_pair_ratio", "must be in [0, 1]");
-  }
-  if (!(aliased_min_angle_deg >= 0.0 && aliased_min_angle_deg <= aliased_max_angle_deg &&
-        aliased_max_angle_deg <= 180.0)) {
-    throw InputError("Synthetic.aliased_min_angle_deg",
-                     "must satisfy 0 <= aliased_min_angle_deg <= aliased_max_angle_deg <= 180");
-  }
-  if (num_aliased_pair_matches < 8) {
-    throw InputError("Synthetic.num_aliased_pair_matches", "must be at least 8");
-  }
+  CheckViewAndAliasingOptions(*this);
   CheckNonNegative(loop_max_angle_deg, "loop_max_angle_deg");
   if (min_shared_points < 1) {
     throw InputError("Synthetic.min_shared_points", "must be at least 1");

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <random>
 #include <set>
 #include <string>
@@ -555,6 +556,15 @@ std::set<std::pair<size_t, size_t>> AddMatchedPairs(
   return matched_pairs;
 }
 
+// Two random images (indices), the smaller first; none when both draws are the same image.
+std::optional<std::pair<size_t, size_t>> RandomImagePair(size_t num_images, Rng& rng) {
+  std::uniform_int_distribution<size_t> random_image(0, num_images - 1);
+  const size_t i = random_image(rng);
+  const size_t k = random_image(rng);
+  if (i == k) return std::nullopt;
+  return std::make_pair(std::min(i, k), std::max(i, k));
+}
+
 // Whole outlier pairs: random pairs not matched yet, with random matches and a random pose.
 void AddOutlierPairs(const SyntheticSceneOptions& options, size_t num_images, Rng& rng,
                      std::set<std::pair<size_t, size_t>>* matched_pairs, SceneObservations* seen,
@@ -562,17 +572,14 @@ void AddOutlierPairs(const SyntheticSceneOptions& options, size_t num_images, Rn
   FeatureDatabase& database = scene->database;
   const size_t max_pairs = num_images * (num_images - 1) / 2;
   const size_t max_attempts = 100 * static_cast<size_t>(options.num_outlier_pairs) + 100;
-  std::uniform_int_distribution<size_t> random_image(0, num_images - 1);
   for (size_t attempt = 0;
        attempt < max_attempts &&
        scene->outlier_pair_ids.size() < static_cast<size_t>(options.num_outlier_pairs) &&
        matched_pairs->size() < max_pairs;
        ++attempt) {
-    size_t i = random_image(rng);
-    size_t k = random_image(rng);
-    if (i == k) continue;
-    if (i > k) std::swap(i, k);
-    if (!matched_pairs->insert({i, k}).second) continue;
+    const std::optional<std::pair<size_t, size_t>> drawn = RandomImagePair(num_images, rng);
+    if (!drawn || !matched_pairs->insert(*drawn).second) continue;
+    const auto [i, k] = *drawn;
     const uint32_t image_id1 = static_cast<uint32_t>(i + 1);
     const uint32_t image_id2 = static_cast<uint32_t>(k + 1);
     const uint64_t pair_id = ImagePairToPairId(image_id1, image_id2);
@@ -605,16 +612,13 @@ void AddAliasedPairs(const SyntheticSceneOptions& options, const std::vector<Rig
       options.num_aliased_pairs,
       static_cast<size_t>(std::lround(options.aliased_pair_ratio * matched_pairs->size())));
   const size_t max_pairs = num_images * (num_images - 1) / 2;
-  std::uniform_int_distribution<size_t> random_image(0, num_images - 1);
   for (size_t attempt = 0;
        attempt < 100 * wanted + 100 && scene->aliased_pair_ids.size() < wanted &&
        matched_pairs->size() < max_pairs;
        ++attempt) {
-    size_t i = random_image(rng);
-    size_t k = random_image(rng);
-    if (i == k) continue;
-    if (i > k) std::swap(i, k);
-    if (matched_pairs->count({i, k})) continue;
+    const std::optional<std::pair<size_t, size_t>> drawn = RandomImagePair(num_images, rng);
+    if (!drawn || matched_pairs->count(*drawn)) continue;
+    const auto [i, k] = *drawn;
     const double angle =
         Uniform(rng, options.aliased_min_angle_deg, options.aliased_max_angle_deg) * kDegToRad;
     const Rigid3d truth = poses[k] * poses[i].Inverse();

@@ -68,8 +68,7 @@ std::optional<Reconstruction> ReconstructComponent(const MapperContext& context,
 
   // 6. Optionally, bundle adjustment and triangulation again.
   if (options.refine) {
-    RefineComponent(context, translations->tracks, georegistered, &georegistration, &component,
-                    &reconstruction);
+    RefineComponent(context, translations->tracks, &georegistration, &component, &reconstruction);
   }
   // Reported with the errors of the final model, as in the component's summary.
   if (georegistered) ReportPriorErrors(context, reconstruction, &georegistration);

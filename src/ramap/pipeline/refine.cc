@@ -11,11 +11,12 @@
 namespace ramap {
 
 void RefineComponent(const MapperContext& context, const std::vector<Track>& tracks,
-                     bool georegistered, PriorAlignment* georegistration,
-                     MapperComponentSummary* component, Reconstruction* reconstruction) {
+                     PriorAlignment* georegistration, MapperComponentSummary* component,
+                     Reconstruction* reconstruction) {
   const MapperOptions& options = context.options;
   Reconstruction adjusted = PointsForBundleAdjustment(*reconstruction, options.bundle_adjustment);
-  const bool use_priors = georegistered && options.georegistration.use_in_bundle_adjustment;
+  const bool use_priors =
+      georegistration->summary.georegistered && options.georegistration.use_in_bundle_adjustment;
   component->bundle_adjustment =
       BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, &adjusted,
                    options.bundle_adjustment,

@@ -16,7 +16,7 @@ namespace ramap {
 // the refined poses into `reconstruction`, through the refined intrinsics when BA refined them
 // (they change every bearing of the component's images).
 void RefineComponent(const MapperContext& context, const std::vector<Track>& tracks,
-                     bool georegistered, PriorAlignment* georegistration,
-                     MapperComponentSummary* component, Reconstruction* reconstruction);
+                     PriorAlignment* georegistration, MapperComponentSummary* component,
+                     Reconstruction* reconstruction);
 
 }  // namespace ramap

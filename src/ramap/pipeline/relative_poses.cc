@@ -54,6 +54,8 @@ std::vector<ImagePair> EstimateRelativePoses(const FeatureDatabase& database,
         pair.inlier_matches.reserve(pair.estimate.inliers.size());
         for (const int inlier : pair.estimate.inliers)
           pair.inlier_matches.push_back(matches[inlier]);
+        // Its indices point into the correspondences released here: inlier_matches replace them.
+        std::vector<int>().swap(pair.estimate.inliers);
       },
       progress, stage::kRelativePoses, "pairs");
   return pairs;

@@ -86,7 +86,9 @@ struct ImagePair {
   uint32_t image_id1 = 0;  // image_id1 < image_id2, as in the database
   uint32_t image_id2 = 0;
   int num_verified_matches = 0;
-  RelativePoseEstimate estimate;  // cam2_from_cam1; estimate.success may be false
+  // cam2_from_cam1; estimate.success may be false. Its `inliers` (indices into correspondences
+  // that are not kept) are empty: inlier_matches hold them.
+  RelativePoseEstimate estimate;
   // The matches the estimate explains, as keypoint pairs; the later stages read their bearings.
   // (A pair's correspondences, bearings and pixels of every match, are not kept: at 100 bytes
   // per match they were most of the mapper's memory on long drives.)

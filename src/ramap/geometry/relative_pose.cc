@@ -1,7 +1,5 @@
 #include "ramap/geometry/relative_pose.h"
 
-#include <ceres/ceres.h>
-
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
@@ -16,6 +14,7 @@
 #include <optional>
 #include <sstream>
 
+#include "ramap/geometry/epipolar_refinement.h"
 #include "ramap/geometry/rotation.h"
 #include "ramap/util/error.h"
 
@@ -66,59 +65,6 @@ double GreatCircleSpread(const std::vector<Eigen::Vector3d>& f) {
   for (const auto& v : f) scatter += v * v.transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter / static_cast<double>(f.size()));
   return std::sqrt(std::max(0.0, eig.eigenvalues()(0)));
-}
-
-// Kneip & Lynen's objective as a least-squares problem: for unit t, sum_k (t . (R f1 x f2))^2;
-// minimising over t gives the smallest eigenvalue of M(R), so the joint minimum over (R, t) is
-// the eigenvalue objective's minimum.
-struct EpipolarAlgebraicCost {
-  EpipolarAlgebraicCost(const Eigen::Vector3d& f1, const Eigen::Vector3d& f2) : f1(f1), f2(f2) {}
-  template <typename T>
-  bool operator()(const T* q, const T* t, T* residual) const {
-    const Eigen::Quaternion<T> rotation(q[3], q[0], q[1], q[2]);
-    const Eigen::Matrix<T, 3, 1> rf1 = rotation.toRotationMatrix() * f1.cast<T>();
-    const Eigen::Matrix<T, 3, 1> n = rf1.cross(f2.cast<T>());
-    residual[0] = n(0) * t[0] + n(1) * t[1] + n(2) * t[2];
-    return true;
-  }
-  Eigen::Vector3d f1, f2;
-};
-
-// Refines (R, t) on `indices`; returns false when the solver produced nothing usable.
-bool RefineOnInliers(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen::Vector3d>& f2,
-                     const std::vector<int>& indices, Eigen::Matrix3d* R, Eigen::Vector3d* t) {
-  Eigen::Quaterniond q(*R);
-  q.normalize();
-  double q_data[4] = {q.x(), q.y(), q.z(), q.w()};
-  double t_data[3] = {(*t)(0), (*t)(1), (*t)(2)};
-  ceres::Problem problem;
-  for (int k : indices) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<EpipolarAlgebraicCost, 1, 4, 3>(
-                                 new EpipolarAlgebraicCost(f1[k], f2[k])),
-                             nullptr, q_data, t_data);
-  }
-  problem.SetManifold(q_data, new ceres::EigenQuaternionManifold);
-  problem.SetManifold(t_data, new ceres::SphereManifold<3>);
-  ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = ceres::DENSE_QR;
-  solver_options.max_num_iterations = 50;
-  // Noise-free pairs have a zero-residual minimum that Gauss-Newton approaches quadratically, so
-  // these tolerances still reach it; on real pairs they stop once the cost no longer moves.
-  solver_options.function_tolerance = 1e-12;
-  solver_options.gradient_tolerance = 1e-16;
-  solver_options.parameter_tolerance = 1e-12;
-  solver_options.num_threads = 1;
-  solver_options.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver_options, &problem, &summary);
-  const Eigen::Quaterniond refined(q_data[3], q_data[0], q_data[1], q_data[2]);
-  const Eigen::Vector3d refined_t(t_data[0], t_data[1], t_data[2]);
-  if (!refined.coeffs().allFinite() || !refined_t.allFinite() || refined_t.norm() < 0.5) {
-    return false;
-  }
-  *R = refined.normalized().toRotationMatrix();
-  *t = refined_t.normalized();
-  return true;
 }
 
 // Matches on which the rotation candidates of the six-point solvers are ranked.
@@ -573,7 +519,7 @@ std::optional<RelativePoseEstimate> RefineUntilStable(const Bearings& f1, const 
                                                       Eigen::Vector3d* t) {
   constexpr int kMaxRefineRounds = 4;
   for (int round = 0;; ++round) {
-    if (!RefineOnInliers(f1, f2, EvenSubset(*inliers, options.max_refinement_matches), R, t)) {
+    if (!RefineEpipolarPose(f1, f2, EvenSubset(*inliers, options.max_refinement_matches), R, t)) {
       return Reject(Rejection::kRefinementDiverged, "refinement diverged");
     }
     if (round + 1 == kMaxRefineRounds) break;

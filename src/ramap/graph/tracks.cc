@@ -1,62 +1,109 @@
 #include "ramap/graph/tracks.h"
 
 #include <algorithm>
-#include <unordered_map>
+#include <limits>
+#include <stdexcept>
 
 namespace ramap {
 namespace {
 
-uint64_t Key(uint32_t image_id, uint32_t point2D_idx) {
-  return (static_cast<uint64_t>(image_id) << 32) | point2D_idx;
-}
-
+// Union-find over dense indices; the root of a set is its smallest index, so the result does not
+// depend on the order of the unions.
 class DisjointSets {
  public:
-  uint64_t Find(uint64_t x) {
-    auto [it, inserted] = parent_.try_emplace(x, x);
-    if (inserted || it->second == x) return x;
-    const uint64_t root = Find(it->second);
-    parent_[x] = root;
-    return root;
+  explicit DisjointSets(size_t size) : parent_(size) {
+    for (size_t k = 0; k < size; ++k) parent_[k] = static_cast<uint32_t>(k);
   }
-  void Union(uint64_t a, uint64_t b) {
-    const uint64_t ra = Find(a), rb = Find(b);
+  uint32_t Find(uint32_t x) {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];  // path halving
+      x = parent_[x];
+    }
+    return x;
+  }
+  void Union(uint32_t a, uint32_t b) {
+    const uint32_t ra = Find(a), rb = Find(b);
     if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
   }
-  const std::unordered_map<uint64_t, uint64_t>& elements() const { return parent_; }
 
  private:
-  std::unordered_map<uint64_t, uint64_t> parent_;
+  std::vector<uint32_t> parent_;
 };
+
+// Dense numbering of the (image, keypoint) observations the matches mention: each image's keypoint
+// indices up to the largest matched one, images in increasing id.
+struct ObservationIndex {
+  std::map<uint32_t, uint32_t> offset;  // image id -> first dense index
+  std::map<uint32_t, uint32_t> size;    // image id -> 1 + largest matched keypoint index
+  uint32_t total = 0;
+
+  uint32_t Of(uint32_t image_id, uint32_t point2D_idx) const {
+    return offset.at(image_id) + point2D_idx;
+  }
+};
+
+template <typename UsePair>
+ObservationIndex IndexObservations(const std::map<uint64_t, TwoViewGeometry>& geometries,
+                                   const UsePair& use) {
+  ObservationIndex index;
+  for (const auto& [pair_id, geometry] : geometries) {
+    if (!use(pair_id)) continue;
+    uint32_t& size1 = index.size[geometry.image_id1];
+    uint32_t& size2 = index.size[geometry.image_id2];
+    for (const FeatureMatch& match : geometry.inlier_matches) {
+      size1 = std::max(size1, match.point2D_idx1 + 1);
+      size2 = std::max(size2, match.point2D_idx2 + 1);
+    }
+  }
+  uint64_t total = 0;
+  for (const auto& [image_id, size] : index.size) {
+    index.offset[image_id] = static_cast<uint32_t>(total);
+    total += size;
+  }
+  if (total >= std::numeric_limits<uint32_t>::max()) {
+    throw std::length_error("BuildTracks: more than 4 billion matched keypoints");
+  }
+  index.total = static_cast<uint32_t>(total);
+  return index;
+}
 
 }  // namespace
 
 std::vector<Track> BuildTracks(const std::map<uint64_t, TwoViewGeometry>& geometries,
                                const std::set<uint64_t>& use_pairs,
                                const TrackBuildOptions& options, TrackBuildSummary* summary) {
-  DisjointSets sets;
+  const auto use = [&](uint64_t pair_id) { return use_pairs.empty() || use_pairs.count(pair_id); };
+  const ObservationIndex index = IndexObservations(geometries, use);
+  DisjointSets sets(index.total);
+  std::vector<bool> matched(index.total, false);
   for (const auto& [pair_id, geometry] : geometries) {
-    if (!use_pairs.empty() && !use_pairs.count(pair_id)) continue;
+    if (!use(pair_id)) continue;
+    const uint32_t offset1 = index.offset.at(geometry.image_id1);
+    const uint32_t offset2 = index.offset.at(geometry.image_id2);
     for (const FeatureMatch& match : geometry.inlier_matches) {
-      sets.Union(Key(geometry.image_id1, match.point2D_idx1),
-                 Key(geometry.image_id2, match.point2D_idx2));
+      matched[offset1 + match.point2D_idx1] = matched[offset2 + match.point2D_idx2] = true;
+      sets.Union(offset1 + match.point2D_idx1, offset2 + match.point2D_idx2);
     }
   }
-  std::unordered_map<uint64_t, Track> by_root;
-  std::vector<uint64_t> keys;
-  keys.reserve(sets.elements().size());
-  for (const auto& [key, parent] : sets.elements()) keys.push_back(key);
-  for (const uint64_t key : keys) {
-    by_root[sets.Find(key)].push_back(
-        {static_cast<uint32_t>(key >> 32), static_cast<uint32_t>(key & 0xffffffffu)});
+  // Elements in increasing (image id, keypoint index): each track comes out sorted.
+  std::vector<Track> by_root;
+  std::vector<int> track_of_root(index.total, -1);
+  for (const auto& [image_id, size] : index.size) {
+    const uint32_t offset = index.offset.at(image_id);
+    for (uint32_t point2D_idx = 0; point2D_idx < size; ++point2D_idx) {
+      if (!matched[offset + point2D_idx]) continue;
+      int& track = track_of_root[sets.Find(offset + point2D_idx)];
+      if (track < 0) {
+        track = static_cast<int>(by_root.size());
+        by_root.emplace_back();
+      }
+      by_root[track].push_back({image_id, point2D_idx});
+    }
   }
 
   TrackBuildSummary counts;
   std::vector<Track> tracks;
-  for (auto& [root, track] : by_root) {
-    std::sort(track.begin(), track.end(), [](const TrackElement& a, const TrackElement& b) {
-      return a.image_id != b.image_id ? a.image_id < b.image_id : a.point2D_idx < b.point2D_idx;
-    });
+  for (Track& track : by_root) {
     const bool conflict = std::adjacent_find(track.begin(), track.end(),
                                              [](const TrackElement& a, const TrackElement& b) {
                                                return a.image_id == b.image_id;
@@ -69,10 +116,7 @@ std::vector<Track> BuildTracks(const std::map<uint64_t, TwoViewGeometry>& geomet
       tracks.push_back(std::move(track));
     }
   }
-  std::sort(tracks.begin(), tracks.end(), [](const Track& a, const Track& b) {
-    return std::make_pair(a[0].image_id, a[0].point2D_idx) <
-           std::make_pair(b[0].image_id, b[0].point2D_idx);
-  });
+  // Tracks were created in the order of their first element already.
   counts.num_tracks = static_cast<int>(tracks.size());
   if (summary != nullptr) *summary = counts;
   return tracks;

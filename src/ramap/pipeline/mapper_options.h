@@ -49,7 +49,7 @@ struct MapperOptions {
   // Components with fewer images are not written (COLMAP's Mapper.min_model_size is 10; ramap
   // writes smaller ones too because small data sets are common among its users).
   int min_component_size = 3;
-  // Threads for the per-pair relative pose estimation.
+  // Threads for the per-pair stages: relative poses and, after rotation averaging, pair directions.
   int num_threads = 2;
 
   void Check() const;

@@ -6,35 +6,46 @@
 #include "ramap/pipeline/mapper_options.h"
 #include "ramap/pipeline/mapper_summary.h"
 #include "ramap/util/error.h"
+#include "ramap/util/parallel.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
 namespace {
 
 // The direction of every edge rotation averaging kept between two rotated images (pure rotations
-// aside), from its inlier bearings and the averaged rotations; `kept_pairs` gets every kept pair.
+// aside), from its inlier bearings and the averaged rotations, on the mapper's threads;
+// `kept_pairs` gets every kept pair.
 std::vector<PairDirection> KeptPairDirections(
     const MapperContext& context, const RotationGraph& graph,
     const std::vector<EdgeStatus>& edge_status,
     const std::map<uint32_t, Eigen::Quaterniond>& world_rotations, std::set<uint64_t>* kept_pairs) {
-  std::vector<PairDirection> directions;
+  std::vector<const ImagePair*> kept;
   for (size_t e = 0; e < graph.edges.size(); ++e) {
     if (edge_status[e] != EdgeStatus::kKept) continue;
     const ImagePair& pair = context.pairs[graph.edges[e].pair_index];
     if (!world_rotations.count(pair.image_id1) || !world_rotations.count(pair.image_id2)) continue;
     kept_pairs->insert(ImagePairToPairId(pair.image_id1, pair.image_id2));
-    if (pair.estimate.flags & kRelativePosePureRotation) continue;
+    if (!(pair.estimate.flags & kRelativePosePureRotation)) kept.push_back(&pair);
+  }
+  std::vector<std::optional<Eigen::Vector3d>> found(kept.size());
+  ParallelFor(kept.size(), context.options.num_threads, [&](size_t k) {
+    const ImagePair& pair = *kept[k];
     std::vector<Eigen::Vector3d> f1, f2;
+    f1.reserve(pair.inlier_matches.size());
+    f2.reserve(pair.inlier_matches.size());
     const std::vector<Eigen::Vector3d>& bearings1 = context.bearings.bearings.at(pair.image_id1);
     const std::vector<Eigen::Vector3d>& bearings2 = context.bearings.bearings.at(pair.image_id2);
     for (const FeatureMatch& match : pair.inlier_matches) {
       f1.push_back(bearings1[match.point2D_idx1]);
       f2.push_back(bearings2[match.point2D_idx2]);
     }
-    const std::optional<Eigen::Vector3d> direction = EstimatePairDirection(
-        world_rotations.at(pair.image_id1), world_rotations.at(pair.image_id2), f1, f2,
-        context.options.pair_direction);
-    if (direction) directions.push_back({pair.image_id1, pair.image_id2, *direction});
+    found[k] = EstimatePairDirection(world_rotations.at(pair.image_id1),
+                                     world_rotations.at(pair.image_id2), f1, f2,
+                                     context.options.pair_direction);
+  });
+  std::vector<PairDirection> directions;
+  for (size_t k = 0; k < kept.size(); ++k) {
+    if (found[k]) directions.push_back({kept[k]->image_id1, kept[k]->image_id2, *found[k]});
   }
   return directions;
 }

@@ -57,7 +57,8 @@ TEST(EpipolarRefinement, NoiseFreeBearingsReachTheTruePoseFromAFewDegreesAway) {
   const BearingPair pair = MakeBearings(kTrueRotation, kTrueTranslation, 100, 0.0, 1);
   Eigen::Matrix3d R =
       kTrueRotation * Eigen::AngleAxisd(0.05, Eigen::Vector3d(1, -1, 2).normalized());
-  Eigen::Vector3d t = (kTrueTranslation.normalized() + Eigen::Vector3d(0, 0.05, -0.05)).normalized();
+  Eigen::Vector3d t =
+      (kTrueTranslation.normalized() + Eigen::Vector3d(0, 0.05, -0.05)).normalized();
   ASSERT_GT(AngleDeg(R, kTrueRotation), 2.5);
   ASSERT_TRUE(RefineEpipolarPose(pair.f1, pair.f2, pair.all, &R, &t));
   EXPECT_LT(AngleDeg(R, kTrueRotation), 1e-6);

@@ -42,11 +42,10 @@ Linearization Linearize(const std::vector<Eigen::Vector3d>& f1,
     Vector5d J;
     J.head<3>() = f1[k].cross(Rt * f2[k].cross(t));
     J.tail<2>() = basis.transpose() * n;
-    lin.normal.selfadjointView<Eigen::Lower>().rankUpdate(J);
+    lin.normal.noalias() += J * J.transpose();
     lin.gradient += r * J;
     lin.cost += r * r;
   }
-  lin.normal = lin.normal.selfadjointView<Eigen::Lower>();
   return lin;
 }
 
@@ -74,8 +73,7 @@ bool RefineEpipolarPose(const std::vector<Eigen::Vector3d>& bearings1,
     const Eigen::Matrix3d candidate_rotation =
         angle > 0 ? Eigen::Matrix3d(rotation * Eigen::AngleAxisd(angle, rotation_step / angle))
                   : rotation;
-    const Eigen::Vector3d candidate_direction =
-        (direction + basis * step.tail<2>()).normalized();
+    const Eigen::Vector3d candidate_direction = (direction + basis * step.tail<2>()).normalized();
     const Eigen::Matrix<double, 3, 2> candidate_basis = TangentBasis(candidate_direction);
     Linearization candidate = Linearize(bearings1, bearings2, indices, candidate_rotation,
                                         candidate_direction, candidate_basis);

@@ -87,14 +87,15 @@ int CountInFront(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen
                  const Eigen::Vector3d& t) {
   int count = 0;
   for (int k : indices) {
-    // d1 R f1 + t = d2 f2 in least squares.
-    Eigen::Matrix<double, 3, 2> A;
-    A.col(0) = R * f1[k];
-    A.col(1) = -f2[k];
-    const Eigen::Matrix2d AtA = A.transpose() * A;
-    if (std::abs(AtA.determinant()) < 1e-14) continue;  // ray parallel to the baseline
-    const Eigen::Vector2d d = AtA.ldlt().solve(-A.transpose() * t);
-    if (d(0) > 0 && d(1) > 0) ++count;
+    // d1 R f1 + t = d2 f2 in least squares: the 2 x 2 normal equations [p -c; -c q] d =
+    // (-a, b) solved by Cramer's rule; only the signs of the depths matter.
+    const Eigen::Vector3d rf1 = R * f1[k];
+    const double p = rf1.squaredNorm(), q = f2[k].squaredNorm(), c = rf1.dot(f2[k]);
+    const double a = rf1.dot(t), b = f2[k].dot(t);
+    const double det = p * q - c * c;
+    if (std::abs(det) < 1e-14) continue;  // ray parallel to the baseline
+    const double depth1 = (c * b - q * a) / det, depth2 = (p * b - c * a) / det;
+    if (depth1 > 0 && depth2 > 0) ++count;
   }
   return count;
 }
@@ -264,6 +265,20 @@ void RelativePoseOptions::Check() const {
   }
 }
 
+namespace {
+
+// asin(s) for s in [0, 1]. Epipolar errors are mostly below 0.01 rad, where four terms of the
+// series s + s^3/6 + 3 s^5/40 + 15 s^7/336 are exact to double precision (the next term is below
+// 1e-17 of s) and cost a fraction of the library call, which was a twentieth of the mapper's time
+// on long drives.
+double SmallAsin(double s) {
+  if (s >= 0.01) return std::asin(s);
+  const double s2 = s * s;
+  return s * (1.0 + s2 * (1.0 / 6.0 + s2 * (3.0 / 40.0 + s2 * (15.0 / 336.0))));
+}
+
+}  // namespace
+
 double EpipolarError(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const Eigen::Vector3d& f1,
                      const Eigen::Vector3d& f2) {
   const Eigen::Vector3d rf1 = R * f1;
@@ -273,7 +288,7 @@ double EpipolarError(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const E
   const double d1 = std::max(t.cross(rf1).norm(), 1e-12);
   const double d2 = std::max(t.cross(f2).norm(), 1e-12);
   const double s2 = std::min(1.0, algebraic / d1), s1 = std::min(1.0, algebraic / d2);
-  return 0.5 * (std::asin(s1) + std::asin(s2));
+  return 0.5 * (SmallAsin(s1) + SmallAsin(s2));
 }
 
 Eigen::Vector3d TranslationFromRotation(const std::vector<Eigen::Vector3d>& bearings1,

@@ -89,6 +89,9 @@ void AddTranslationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptio
   app.add_option("--TranslationAveraging.max_irls_iterations", ta.max_irls_iterations)
       ->capture_default_str()
       ->check(AtLeast(0));
+  app.add_option("--TranslationAveraging.irls_cost_tolerance", ta.irls_cost_tolerance,
+                 "stop IRLS when a step lowers its objective by less (0: off)")
+      ->capture_default_str();
   app.add_option("--TranslationAveraging.max_admm_iterations", ta.max_admm_iterations)
       ->capture_default_str()
       ->check(AtLeast(0));

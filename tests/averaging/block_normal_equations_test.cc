@@ -1,4 +1,4 @@
-// BlockNormalEquations against a direct computation of B^T W B, with and without held columns.
+// BlockNormalEquations against direct dense solutions, with the eliminated column free and held.
 #include "ramap/averaging/block_normal_equations.h"
 
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 namespace ramap {
 namespace {
 
-// 4 blocks of 3 rows over 5 columns; column 4 appears in the last block only (holdable).
+// 4 blocks of 3 rows over 5 columns; column 4 appears in the last block only (eliminable).
 Eigen::SparseMatrix<double> MakeMatrix() {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> value(-1, 1);
@@ -23,32 +23,55 @@ Eigen::SparseMatrix<double> MakeMatrix() {
   return dense.sparseView();
 }
 
-TEST(BlockNormalEquations, MatchesTheDirectProduct) {
+Eigen::VectorXd RowWeights(const Eigen::Vector4d& weights) {
+  Eigen::VectorXd row_weights(12);
+  for (int b = 0; b < 4; ++b) row_weights.segment<3>(3 * b).setConstant(weights(b));
+  return row_weights;
+}
+
+// The reduced solution of the assembled equations, expanded to all five columns.
+Eigen::VectorXd SolveAssembled(const BlockNormalEquations& equations,
+                               const Eigen::Vector4d& weights, bool held, double value) {
+  Eigen::SparseMatrix<double> normal;
+  Eigen::VectorXd rhs;
+  equations.Assemble(weights, {held}, {value}, &normal, &rhs);
+  const Eigen::MatrixXd lower = Eigen::MatrixXd(normal).triangularView<Eigen::Lower>();
+  EXPECT_EQ(lower.rows(), 4);  // column 4 eliminated
+  const Eigen::MatrixXd full =
+      lower + lower.transpose() - Eigen::MatrixXd(lower.diagonal().asDiagonal());
+  return equations.Expand(full.ldlt().solve(rhs), {held}, {value});
+}
+
+TEST(BlockNormalEquations, FreeColumnIsEliminatedByTheSchurComplementOfTheDirectProduct) {
   const Eigen::SparseMatrix<double> B = MakeMatrix();
   const BlockNormalEquations equations(B, {4});
   const Eigen::Vector4d weights(0.5, 2.0, 1.0, 3.0);
   Eigen::SparseMatrix<double> normal;
   Eigen::VectorXd rhs;
-  equations.Assemble(weights, {false}, {1.0}, &normal, &rhs);
-  Eigen::VectorXd row_weights(12);
-  for (int b = 0; b < 4; ++b) row_weights.segment<3>(3 * b).setConstant(weights(b));
-  const Eigen::MatrixXd expected =
-      Eigen::MatrixXd(B).transpose() * row_weights.asDiagonal() * Eigen::MatrixXd(B);
+  equations.Assemble(weights, {false}, {0.0}, &normal, &rhs);
+  // N = B^T W B; eliminating column 4: N_kk - N_k4 N_4k / N_44 over columns 0-3.
+  const Eigen::MatrixXd N =
+      Eigen::MatrixXd(B).transpose() * RowWeights(weights).asDiagonal() * Eigen::MatrixXd(B);
+  const Eigen::MatrixXd schur =
+      N.topLeftCorner(4, 4) - N.col(4).head(4) * N.row(4).head(4) / N(4, 4);
   const Eigen::MatrixXd lower = Eigen::MatrixXd(normal).triangularView<Eigen::Lower>();
-  EXPECT_LT((lower - Eigen::MatrixXd(expected.triangularView<Eigen::Lower>())).norm(), 1e-12);
+  ASSERT_EQ(lower.rows(), 4);
+  EXPECT_LT((lower - Eigen::MatrixXd(schur.triangularView<Eigen::Lower>())).norm(), 1e-12);
   EXPECT_LT(rhs.norm(), 1e-15);
+  // Expand puts column 4 at its minimiser given the others: -N_4k u / N_44.
+  const Eigen::Vector4d kept(0.3, -1.0, 2.0, 0.7);
+  const Eigen::VectorXd full = equations.Expand(kept, {false}, {0.0});
+  EXPECT_NEAR(full(4), -N.row(4).head(4).dot(kept) / N(4, 4), 1e-12);
+  EXPECT_EQ(full.head(4), Eigen::VectorXd(kept));
 }
 
 TEST(BlockNormalEquations, HeldColumnMovesToTheRightHandSide) {
   const Eigen::SparseMatrix<double> B = MakeMatrix();
   const BlockNormalEquations equations(B, {4});
   const Eigen::Vector4d weights(1.0, 1.0, 2.0, 0.5);
-  Eigen::SparseMatrix<double> normal;
-  Eigen::VectorXd rhs;
-  equations.Assemble(weights, {true}, {2.5}, &normal, &rhs);
+  const Eigen::VectorXd solution = SolveAssembled(equations, weights, true, 2.5);
   // Direct: minimise sum_b w_b |B_b (v_free, 2.5)|^2 over the first four columns.
-  Eigen::VectorXd row_weights(12);
-  for (int b = 0; b < 4; ++b) row_weights.segment<3>(3 * b).setConstant(weights(b));
+  const Eigen::VectorXd row_weights = RowWeights(weights);
   const Eigen::MatrixXd dense(B);
   const Eigen::MatrixXd free = dense.leftCols(4);
   const Eigen::VectorXd offset = dense.col(4) * 2.5;
@@ -56,12 +79,12 @@ TEST(BlockNormalEquations, HeldColumnMovesToTheRightHandSide) {
       (free.transpose() * row_weights.asDiagonal() * free)
           .ldlt()
           .solve(-free.transpose() * row_weights.asDiagonal() * offset);
-  const Eigen::MatrixXd lower = Eigen::MatrixXd(normal).triangularView<Eigen::Lower>();
-  const Eigen::MatrixXd full =
-      lower + lower.transpose() - Eigen::MatrixXd(lower.diagonal().asDiagonal());
-  const Eigen::VectorXd solution = full.ldlt().solve(rhs);
   EXPECT_NEAR(solution(4), 2.5, 1e-12);
   EXPECT_LT((solution.head(4) - expected_free).norm(), 1e-10);
+}
+
+TEST(BlockNormalEquations, AColumnInTwoBlocksCannotBeEliminated) {
+  EXPECT_THROW(BlockNormalEquations(MakeMatrix(), {3}), std::invalid_argument);
 }
 
 }  // namespace

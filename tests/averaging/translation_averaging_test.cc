@@ -142,6 +142,34 @@ TEST(TranslationAveraging, AccurateWithNoiseAndRobustToWrongDirections) {
   EXPECT_LT(RelativeCenterError(scene, result), 0.02);
 }
 
+TEST(TranslationAveraging, CostToleranceStopsEarlierButStillReachesExactSolutions) {
+  // Noisy ring: the objective settles well before the positions stop moving.
+  std::mt19937 rng(3);
+  const Scene scene = Ring(30, 600, rng);
+  std::vector<TranslationTrack> tracks;
+  std::vector<PairDirection> directions;
+  Observe(scene, 0.1 * M_PI / 180, rng, &tracks, &directions);
+  TranslationAveragingOptions options;
+  options.irls_cost_tolerance = 0;
+  const TranslationAveragingResult full =
+      AverageTranslations(scene.rotations, directions, tracks, options);
+  options.irls_cost_tolerance = 1e-3;
+  const TranslationAveragingResult early =
+      AverageTranslations(scene.rotations, directions, tracks, options);
+  EXPECT_LT(early.num_solver_iterations, full.num_solver_iterations);
+  EXPECT_LT(RelativeCenterError(scene, early), 0.01);
+  // Exact data: the objective's excess over its floor vanishes, so the steps go on to the exact
+  // solution instead of stopping when the objective is already small.
+  std::mt19937 exact_rng(1);
+  const Scene line = ForwardLine(20, 400, exact_rng);
+  std::vector<TranslationTrack> exact_tracks;
+  std::vector<PairDirection> exact_directions;
+  Observe(line, 0.0, exact_rng, &exact_tracks, &exact_directions);
+  const TranslationAveragingResult exact =
+      AverageTranslations(line.rotations, exact_directions, exact_tracks, options);
+  EXPECT_LT(RelativeCenterError(line, exact), 1e-6);
+}
+
 TEST(TranslationAveraging, PerImageQuotaGivesEveryCameraTracksPastTheCap) {
   std::mt19937 rng(5);
   const Scene scene = ForwardLine(40, 1500, rng);

@@ -338,80 +338,135 @@ Eigen::VectorXd SolveByAdmm(const StackedSystem& system, Eigen::VectorXd x,
   return x;
 }
 
+// The IRLS layout of a stacked system: its blocks (tracks, then one per pair scale, then one per
+// prior), which extra columns are held at their bound, and each pair scale's column in its row.
+struct IrlsLayout {
+  int num_blocks = 0;
+  int first_pair_block = 0;
+  int first_prior_block = 0;
+  std::vector<Eigen::Vector3d> scale_columns;  // the pair row of scale k is w (c_j - c_i - s d)
+};
+
+IrlsLayout MakeIrlsLayout(const StackedSystem& system) {
+  IrlsLayout layout;
+  layout.num_blocks = static_cast<int>(system.B.rows()) / 3;
+  layout.first_pair_block = layout.num_blocks - system.num_extra_cols();
+  layout.first_prior_block = layout.first_pair_block + system.num_pair_scales;
+  layout.scale_columns.assign(system.num_pair_scales, Eigen::Vector3d::Zero());
+  for (int k = 0; k < system.num_pair_scales; ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(system.B, system.num_position_cols + k); it;
+         ++it) {
+      layout.scale_columns[k](it.row() - 3 * (layout.first_pair_block + k)) = it.value();
+    }
+  }
+  return layout;
+}
+
+// The IRLS weights 1 / max(|r_b|, floor_b) of the residuals B x, and the smoothed objective the
+// weighted squares majorise: |r| above the floor, (r^2 / floor + floor) / 2 below it, so at least
+// floor / 2 per block (`least_cost` receives that least value).
+double IrlsWeights(const StackedSystem& system, const IrlsLayout& layout, const Eigen::VectorXd& x,
+                   const TranslationAveragingOptions& options, Eigen::VectorXd* block_weights,
+                   double* least_cost) {
+  const Eigen::VectorXd residuals = system.B * x;
+  block_weights->resize(layout.num_blocks);
+  double cost = 0;
+  *least_cost = 0;
+  for (int b = 0; b < layout.num_blocks; ++b) {
+    const double floor =
+        b >= layout.first_prior_block ? system.prior_min_residual : options.irls_min_residual;
+    const double norm = residuals.segment<3>(3 * b).norm();
+    (*block_weights)(b) = 1.0 / std::max(norm, floor);
+    cost += norm > floor ? norm : 0.5 * (norm * norm / floor + floor);
+    *least_cost += 0.5 * floor;
+  }
+  return cost;
+}
+
+// Active set of the pair scales after a step to `next`: a free scale below the bound is held; a
+// held scale is released when its pair row alone (the only row it appears in) would put it above
+// the bound. Without priors every row is homogeneous but for the held scales, so at least one
+// must stay held: the one its pair would lengthen least. Returns how many scales changed set.
+int UpdateHeldScales(const StackedSystem& system, const IrlsLayout& layout, Eigen::VectorXd* next,
+                     std::vector<bool>* held) {
+  const Eigen::VectorXd next_residuals = system.B * *next;
+  const std::vector<bool> before = *held;
+  int tightest = -1;
+  double tightest_preferred = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < system.num_pair_scales; ++k) {
+    double& scale = (*next)(system.num_position_cols + k);
+    if ((*held)[k]) {
+      const Eigen::Vector3d& column = layout.scale_columns[k];
+      const double preferred =
+          scale - column.dot(next_residuals.segment<3>(3 * (layout.first_pair_block + k))) /
+                      column.squaredNorm();
+      if (preferred < tightest_preferred) tightest_preferred = preferred, tightest = k;
+      if (preferred > system.scale_bound) (*held)[k] = false;
+    } else if (scale < system.scale_bound) {
+      scale = system.scale_bound;
+      (*held)[k] = true;
+    }
+  }
+  if (system.num_prior_columns == 0 && std::find(held->begin(), held->end(), true) == held->end() &&
+      tightest >= 0) {
+    (*held)[tightest] = true;
+  }
+  int moved = 0;
+  for (size_t k = 0; k < held->size(); ++k) moved += (*held)[k] != before[k];
+  return moved;
+}
+
 // The same problem by iteratively reweighted least squares: each 3-row block (a track constraint
 // or a pair row) is weighted by 1 / max(|r|, irls_min_residual), which makes the weighted squares
 // an approximation of the sum of block norms (the L1 objective of Ozyesil & Singer's LUD), and each
 // step is one direct sparse solve, so that scale travels the length of a long sequence in one step
 // rather than over thousands of ADMM iterations (block_normal_equations.h keeps each step to a
-// reweighting and a numeric refactorisation). Scales at their bound are held there (their columns
-// move to the right-hand side); a held scale is released when its pair row alone would want it
-// above the bound. Prior constants are always held at 1; prior blocks are weighted by
-// 1 / max(|r|, prior_min_residual), a Huber loss on residuals in standard deviations.
+// reweighting and a numeric refactorisation of the camera system). Scales at their bound are held
+// there (their columns move to the right-hand side), the others are eliminated at their rows'
+// minimiser; a held scale is released when its pair row alone would want it above the bound.
+// Prior constants are always held at 1; prior blocks are weighted by 1 / max(|r|,
+// prior_min_residual), a Huber loss on residuals in standard deviations. Stops when the positions
+// move by less than irls_tolerance, or when a step that left the held scales nearly as they were
+// lowered the objective by less than irls_cost_tolerance of its excess over its least value (on
+// exact data that excess vanishes and the steps go on to the exact solution); the best iterate is
+// returned.
 Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
                             const TranslationAveragingOptions& options, int* iterations) {
-  const Eigen::SparseMatrix<double>& B = system.B;
   const int num_position_cols = system.num_position_cols;
   const int num_scales = system.num_extra_cols();
-  const int num_blocks = static_cast<int>(B.rows()) / 3;
-  const int first_pair_block = num_blocks - num_scales;
-  const int first_prior_block = first_pair_block + system.num_pair_scales;
+  const IrlsLayout layout = MakeIrlsLayout(system);
   std::vector<bool> held(num_scales);
   for (int k = 0; k < num_scales; ++k) {
     held[k] = k >= system.num_pair_scales || x(num_position_cols + k) <= system.scale_bound;
   }
-  // The pair row of scale k is w (c_j - c_i - s d): its column holds -w d.
-  std::vector<Eigen::Vector3d> scale_columns(system.num_pair_scales, Eigen::Vector3d::Zero());
-  for (int k = 0; k < system.num_pair_scales; ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(B, num_position_cols + k); it; ++it) {
-      scale_columns[k](it.row() - 3 * (first_pair_block + k)) = it.value();
-    }
-  }
   std::vector<int> scale_column_ids(num_scales);
   for (int k = 0; k < num_scales; ++k) scale_column_ids[k] = num_position_cols + k;
-  const BlockNormalEquations equations(B, scale_column_ids);
+  const BlockNormalEquations equations(system.B, scale_column_ids);
   std::vector<double> held_values(num_scales, system.scale_bound);
   for (int k = system.num_pair_scales; k < num_scales; ++k) held_values[k] = 1.0;
   SparseCholesky solver;
   solver.analyzePattern(equations.pattern());
-  Eigen::VectorXd block_weights(num_blocks);
+  Eigen::VectorXd block_weights;
   Eigen::SparseMatrix<double> normal;
   Eigen::VectorXd rhs;
+  double best_cost = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd best_x = x;
+  // Objectives compare across a step only while the active set stays nearly the same: on the
+  // first steps many scales leave their bound and the objective may barely move before it falls.
+  constexpr double kSettledShareOfScales = 0.01;
+  int num_moved = num_scales;
   int iteration = 0;
   for (; iteration < options.max_irls_iterations; ++iteration) {
-    const Eigen::VectorXd residuals = B * x;
-    for (int b = 0; b < num_blocks; ++b) {
-      const double floor =
-          b >= first_prior_block ? system.prior_min_residual : options.irls_min_residual;
-      block_weights(b) = 1.0 / std::max(residuals.segment<3>(3 * b).norm(), floor);
-    }
+    double least_cost = 0;
+    const double cost = IrlsWeights(system, layout, x, options, &block_weights, &least_cost);
+    const bool settled = num_moved <= kSettledShareOfScales * num_scales &&
+                         best_cost - cost < options.irls_cost_tolerance * (best_cost - least_cost);
+    if (cost < best_cost) best_cost = cost, best_x = x;
+    if (settled) break;
     equations.Assemble(block_weights, held, held_values, &normal, &rhs);
     FactorizeWithRidge(normal, &solver);
-    Eigen::VectorXd next = solver.solve(rhs);
-    // Active set: a free scale below the bound is held; a held scale is released when its pair
-    // row alone (the only row it appears in) would put it above the bound.
-    // Without priors every row is homogeneous but for the held scales, so at least one must stay
-    // held: the one its pair would lengthen least.
-    const Eigen::VectorXd next_residuals = B * next;
-    int tightest = -1;
-    double tightest_preferred = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < system.num_pair_scales; ++k) {
-      double& scale = next(num_position_cols + k);
-      if (held[k]) {
-        const Eigen::Vector3d& column = scale_columns[k];
-        const double preferred =
-            scale - column.dot(next_residuals.segment<3>(3 * (first_pair_block + k))) /
-                        column.squaredNorm();
-        if (preferred < tightest_preferred) tightest_preferred = preferred, tightest = k;
-        if (preferred > system.scale_bound) held[k] = false;
-      } else if (scale < system.scale_bound) {
-        scale = system.scale_bound;
-        held[k] = true;
-      }
-    }
-    if (system.num_prior_columns == 0 && std::find(held.begin(), held.end(), true) == held.end() &&
-        tightest >= 0) {
-      held[tightest] = true;
-    }
+    Eigen::VectorXd next = equations.Expand(solver.solve(rhs), held, held_values);
+    num_moved = UpdateHeldScales(system, layout, &next, &held);
     const double change = (next.head(num_position_cols) - x.head(num_position_cols)).norm() /
                           std::max(1e-12, next.head(num_position_cols).norm());
     x = std::move(next);
@@ -421,7 +476,10 @@ Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
     }
   }
   *iterations = iteration;
-  return x;
+  // The last step's result unless an earlier iterate had the lower objective.
+  double least_cost = 0;
+  const double cost = IrlsWeights(system, layout, x, options, &block_weights, &least_cost);
+  return cost <= best_cost ? x : best_x;
 }
 
 }  // namespace
@@ -443,6 +501,8 @@ void TranslationAveragingOptions::Check() const {
               admm_relaxation);
   CheckOption(max_irls_iterations >= 0, s + "max_irls_iterations", ">= 0", max_irls_iterations);
   CheckOption(irls_tolerance > 0, s + "irls_tolerance", "> 0", irls_tolerance);
+  CheckOption(irls_cost_tolerance >= 0 && irls_cost_tolerance < 1, s + "irls_cost_tolerance",
+              "in [0, 1)", irls_cost_tolerance);
   CheckOption(irls_min_residual > 0, s + "irls_min_residual", "> 0", irls_min_residual);
   CheckOption(max_admm_iterations >= 0, s + "max_admm_iterations", ">= 0", max_admm_iterations);
   CheckOption(admm_tolerance > 0, s + "admm_tolerance", "> 0", admm_tolerance);

@@ -12,13 +12,15 @@
 #   scripts/bench_scale.sh 00:500 06:1101 ...    SEQUENCE:FRAMES (FRAMES 0: the whole sequence)
 #
 # Scenes are cached under build/bench-scale (RAMAP_SCALE_DIR); RAMAP_DATA_DIR as elsewhere;
-# RAMAP_THREADS (default 2) is --Mapper.num_threads.
+# RAMAP_THREADS (default 2) is --Mapper.num_threads; RAMAP_MAPPER_ARGS, more mapper options (e.g.
+# "--TranslationAveraging.irls_cost_tolerance 1e-3").
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 data_dir=${RAMAP_DATA_DIR:-$root/../shared/data}
 scale_dir=${RAMAP_SCALE_DIR:-$root/build/bench-scale}
 ramap=${RAMAP_BINARY:-$root/build/ramap}
 threads=${RAMAP_THREADS:-2}
+read -r -a extra_args <<<"${RAMAP_MAPPER_ARGS:-}"
 poses_dir=$data_dir/gt_trajectories/kitti_odometry_poses
 [[ -x $ramap ]] || { echo "bench_scale: $ramap not built (run scripts/build.sh)" >&2; exit 1; }
 [[ -d $poses_dir ]] || { echo "bench_scale: skipped, no KITTI trajectories in $poses_dir" >&2; exit 0; }
@@ -47,7 +49,7 @@ for run in "${runs[@]}"; do
   fi
   rm -rf "$scene/sparse" "$scene/eval.json"
   "$ramap" mapper --database_path "$scene/database.db" --output_path "$scene/sparse" \
-    --Mapper.refine 0 --Mapper.num_threads "$threads" > "$scene/mapper.log"
+    --Mapper.refine 0 --Mapper.num_threads "$threads" "${extra_args[@]}" > "$scene/mapper.log"
   "$ramap" evaluate --model_path "$scene/sparse/0" --ground_truth "$scene/ground_truth.txt" \
     --ground_truth_format tum --output_path "$scene/eval.json" > /dev/null
   rows+=("KITTI $sequence|$scene")

@@ -70,18 +70,22 @@ BlockNormalEquations::BlockNormalEquations(const Eigen::SparseMatrix<double>& B,
     }
     const size_t n = block.kept.size();
     block.gram.resize(n * n);
-    block.coupling.resize(n);
-    block.eliminated_gram = eliminated_vector.squaredNorm();
     for (size_t i = 0; i < n; ++i) {
-      block.coupling[i] = kept_vectors[i].dot(eliminated_vector);
       for (size_t j = 0; j < n; ++j) {
         block.gram[i * n + j] = kept_vectors[i].dot(kept_vectors[j]);
         if (block.kept[i] >= block.kept[j])
           triplets.emplace_back(block.kept[i], block.kept[j], 0.0);
       }
     }
+    // Only blocks with an eliminated column keep its coupling and their Schur complement (most
+    // blocks, the tracks', have none: copying their Gram matrices cost 36 of the 613 MiB peak on
+    // the KITTI 06 drive of scripts/bench_scale.sh).
+    if (block.eliminated < 0) continue;
+    block.eliminated_gram = eliminated_vector.squaredNorm();
+    block.coupling.resize(n);
+    for (size_t i = 0; i < n; ++i) block.coupling[i] = kept_vectors[i].dot(eliminated_vector);
     block.schur = block.gram;
-    if (block.eliminated >= 0 && block.eliminated_gram > 0) {
+    if (block.eliminated_gram > 0) {
       for (size_t i = 0; i < n; ++i) {
         for (size_t j = 0; j < n; ++j) {
           block.schur[i * n + j] -= block.coupling[i] * block.coupling[j] / block.eliminated_gram;

@@ -97,6 +97,26 @@ double RelativeCenterError(const Scene& scene, const TranslationAveragingResult&
   return (aligned - truth).colwise().norm().maxCoeff() / extent;
 }
 
+// A scene with the tracks and pair directions observed with `noise` radians.
+struct ObservedScene {
+  Scene scene;
+  std::vector<TranslationTrack> tracks;
+  std::vector<PairDirection> directions;
+};
+
+ObservedScene ObserveScene(Scene scene, double noise, std::mt19937* rng) {
+  ObservedScene observed;
+  observed.scene = std::move(scene);
+  Observe(observed.scene, noise, *rng, &observed.tracks, &observed.directions);
+  return observed;
+}
+
+// A ring of 30 cameras observed with 0.1 deg of noise.
+ObservedScene NoisyRing(std::mt19937* rng) {
+  Scene ring = Ring(30, 600, *rng);
+  return ObserveScene(std::move(ring), 0.1 * M_PI / 180, rng);
+}
+
 TEST(TranslationAveraging, ExactOnForwardMotionAlongALine) {
   std::mt19937 rng(1);
   const Scene scene = ForwardLine(20, 400, rng);
@@ -126,10 +146,7 @@ TEST(TranslationAveraging, ExactOnARing) {
 
 TEST(TranslationAveraging, AccurateWithNoiseAndRobustToWrongDirections) {
   std::mt19937 rng(3);
-  const Scene scene = Ring(30, 600, rng);
-  std::vector<TranslationTrack> tracks;
-  std::vector<PairDirection> directions;
-  Observe(scene, 0.1 * M_PI / 180, rng, &tracks, &directions);
+  auto [scene, tracks, directions] = NoisyRing(&rng);
   // Every 10th pair direction is replaced by a random one.
   std::uniform_real_distribution<double> uniform(-1, 1);
   for (size_t k = 0; k < directions.size(); k += 10) {
@@ -145,10 +162,7 @@ TEST(TranslationAveraging, AccurateWithNoiseAndRobustToWrongDirections) {
 TEST(TranslationAveraging, CostToleranceStopsEarlierButStillReachesExactSolutions) {
   // Noisy ring: the objective settles well before the positions stop moving.
   std::mt19937 rng(3);
-  const Scene scene = Ring(30, 600, rng);
-  std::vector<TranslationTrack> tracks;
-  std::vector<PairDirection> directions;
-  Observe(scene, 0.1 * M_PI / 180, rng, &tracks, &directions);
+  const auto [scene, tracks, directions] = NoisyRing(&rng);
   TranslationAveragingOptions options;
   options.irls_cost_tolerance = 0;
   const TranslationAveragingResult full =
@@ -161,13 +175,11 @@ TEST(TranslationAveraging, CostToleranceStopsEarlierButStillReachesExactSolution
   // Exact data: the objective's excess over its floor vanishes, so the steps go on to the exact
   // solution instead of stopping when the objective is already small.
   std::mt19937 exact_rng(1);
-  const Scene line = ForwardLine(20, 400, exact_rng);
-  std::vector<TranslationTrack> exact_tracks;
-  std::vector<PairDirection> exact_directions;
-  Observe(line, 0.0, exact_rng, &exact_tracks, &exact_directions);
+  Scene forward = ForwardLine(20, 400, exact_rng);
+  const ObservedScene line = ObserveScene(std::move(forward), 0.0, &exact_rng);
   const TranslationAveragingResult exact =
-      AverageTranslations(line.rotations, exact_directions, exact_tracks, options);
-  EXPECT_LT(RelativeCenterError(line, exact), 1e-6);
+      AverageTranslations(line.scene.rotations, line.directions, line.tracks, options);
+  EXPECT_LT(RelativeCenterError(line.scene, exact), 1e-6);
 }
 
 TEST(TranslationAveraging, PerImageQuotaGivesEveryCameraTracksPastTheCap) {

@@ -338,8 +338,8 @@ Eigen::VectorXd SolveByAdmm(const StackedSystem& system, Eigen::VectorXd x,
   return x;
 }
 
-// The IRLS layout of a stacked system: its blocks (tracks, then one per pair scale, then one per
-// prior), which extra columns are held at their bound, and each pair scale's column in its row.
+// The IRLS layout of a stacked system: its 3-row blocks (tracks, then one per pair scale, then one
+// per prior) and each pair scale's column within its pair row.
 struct IrlsLayout {
   int num_blocks = 0;
   int first_pair_block = 0;

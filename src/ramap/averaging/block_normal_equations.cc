@@ -139,12 +139,6 @@ void BlockNormalEquations::Assemble(const Eigen::VectorXd& block_weights,
   }
 }
 
-Eigen::VectorXd BlockNormalEquations::Reduce(const Eigen::VectorXd& full) const {
-  Eigen::VectorXd reduced(kept_columns_.size());
-  for (size_t r = 0; r < kept_columns_.size(); ++r) reduced(r) = full(kept_columns_[r]);
-  return reduced;
-}
-
 Eigen::VectorXd BlockNormalEquations::Expand(const Eigen::VectorXd& reduced,
                                              const std::vector<bool>& held,
                                              const std::vector<double>& held_values) const {

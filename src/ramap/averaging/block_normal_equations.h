@@ -36,9 +36,6 @@ class BlockNormalEquations {
   Eigen::VectorXd Expand(const Eigen::VectorXd& reduced, const std::vector<bool>& held,
                          const std::vector<double>& held_values) const;
 
-  // The kept columns of a full vector v, in the reduced system's order.
-  Eigen::VectorXd Reduce(const Eigen::VectorXd& full) const;
-
   // The matrix with the pattern of the reduced normal equations (zeros), for the symbolic analysis.
   const Eigen::SparseMatrix<double>& pattern() const { return pattern_; }
 

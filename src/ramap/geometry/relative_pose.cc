@@ -103,7 +103,6 @@ int CountInFront(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen
 struct Scored {
   double cost = std::numeric_limits<double>::infinity();
   std::vector<int> inliers;
-  std::vector<double> residuals;
 };
 
 // MSAC score of (R, t) over all matches.
@@ -112,11 +111,10 @@ Scored ScoreHypothesis(const std::vector<Eigen::Vector3d>& f1,
                        const Eigen::Vector3d& t, double threshold) {
   Scored scored;
   scored.cost = 0;
-  scored.residuals.resize(f1.size());
+  scored.inliers.reserve(f1.size());
   const double threshold_sq = threshold * threshold;
   for (size_t k = 0; k < f1.size(); ++k) {
     const double r = EpipolarError(R, t, f1[k], f2[k]);
-    scored.residuals[k] = r;
     if (!(r < threshold)) {
       scored.cost += threshold_sq;
     } else {

@@ -54,5 +54,21 @@ TEST(Triangulation, RejectsSmallAngleAndPointsBehind) {
   EXPECT_FALSE(TriangulatePoint(observations).has_value());
 }
 
+TEST(Triangulation, TwoRayDepthsMeetTheOffsetAndParallelRaysHaveNone) {
+  // A point at (1, 2, 6) seen from the origin and from (2, 0, 0): l1 ray1 - l2 ray2 = (2, 0, 0).
+  const Eigen::Vector3d X(1, 2, 6), c2(2, 0, 0);
+  const Eigen::Vector3d ray1 = X.normalized(), ray2 = (X - c2).normalized();
+  const std::optional<Eigen::Vector2d> depths = TwoRayDepths(ray1, ray2, c2);
+  ASSERT_TRUE(depths.has_value());
+  EXPECT_NEAR((*depths)(0), X.norm(), 1e-12);
+  EXPECT_NEAR((*depths)(1), (X - c2).norm(), 1e-12);
+  // The opposite offset puts the point behind both cameras.
+  const std::optional<Eigen::Vector2d> behind = TwoRayDepths(ray1, ray2, -c2);
+  ASSERT_TRUE(behind.has_value());
+  EXPECT_LT((*behind)(0), 0);
+  EXPECT_LT((*behind)(1), 0);
+  EXPECT_FALSE(TwoRayDepths(ray1, ray1, c2).has_value());
+}
+
 }  // namespace
 }  // namespace ramap

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "ramap/geometry/rotation.h"
+#include "ramap/geometry/triangulation.h"
 #include "ramap/util/option_check.h"
 
 namespace ramap {
@@ -62,13 +63,10 @@ std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& r
   int votes_for = 0, votes_against = 0;
   for (size_t k = 0; k < rays1.size(); ++k) {
     if (weights[k] < 0.5) continue;  // a wrong match does not vote
-    // Least-squares depths of l1 d1 - l2 d2 = t times the positive 1 - (d1 . d2)^2 (unit rays).
-    const double cosine = rays1[k].dot(rays2[k]);
-    const double along1 = rays1[k].dot(direction), along2 = rays2[k].dot(direction);
-    const double depth1 = along1 - cosine * along2, depth2 = cosine * along1 - along2;
-    if (!(1.0 - cosine * cosine > 0)) continue;  // parallel rays: no depth
-    if (depth1 > 0 && depth2 > 0) ++votes_for;
-    if (depth1 < 0 && depth2 < 0) ++votes_against;
+    const std::optional<Eigen::Vector2d> depths = TwoRayDepths(rays1[k], rays2[k], direction);
+    if (!depths) continue;  // parallel rays: no depth
+    if ((*depths)(0) > 0 && (*depths)(1) > 0) ++votes_for;
+    if ((*depths)(0) < 0 && (*depths)(1) < 0) ++votes_against;
   }
   const int votes = votes_for + votes_against;
   if (votes < options.min_num_matches / 2) return std::nullopt;

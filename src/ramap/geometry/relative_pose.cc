@@ -16,6 +16,7 @@
 
 #include "ramap/geometry/epipolar_refinement.h"
 #include "ramap/geometry/rotation.h"
+#include "ramap/geometry/triangulation.h"
 #include "ramap/util/error.h"
 
 namespace ramap {
@@ -87,15 +88,9 @@ int CountInFront(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen
                  const Eigen::Vector3d& t) {
   int count = 0;
   for (int k : indices) {
-    // d1 R f1 + t = d2 f2 in least squares: the 2 x 2 normal equations [p -c; -c q] d =
-    // (-a, b) solved by Cramer's rule; only the signs of the depths matter.
-    const Eigen::Vector3d rf1 = R * f1[k];
-    const double p = rf1.squaredNorm(), q = f2[k].squaredNorm(), c = rf1.dot(f2[k]);
-    const double a = rf1.dot(t), b = f2[k].dot(t);
-    const double det = p * q - c * c;
-    if (std::abs(det) < 1e-14) continue;  // ray parallel to the baseline
-    const double depth1 = (c * b - q * a) / det, depth2 = (p * b - c * a) / det;
-    if (depth1 > 0 && depth2 > 0) ++count;
+    // d1 R f1 + t = d2 f2 in least squares; parallel rays have no depth.
+    const std::optional<Eigen::Vector2d> depths = TwoRayDepths(R * f1[k], f2[k], -t);
+    if (depths && (*depths)(0) > 0 && (*depths)(1) > 0) ++count;
   }
   return count;
 }

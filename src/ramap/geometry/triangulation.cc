@@ -96,4 +96,14 @@ std::optional<TriangulatedPoint> TriangulatePoint(const std::vector<RayObservati
   return std::nullopt;
 }
 
+std::optional<Eigen::Vector2d> TwoRayDepths(const Eigen::Vector3d& ray1,
+                                            const Eigen::Vector3d& ray2,
+                                            const Eigen::Vector3d& offset) {
+  const double p = ray1.squaredNorm(), q = ray2.squaredNorm(), c = ray1.dot(ray2);
+  const double along1 = ray1.dot(offset), along2 = ray2.dot(offset);
+  const double det = p * q - c * c;
+  if (std::abs(det) < 1e-14) return std::nullopt;
+  return Eigen::Vector2d((q * along1 - c * along2) / det, (c * along1 - p * along2) / det);
+}
+
 }  // namespace ramap

@@ -46,4 +46,12 @@ std::optional<TriangulatedPoint> TriangulatePoint(
     const std::vector<RayObservation>& observations,
     const TriangulationOptions& options = TriangulationOptions());
 
+// Depths (l1, l2) of two rays meeting a known offset: l1 ray1 - l2 ray2 = offset in least squares
+// (the 2 x 2 normal equations by Cramer's rule). Empty when the rays are parallel (the normal
+// equations' determinant below 1e-14). With unit rays, both depths positive means the two rays
+// meet in front of both cameras.
+std::optional<Eigen::Vector2d> TwoRayDepths(const Eigen::Vector3d& ray1,
+                                            const Eigen::Vector3d& ray2,
+                                            const Eigen::Vector3d& offset);
+
 }  // namespace ramap

@@ -119,10 +119,8 @@ ObservedScene NoisyRing(std::mt19937* rng) {
 
 TEST(TranslationAveraging, ExactOnForwardMotionAlongALine) {
   std::mt19937 rng(1);
-  const Scene scene = ForwardLine(20, 400, rng);
-  std::vector<TranslationTrack> tracks;
-  std::vector<PairDirection> directions;
-  Observe(scene, 0.0, rng, &tracks, &directions);
+  Scene line = ForwardLine(20, 400, rng);
+  const auto [scene, tracks, directions] = ObserveScene(std::move(line), 0.0, &rng);
   const TranslationAveragingResult result =
       AverageTranslations(scene.rotations, directions, tracks);
   ASSERT_EQ(result.centers.size(), 20u);
@@ -134,10 +132,8 @@ TEST(TranslationAveraging, ExactOnForwardMotionAlongALine) {
 
 TEST(TranslationAveraging, ExactOnARing) {
   std::mt19937 rng(2);
-  const Scene scene = Ring(24, 500, rng);
-  std::vector<TranslationTrack> tracks;
-  std::vector<PairDirection> directions;
-  Observe(scene, 0.0, rng, &tracks, &directions);
+  Scene ring = Ring(24, 500, rng);
+  const auto [scene, tracks, directions] = ObserveScene(std::move(ring), 0.0, &rng);
   const TranslationAveragingResult result =
       AverageTranslations(scene.rotations, directions, tracks);
   ASSERT_EQ(result.centers.size(), 24u);
@@ -184,10 +180,8 @@ TEST(TranslationAveraging, CostToleranceStopsEarlierButStillReachesExactSolution
 
 TEST(TranslationAveraging, PerImageQuotaGivesEveryCameraTracksPastTheCap) {
   std::mt19937 rng(5);
-  const Scene scene = ForwardLine(40, 1500, rng);
-  std::vector<TranslationTrack> tracks;
-  std::vector<PairDirection> directions;
-  Observe(scene, 0.0, rng, &tracks, &directions);
+  Scene line = ForwardLine(40, 1500, rng);
+  const auto [scene, tracks, directions] = ObserveScene(std::move(line), 0.0, &rng);
   // The longest tracks come first and the cap stops there: few tracks for a 40-camera line.
   TranslationAveragingOptions capped;
   capped.max_num_tracks = 10;
@@ -208,12 +202,10 @@ TEST(TranslationAveraging, PerImageQuotaGivesEveryCameraTracksPastTheCap) {
 
 TEST(TranslationAveraging, UnconnectedCameraIsReportedNotPositioned) {
   std::mt19937 rng(4);
-  Scene scene = ForwardLine(10, 300, rng);
-  scene.rotations[99] = Eigen::Quaterniond::Identity();
-  scene.centers[99] = Eigen::Vector3d(500, 500, 500);  // sees nothing
-  std::vector<TranslationTrack> tracks;
-  std::vector<PairDirection> directions;
-  Observe(scene, 0.0, rng, &tracks, &directions);
+  Scene line = ForwardLine(10, 300, rng);
+  line.rotations[99] = Eigen::Quaterniond::Identity();
+  line.centers[99] = Eigen::Vector3d(500, 500, 500);  // sees nothing
+  const auto [scene, tracks, directions] = ObserveScene(std::move(line), 0.0, &rng);
   const TranslationAveragingResult result =
       AverageTranslations(scene.rotations, directions, tracks);
   EXPECT_EQ(result.centers.count(99), 0u);

@@ -260,6 +260,7 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"min_tracks_per_image", ta.min_tracks_per_image},
         {"solver", ta.solver == TranslationSolver::kIrls ? "irls" : "admm"},
         {"max_irls_iterations", ta.max_irls_iterations},
+        {"irls_cost_tolerance", ta.irls_cost_tolerance},
         {"max_admm_iterations", ta.max_admm_iterations},
         {"admm_rho", ta.admm_rho},
         {"pair_constraint_weight", ta.pair_constraint_weight}}},

@@ -36,10 +36,6 @@ struct ObservationIndex {
   std::map<uint32_t, uint32_t> offset;  // image id -> first dense index
   std::map<uint32_t, uint32_t> size;    // image id -> 1 + largest matched keypoint index
   uint32_t total = 0;
-
-  uint32_t Of(uint32_t image_id, uint32_t point2D_idx) const {
-    return offset.at(image_id) + point2D_idx;
-  }
 };
 
 template <typename UsePair>

@@ -1,6 +1,5 @@
 #include "ramap/util/staged_output.h"
 
-#include <pthread.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -117,24 +116,41 @@ void RemoveLiveOutputs() {
   Live().paths.clear();
 }
 
+namespace {
+
+// The write end of the pipe through which the signal handler wakes the cleanup thread.
+int interrupt_pipe_write = -1;
+
+// Runs in whichever thread the signal reaches (libraries such as OpenBLAS start threads before
+// main, with no signal blocked), so it only does what is async-signal-safe: pass the signal on.
+void ForwardInterrupt(int signal) {
+  const unsigned char number = static_cast<unsigned char>(signal);
+  (void)!::write(interrupt_pipe_write, &number, 1);
+}
+
+}  // namespace
+
 void InstallInterruptCleanup() {
-  // Block the signals in this (the main) thread before any other thread exists, so that every
-  // thread inherits the mask and only the waiting thread below receives them. It then runs
-  // ordinary code (not a signal handler), so removing folders is safe there.
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
-  sigaddset(&signals, SIGHUP);
-  if (pthread_sigmask(SIG_BLOCK, &signals, nullptr) != 0) return;
-  std::thread([signals]() {
-    int signal = 0;
-    if (sigwait(&signals, &signal) != 0) return;
+  // The cleanup runs as ordinary code in a thread of its own (removing folders is not safe in a
+  // signal handler), woken through a pipe by the handler.
+  int fds[2];
+  if (::pipe(fds) != 0) return;
+  interrupt_pipe_write = fds[1];
+  const int read_end = fds[0];
+  std::thread([read_end]() {
+    unsigned char signal = 0;
+    while (::read(read_end, &signal, 1) != 1) {
+    }
     RemoveLiveOutputs();
     const char message[] = "ramap: interrupted; unfinished outputs removed\n";
     (void)!::write(STDERR_FILENO, message, sizeof(message) - 1);
     ::_exit(128 + signal);
   }).detach();
+  struct sigaction action {};
+  action.sa_handler = ForwardInterrupt;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal, &action, nullptr);
 }
 
 void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,

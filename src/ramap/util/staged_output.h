@@ -49,7 +49,8 @@ class CreatedOutput {
 };
 
 // On SIGINT, SIGTERM or SIGHUP, every staged path and every CreatedOutput not yet kept is removed
-// and the process exits with 128 + the signal. Call once from main() before any thread starts.
+// and the process exits with 128 + the signal, whichever thread the signal reaches. Call once from
+// main().
 void InstallInterruptCleanup();
 // Removes every staged path and CreatedOutput not yet kept (what an interrupt does).
 void RemoveLiveOutputs();

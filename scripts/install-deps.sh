@@ -10,6 +10,8 @@ packages=(
   libeigen3-dev
   libopencv-dev               # feature extraction / matching for image-list input
   libsuitesparse-dev          # CHOLMOD for the sparse normal equations
+  libopenblas0-pthread        # BLAS for CHOLMOD's dense kernels (Debian's alternatives pick it
+                              # over ATLAS): translation averaging ~3x faster on 2 cores
   libgeographiclib-dev        # WGS84 <-> local frames
   libopengv-dev               # Kneip's relative-pose solvers
   libsqlite3-dev sqlite3      # COLMAP databases

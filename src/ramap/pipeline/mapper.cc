@@ -12,6 +12,7 @@
 #include "ramap/pipeline/rotations.h"
 #include "ramap/pipeline/stage_log.h"
 #include "ramap/pipeline/translations.h"
+#include "ramap/util/blas_threads.h"
 #include "ramap/util/error.h"
 #include "ramap/util/memory.h"
 #include "ramap/util/timer.h"
@@ -186,6 +187,7 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& opt
                        const std::string& source, std::ostream* progress,
                        const PositionPriors& priors) {
   options.Check();
+  LimitBlasThreads(options.num_threads);
   MapperResult first = RunMapperPass(database, options, source, progress, priors, nullptr);
   first.summary.peak_rss_mib = PeakResidentMebibytes();
   if (!options.refine || !(options.max_focal_change_in_bundle_adjustment > 0)) return first;

@@ -49,7 +49,8 @@ struct MapperOptions {
   // Components with fewer images are not written (COLMAP's Mapper.min_model_size is 10; ramap
   // writes smaller ones too because small data sets are common among its users).
   int min_component_size = 3;
-  // Threads for the per-pair stages: relative poses and, after rotation averaging, pair directions.
+  // Threads for the per-pair stages (relative poses and, after rotation averaging, pair
+  // directions) and for the dense kernels of the sparse factorisations when the BLAS is OpenBLAS.
   int num_threads = 2;
 
   void Check() const;

@@ -40,9 +40,11 @@ TEST(RelativePoses, EveryUsablePairIsEstimatedClose) {
         scene.database.two_view_geometries.at(ImagePairToPairId(pair.image_id1, pair.image_id2));
     EXPECT_EQ(pair.num_verified_matches, static_cast<int>(geometry.inlier_matches.size()));
     ASSERT_TRUE(pair.accepted()) << pair.estimate.reason;
-    // The inliers are kept as matches of the pair (their keypoints' bearings are the stages').
-    ASSERT_EQ(pair.inlier_matches.size(), static_cast<size_t>(pair.estimate.num_inliers));
-    for (const FeatureMatch& match : pair.inlier_matches) {
+    // The inliers are kept as a mask over the pair's verified matches.
+    ASSERT_EQ(pair.is_inlier.size(), geometry.inlier_matches.size());
+    const std::vector<FeatureMatch> inlier_matches = InlierMatches(pair, geometry);
+    ASSERT_EQ(inlier_matches.size(), static_cast<size_t>(pair.estimate.num_inliers));
+    for (const FeatureMatch& match : inlier_matches) {
       EXPECT_NE(std::find_if(geometry.inlier_matches.begin(), geometry.inlier_matches.end(),
                              [&](const FeatureMatch& m) {
                                return m.point2D_idx1 == match.point2D_idx1 &&

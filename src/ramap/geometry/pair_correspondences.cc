@@ -16,7 +16,7 @@ Eigen::Vector3d BearingOf(const PairImage& image, uint32_t point2D_idx) {
 TwoViewCorrespondences PairCorrespondences(const PairImage& image1, const PairImage& image2,
                                            const TwoViewGeometry& geometry, double focal_length_px,
                                            bool use_descriptor_ratios,
-                                           std::vector<FeatureMatch>* kept_matches) {
+                                           std::vector<uint32_t>* kept_indices) {
   TwoViewCorrespondences c;
   c.width1 = static_cast<int>(image1.camera.width);
   c.height1 = static_cast<int>(image1.camera.height);
@@ -29,7 +29,7 @@ TwoViewCorrespondences PairCorrespondences(const PairImage& image1, const PairIm
     const Eigen::Vector3d bearing1 = BearingOf(image1, match.point2D_idx1);
     const Eigen::Vector3d bearing2 = BearingOf(image2, match.point2D_idx2);
     if (!bearing1.allFinite() || !bearing2.allFinite()) continue;
-    if (kept_matches != nullptr) kept_matches->push_back(match);
+    if (kept_indices != nullptr) kept_indices->push_back(static_cast<uint32_t>(k));
     if (use_ratios) c.confidence.push_back(geometry.inlier_ratios[k]);
     c.bearings1.push_back(bearing1);
     c.bearings2.push_back(bearing2);

@@ -25,11 +25,11 @@ struct PairImage {
 // no bearing (past a strong distortion's fold). The match confidence for the grid selection is
 // the stored descriptor ratio when `use_descriptor_ratios` and the geometry has ratios, else the
 // Sampson error under its fundamental matrix (none when F is zero). `focal_length_px` turns the
-// estimator's pixel thresholds into angles. `kept_matches` (optional) receives the match of each
-// correspondence.
+// estimator's pixel thresholds into angles. `kept_indices` (optional) receives, for each
+// correspondence, the index of its match in geometry.inlier_matches.
 TwoViewCorrespondences PairCorrespondences(const PairImage& image1, const PairImage& image2,
                                            const TwoViewGeometry& geometry, double focal_length_px,
                                            bool use_descriptor_ratios,
-                                           std::vector<FeatureMatch>* kept_matches = nullptr);
+                                           std::vector<uint32_t>* kept_indices = nullptr);
 
 }  // namespace ramap

@@ -39,7 +39,7 @@ std::vector<ImagePair> EstimateRelativePoses(const FeatureDatabase& database,
             database.cameras.at(database.images.at(geometry.image_id1).camera_id);
         const Camera& camera2 =
             database.cameras.at(database.images.at(geometry.image_id2).camera_id);
-        std::vector<FeatureMatch> matches;
+        std::vector<uint32_t> match_indices;
         const TwoViewCorrespondences correspondences =
             PairCorrespondences({camera1, database.keypoints.at(geometry.image_id1),
                                  &bearings.bearings.at(geometry.image_id1)},
@@ -48,13 +48,12 @@ std::vector<ImagePair> EstimateRelativePoses(const FeatureDatabase& database,
                                 geometry,
                                 0.5 * (bearings.focal_lengths_px.at(camera1.camera_id) +
                                        bearings.focal_lengths_px.at(camera2.camera_id)),
-                                options.use_descriptor_ratios, &matches);
+                                options.use_descriptor_ratios, &match_indices);
         ImagePair& pair = pairs[k];
         pair.estimate = EstimateRelativePose(correspondences, options);
-        pair.inlier_matches.reserve(pair.estimate.inliers.size());
-        for (const int inlier : pair.estimate.inliers)
-          pair.inlier_matches.push_back(matches[inlier]);
-        // Its indices point into the correspondences released here: inlier_matches replace them.
+        pair.is_inlier.assign(geometry.inlier_matches.size(), false);
+        for (const int inlier : pair.estimate.inliers) pair.is_inlier[match_indices[inlier]] = true;
+        // Its indices point into the correspondences released here: is_inlier replaces them.
         std::vector<int>().swap(pair.estimate.inliers);
       },
       progress, stage::kRelativePoses, "pairs");

@@ -30,12 +30,15 @@ std::vector<PairDirection> KeptPairDirections(
   std::vector<std::optional<Eigen::Vector3d>> found(kept.size());
   ParallelFor(kept.size(), context.options.num_threads, [&](size_t k) {
     const ImagePair& pair = *kept[k];
+    const std::vector<FeatureMatch> inlier_matches = InlierMatches(
+        pair,
+        context.database.two_view_geometries.at(ImagePairToPairId(pair.image_id1, pair.image_id2)));
     std::vector<Eigen::Vector3d> f1, f2;
-    f1.reserve(pair.inlier_matches.size());
-    f2.reserve(pair.inlier_matches.size());
+    f1.reserve(inlier_matches.size());
+    f2.reserve(inlier_matches.size());
     const std::vector<Eigen::Vector3d>& bearings1 = context.bearings.bearings.at(pair.image_id1);
     const std::vector<Eigen::Vector3d>& bearings2 = context.bearings.bearings.at(pair.image_id2);
-    for (const FeatureMatch& match : pair.inlier_matches) {
+    for (const FeatureMatch& match : inlier_matches) {
       f1.push_back(bearings1[match.point2D_idx1]);
       f2.push_back(bearings2[match.point2D_idx2]);
     }

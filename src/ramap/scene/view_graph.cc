@@ -35,6 +35,15 @@ const char* RelativePoseRejectionName(RelativePoseRejection rejection) {
   return "unknown";
 }
 
+std::vector<FeatureMatch> InlierMatches(const ImagePair& pair, const TwoViewGeometry& geometry) {
+  std::vector<FeatureMatch> matches;
+  matches.reserve(pair.estimate.num_inliers);
+  for (size_t k = 0; k < pair.is_inlier.size() && k < geometry.inlier_matches.size(); ++k) {
+    if (pair.is_inlier[k]) matches.push_back(geometry.inlier_matches[k]);
+  }
+  return matches;
+}
+
 double RelativeRotationWeight(int num_inliers) {
   return static_cast<double>(std::max(num_inliers, 1));
 }

@@ -87,15 +87,19 @@ struct ImagePair {
   uint32_t image_id2 = 0;
   int num_verified_matches = 0;
   // cam2_from_cam1; estimate.success may be false. Its `inliers` (indices into correspondences
-  // that are not kept) are empty: inlier_matches hold them.
+  // that are not kept) are empty: is_inlier holds them.
   RelativePoseEstimate estimate;
-  // The matches the estimate explains, as keypoint pairs; the later stages read their bearings.
-  // (A pair's correspondences, bearings and pixels of every match, are not kept: at 100 bytes
-  // per match they were most of the mapper's memory on long drives.)
-  std::vector<FeatureMatch> inlier_matches;
+  // Which of the pair's verified matches (its two-view geometry's inlier_matches, in order) the
+  // estimate explains; the later stages read their bearings (InlierMatches). One bit per match:
+  // neither the correspondences (100 bytes per match) nor a copy of the matches (8 bytes, as much
+  // as the database's own) are kept, which on long drives were most of the mapper's memory.
+  std::vector<bool> is_inlier;
 
   bool accepted() const { return estimate.success; }
 };
+
+// The matches of `geometry` (the pair's two-view geometry) that its estimate explains, in order.
+std::vector<FeatureMatch> InlierMatches(const ImagePair& pair, const TwoViewGeometry& geometry);
 
 // The weight of a relative rotation in averaging: its number of inliers (at least 1, for records
 // read from a file that gives none).

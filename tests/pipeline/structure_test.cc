@@ -81,5 +81,29 @@ TEST(Structure, WrongObservationLeavesTheTrackAndUnposedImagesAreSkipped) {
   EXPECT_EQ(model.images.at(3).points2D[0].point3D_id, kInvalidPoint3DId);
 }
 
+TEST(Structure, TheModelDoesNotDependOnTheThreads) {
+  Fixture f;
+  f.bearings[3][0] = (f.bearings[3][0] + Eigen::Vector3d(0, 0.05, 0)).normalized();
+  f.tracks.push_back({{1, 7}, {4, 7}});  // a second track of point 7: its own id, in order
+  StructureSummary one_summary, three_summary;
+  const Reconstruction one = BuildReconstruction(f.database, f.poses, f.tracks, f.bearings,
+                                                 {{1, kFocal}}, {}, &one_summary, 1);
+  const Reconstruction three = BuildReconstruction(f.database, f.poses, f.tracks, f.bearings,
+                                                   {{1, kFocal}}, {}, &three_summary, 3);
+  ASSERT_EQ(one.points3D.size(), 51u);
+  ASSERT_EQ(three.points3D.size(), one.points3D.size());
+  EXPECT_EQ(three_summary.num_observations, one_summary.num_observations);
+  EXPECT_EQ(three_summary.mean_reprojection_error_px, one_summary.mean_reprojection_error_px);
+  for (const auto& [id, point] : one.points3D) {
+    const Point3D& other = three.points3D.at(id);
+    EXPECT_EQ(other.xyz, point.xyz);
+    ASSERT_EQ(other.track.size(), point.track.size());
+    for (size_t k = 0; k < point.track.size(); ++k) {
+      EXPECT_EQ(other.track[k].image_id, point.track[k].image_id);
+      EXPECT_EQ(other.track[k].point2D_idx, point.track[k].point2D_idx);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ramap

@@ -50,7 +50,9 @@ struct MapperOptions {
   // writes smaller ones too because small data sets are common among its users).
   int min_component_size = 3;
   // Threads for the per-pair stages (relative poses and, after rotation averaging, pair
-  // directions) and for the dense kernels of the sparse factorisations when the BLAS is OpenBLAS.
+  // directions), triangulation, and the dense kernels of the sparse factorisations when the BLAS
+  // is OpenBLAS. The model is the same for every run with the same number; across numbers,
+  // OpenBLAS's kernels split their sums differently and the poses differ in the last digits.
   int num_threads = 2;
 
   void Check() const;

@@ -1,11 +1,13 @@
 #include "ramap/pipeline/structure.h"
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "ramap/pipeline/mapper_options.h"
 #include "ramap/pipeline/mapper_summary.h"
 #include "ramap/util/option_check.h"
+#include "ramap/util/parallel.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
@@ -17,12 +19,48 @@ void StructureOptions::Check() const {
               ">= 0", min_triangulation_angle_deg);
 }
 
+namespace {
+
+// The rays of a track from the posed images that have its keypoint, the elements they come from,
+// and the mean focal length of their cameras.
+struct TrackRays {
+  std::vector<RayObservation> rays;
+  std::vector<const TrackElement*> elements;
+  double focal_px = 0.0;
+};
+
+TrackRays RaysOfTrack(const Track& track, const FeatureDatabase& database,
+                      const std::map<uint32_t, Rigid3d>& poses,
+                      const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
+                      const std::map<uint32_t, double>& focal_lengths_px,
+                      const Reconstruction& reconstruction) {
+  TrackRays result;
+  double focal_sum = 0.0;
+  for (const TrackElement& element : track) {
+    const auto pose = poses.find(element.image_id);
+    const auto image_bearings = bearings.find(element.image_id);
+    if (pose == poses.end() || image_bearings == bearings.end() ||
+        element.point2D_idx >= image_bearings->second.size() ||
+        element.point2D_idx >= reconstruction.images.at(element.image_id).points2D.size()) {
+      continue;
+    }
+    result.rays.push_back({pose->second, image_bearings->second[element.point2D_idx]});
+    result.elements.push_back(&element);
+    focal_sum += focal_lengths_px.at(database.images.at(element.image_id).camera_id);
+  }
+  if (!result.rays.empty()) result.focal_px = focal_sum / result.rays.size();
+  return result;
+}
+
+}  // namespace
+
 Reconstruction BuildReconstruction(const FeatureDatabase& database,
                                    const std::map<uint32_t, Rigid3d>& poses,
                                    const std::vector<Track>& tracks,
                                    const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
                                    const std::map<uint32_t, double>& focal_lengths_px,
-                                   const StructureOptions& options, StructureSummary* summary) {
+                                   const StructureOptions& options, StructureSummary* summary,
+                                   int num_threads) {
   options.Check();
   Reconstruction reconstruction;
   for (const auto& [image_id, pose] : poses) {
@@ -40,44 +78,38 @@ Reconstruction BuildReconstruction(const FeatureDatabase& database,
     reconstruction.images[image_id] = std::move(image);
   }
 
+  // The triangulations first, on the threads (each track on its own); then, in track order, the
+  // points, their ids and the error sums, so that the model does not depend on the threads.
+  std::vector<std::optional<TriangulatedPoint>> triangulated(tracks.size());
+  ParallelFor(tracks.size(), num_threads, [&](size_t k) {
+    const TrackRays track =
+        RaysOfTrack(tracks[k], database, poses, bearings, focal_lengths_px, reconstruction);
+    if (track.rays.size() < 2) return;
+    TriangulationOptions triangulation;
+    triangulation.max_angular_error_rad = options.max_reprojection_error_px / track.focal_px;
+    triangulation.min_triangulation_angle_deg = options.min_triangulation_angle_deg;
+    triangulated[k] = TriangulatePoint(track.rays, triangulation);
+  });
   StructureSummary counts;
   double sum_error_px = 0.0;
   uint64_t next_point3D_id = 1;
-  for (const Track& track : tracks) {
-    std::vector<RayObservation> rays;
-    std::vector<const TrackElement*> elements;
-    double focal_sum = 0.0;
-    for (const TrackElement& element : track) {
-      const auto pose = poses.find(element.image_id);
-      const auto image_bearings = bearings.find(element.image_id);
-      if (pose == poses.end() || image_bearings == bearings.end() ||
-          element.point2D_idx >= image_bearings->second.size() ||
-          element.point2D_idx >= reconstruction.images.at(element.image_id).points2D.size()) {
-        continue;
-      }
-      rays.push_back({pose->second, image_bearings->second[element.point2D_idx]});
-      elements.push_back(&element);
-      focal_sum += focal_lengths_px.at(database.images.at(element.image_id).camera_id);
-    }
-    if (rays.size() < 2) continue;
+  for (size_t k = 0; k < tracks.size(); ++k) {
+    const TrackRays track =
+        RaysOfTrack(tracks[k], database, poses, bearings, focal_lengths_px, reconstruction);
+    if (track.rays.size() < 2) continue;
     ++counts.num_tracks;
-    const double focal_px = focal_sum / rays.size();
-    TriangulationOptions triangulation;
-    triangulation.max_angular_error_rad = options.max_reprojection_error_px / focal_px;
-    triangulation.min_triangulation_angle_deg = options.min_triangulation_angle_deg;
-    const std::optional<TriangulatedPoint> triangulated = TriangulatePoint(rays, triangulation);
-    if (!triangulated) {
+    if (!triangulated[k]) {
       ++counts.num_rejected_tracks;
       continue;
     }
     const uint64_t point3D_id = next_point3D_id++;
     Point3D point;
-    point.xyz = triangulated->xyz;
+    point.xyz = triangulated[k]->xyz;
     double error_sum_px = 0.0;
-    for (const int k : triangulated->inliers) {
-      const TrackElement& element = *elements[k];
-      const Eigen::Vector3d x = rays[k].cam_from_world * point.xyz;
-      const Eigen::Vector3d& f = rays[k].bearing;
+    for (const int i : triangulated[k]->inliers) {
+      const TrackElement& element = *track.elements[i];
+      const Eigen::Vector3d x = track.rays[i].cam_from_world * point.xyz;
+      const Eigen::Vector3d& f = track.rays[i].bearing;
       const double focal = focal_lengths_px.at(database.images.at(element.image_id).camera_id);
       error_sum_px += f.z() > 0 ? focal * (x.head<2>() / x.z() - f.head<2>() / f.z()).norm()
                                 : focal * std::atan2(x.cross(f).norm(), x.dot(f));
@@ -104,9 +136,9 @@ Reconstruction TriangulateComponent(const MapperContext& context,
                                     const std::string& what, MapperComponentSummary* component) {
   Timer timer;
   StructureSummary structure;
-  Reconstruction reconstruction =
-      BuildReconstruction(context.database, poses, tracks, bearings.bearings,
-                          bearings.focal_lengths_px, context.options.structure, &structure);
+  Reconstruction reconstruction = BuildReconstruction(
+      context.database, poses, tracks, bearings.bearings, bearings.focal_lengths_px,
+      context.options.structure, &structure, context.options.num_threads);
   for (auto& [camera_id, camera] : reconstruction.cameras) camera = cameras.at(camera_id);
   component->num_points = structure.num_points;
   component->num_observations = structure.num_observations;

@@ -38,14 +38,15 @@ struct StructureSummary {
 // 3D point per track that triangulates. `bearings` holds each image's undistorted unit bearings
 // (indexed like its keypoints) and `focal_lengths_px` each camera's mean focal length, which turns
 // the pixel bound into an angle. Reprojection errors are measured on the normalised plane scaled by
-// the focal length (exact for undistorted pinhole cameras).
+// the focal length (exact for undistorted pinhole cameras). Tracks are triangulated on
+// `num_threads` threads; the model is the same for any number.
 Reconstruction BuildReconstruction(const FeatureDatabase& database,
                                    const std::map<uint32_t, Rigid3d>& poses,
                                    const std::vector<Track>& tracks,
                                    const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
                                    const std::map<uint32_t, double>& focal_lengths_px,
                                    const StructureOptions& options = StructureOptions(),
-                                   StructureSummary* summary = nullptr);
+                                   StructureSummary* summary = nullptr, int num_threads = 1);
 
 // The mapper's stage 5 on one component: every track triangulated with `poses` fixed, through
 // `bearings` and `cameras` (the refined ones after bundle adjustment), the cameras written into

@@ -92,6 +92,9 @@ void AddTranslationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptio
   app.add_option("--TranslationAveraging.irls_cost_tolerance", ta.irls_cost_tolerance,
                  "stop IRLS when a step lowers its objective by less (0: off)")
       ->capture_default_str();
+  app.add_option(
+      "--TranslationAveraging.irls_extrapolation", ta.irls_extrapolation,
+      "IRLS steps taken this many times over when that lowers the objective more (1: plain)");
   app.add_option("--TranslationAveraging.max_admm_iterations", ta.max_admm_iterations)
       ->capture_default_str()
       ->check(AtLeast(0));
@@ -261,6 +264,7 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"solver", ta.solver == TranslationSolver::kIrls ? "irls" : "admm"},
         {"max_irls_iterations", ta.max_irls_iterations},
         {"irls_cost_tolerance", ta.irls_cost_tolerance},
+        {"irls_extrapolation", ta.irls_extrapolation},
         {"max_admm_iterations", ta.max_admm_iterations},
         {"admm_rho", ta.admm_rho},
         {"pair_constraint_weight", ta.pair_constraint_weight}}},

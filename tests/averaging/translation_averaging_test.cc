@@ -178,6 +178,26 @@ TEST(TranslationAveraging, CostToleranceStopsEarlierButStillReachesExactSolution
   EXPECT_LT(RelativeCenterError(line.scene, exact), 1e-6);
 }
 
+TEST(TranslationAveraging, ExtrapolatedStepsReachTheSameSolutionInFewerSteps) {
+  // A noisy forward line: IRLS's slow mode is the scale drifting along it.
+  std::mt19937 rng(7);
+  Scene line = ForwardLine(40, 1500, rng);
+  const auto [scene, tracks, directions] = ObserveScene(std::move(line), 0.1 * M_PI / 180, &rng);
+  TranslationAveragingOptions options;
+  options.max_irls_iterations = 200;
+  options.irls_extrapolation = 1.0;
+  const TranslationAveragingResult plain =
+      AverageTranslations(scene.rotations, directions, tracks, options);
+  options.irls_extrapolation = 2.5;
+  const TranslationAveragingResult extrapolated =
+      AverageTranslations(scene.rotations, directions, tracks, options);
+  // Measured: 139 plain steps stop (on the position change) at an L1 cost of 862.4, 28
+  // extrapolated ones at 852.0; centre errors 4.9% and 7.0% of the scene.
+  EXPECT_LT(2 * extrapolated.num_solver_iterations, plain.num_solver_iterations);
+  EXPECT_LE(extrapolated.l1_cost, plain.l1_cost);
+  EXPECT_LT(RelativeCenterError(scene, extrapolated), 0.1);
+}
+
 TEST(TranslationAveraging, PerImageQuotaGivesEveryCameraTracksPastTheCap) {
   std::mt19937 rng(5);
   Scene line = ForwardLine(40, 1500, rng);

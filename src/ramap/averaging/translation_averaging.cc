@@ -383,6 +383,14 @@ double IrlsWeights(const StackedSystem& system, const IrlsLayout& layout, const 
   return cost;
 }
 
+// The smoothed objective of IrlsWeights at x.
+double IrlsObjective(const StackedSystem& system, const IrlsLayout& layout,
+                     const Eigen::VectorXd& x, const TranslationAveragingOptions& options) {
+  Eigen::VectorXd weights;
+  double least_cost = 0;
+  return IrlsWeights(system, layout, x, options, &weights, &least_cost);
+}
+
 // Active set of the pair scales after a step to `next`: a free scale below the bound is held; a
 // held scale is released when its pair row alone (the only row it appears in) would put it above
 // the bound. Without priors every row is homogeneous but for the held scales, so at least one
@@ -466,6 +474,14 @@ Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
     equations.Assemble(block_weights, held, held_values, &normal, &rhs);
     FactorizeWithRidge(normal, &solver);
     Eigen::VectorXd next = equations.Expand(solver.solve(rhs), held, held_values);
+    if (options.irls_extrapolation > 1) {
+      Eigen::VectorXd extrapolated =
+          ProjectScales(x + options.irls_extrapolation * (next - x), system);
+      if (IrlsObjective(system, layout, extrapolated, options) <
+          IrlsObjective(system, layout, next, options)) {
+        next = std::move(extrapolated);
+      }
+    }
     num_moved = UpdateHeldScales(system, layout, &next, &held);
     const double change = (next.head(num_position_cols) - x.head(num_position_cols)).norm() /
                           std::max(1e-12, next.head(num_position_cols).norm());
@@ -503,6 +519,8 @@ void TranslationAveragingOptions::Check() const {
   CheckOption(irls_tolerance > 0, s + "irls_tolerance", "> 0", irls_tolerance);
   CheckOption(irls_cost_tolerance >= 0 && irls_cost_tolerance < 1, s + "irls_cost_tolerance",
               "in [0, 1)", irls_cost_tolerance);
+  CheckOption(irls_extrapolation >= 1 && irls_extrapolation <= 3, s + "irls_extrapolation",
+              "in [1, 3]", irls_extrapolation);
   CheckOption(irls_min_residual > 0, s + "irls_min_residual", "> 0", irls_min_residual);
   CheckOption(max_admm_iterations >= 0, s + "max_admm_iterations", ">= 0", max_admm_iterations);
   CheckOption(admm_tolerance > 0, s + "admm_tolerance", "> 0", admm_tolerance);

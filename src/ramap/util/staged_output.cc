@@ -1,8 +1,10 @@
 #include "ramap/util/staged_output.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -134,12 +136,15 @@ void InstallInterruptCleanup() {
   // The cleanup runs as ordinary code in a thread of its own (removing folders is not safe in a
   // signal handler), woken through a pipe by the handler.
   int fds[2];
-  if (::pipe(fds) != 0) return;
+  if (::pipe2(fds, O_CLOEXEC) != 0) return;  // not inherited by the programs ramap runs
   interrupt_pipe_write = fds[1];
   const int read_end = fds[0];
   std::thread([read_end]() {
     unsigned char signal = 0;
-    while (::read(read_end, &signal, 1) != 1) {
+    for (;;) {
+      const ssize_t read = ::read(read_end, &signal, 1);
+      if (read == 1) break;
+      if (read == 0 || errno != EINTR) return;  // the pipe is gone: no cleanup to wait for
     }
     RemoveLiveOutputs();
     const char message[] = "ramap: interrupted; unfinished outputs removed\n";

@@ -52,6 +52,46 @@ TrackRays RaysOfTrack(const Track& track, const FeatureDatabase& database,
   return result;
 }
 
+// A track's point (its inlier observations as its track, their mean reprojection error) before it
+// is numbered.
+struct TriangulatedTrack {
+  bool seen_twice = false;       // by at least two posed images
+  std::optional<Point3D> point;  // empty when the rays do not agree on one
+  double error_sum_px = 0.0;     // over the point's observations
+};
+
+TriangulatedTrack TriangulateTrack(const Track& track, const FeatureDatabase& database,
+                                   const std::map<uint32_t, Rigid3d>& poses,
+                                   const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
+                                   const std::map<uint32_t, double>& focal_lengths_px,
+                                   const Reconstruction& reconstruction,
+                                   const StructureOptions& options) {
+  TriangulatedTrack result;
+  const TrackRays rays =
+      RaysOfTrack(track, database, poses, bearings, focal_lengths_px, reconstruction);
+  if (rays.rays.size() < 2) return result;
+  result.seen_twice = true;
+  TriangulationOptions triangulation;
+  triangulation.max_angular_error_rad = options.max_reprojection_error_px / rays.focal_px;
+  triangulation.min_triangulation_angle_deg = options.min_triangulation_angle_deg;
+  const std::optional<TriangulatedPoint> triangulated = TriangulatePoint(rays.rays, triangulation);
+  if (!triangulated) return result;
+  Point3D point;
+  point.xyz = triangulated->xyz;
+  for (const int i : triangulated->inliers) {
+    const TrackElement& element = *rays.elements[i];
+    const Eigen::Vector3d x = rays.rays[i].cam_from_world * point.xyz;
+    const Eigen::Vector3d& f = rays.rays[i].bearing;
+    const double focal = focal_lengths_px.at(database.images.at(element.image_id).camera_id);
+    result.error_sum_px += f.z() > 0 ? focal * (x.head<2>() / x.z() - f.head<2>() / f.z()).norm()
+                                     : focal * std::atan2(x.cross(f).norm(), x.dot(f));
+    point.track.push_back(element);
+  }
+  point.error = result.error_sum_px / point.track.size();
+  result.point = std::move(point);
+  return result;
+}
+
 }  // namespace
 
 Reconstruction BuildReconstruction(const FeatureDatabase& database,
@@ -78,49 +118,31 @@ Reconstruction BuildReconstruction(const FeatureDatabase& database,
     reconstruction.images[image_id] = std::move(image);
   }
 
-  // The triangulations first, on the threads (each track on its own); then, in track order, the
-  // points, their ids and the error sums, so that the model does not depend on the threads.
-  std::vector<std::optional<TriangulatedPoint>> triangulated(tracks.size());
+  // Every track is triangulated on the threads, on its own; the points are then numbered in track
+  // order, so that the model does not depend on the threads.
+  std::vector<TriangulatedTrack> triangulated(tracks.size());
   ParallelFor(tracks.size(), num_threads, [&](size_t k) {
-    const TrackRays track =
-        RaysOfTrack(tracks[k], database, poses, bearings, focal_lengths_px, reconstruction);
-    if (track.rays.size() < 2) return;
-    TriangulationOptions triangulation;
-    triangulation.max_angular_error_rad = options.max_reprojection_error_px / track.focal_px;
-    triangulation.min_triangulation_angle_deg = options.min_triangulation_angle_deg;
-    triangulated[k] = TriangulatePoint(track.rays, triangulation);
+    triangulated[k] = TriangulateTrack(tracks[k], database, poses, bearings, focal_lengths_px,
+                                       reconstruction, options);
   });
   StructureSummary counts;
   double sum_error_px = 0.0;
   uint64_t next_point3D_id = 1;
-  for (size_t k = 0; k < tracks.size(); ++k) {
-    const TrackRays track =
-        RaysOfTrack(tracks[k], database, poses, bearings, focal_lengths_px, reconstruction);
-    if (track.rays.size() < 2) continue;
+  for (TriangulatedTrack& track : triangulated) {
+    if (!track.seen_twice) continue;
     ++counts.num_tracks;
-    if (!triangulated[k]) {
+    if (!track.point) {
       ++counts.num_rejected_tracks;
       continue;
     }
     const uint64_t point3D_id = next_point3D_id++;
-    Point3D point;
-    point.xyz = triangulated[k]->xyz;
-    double error_sum_px = 0.0;
-    for (const int i : triangulated[k]->inliers) {
-      const TrackElement& element = *track.elements[i];
-      const Eigen::Vector3d x = track.rays[i].cam_from_world * point.xyz;
-      const Eigen::Vector3d& f = track.rays[i].bearing;
-      const double focal = focal_lengths_px.at(database.images.at(element.image_id).camera_id);
-      error_sum_px += f.z() > 0 ? focal * (x.head<2>() / x.z() - f.head<2>() / f.z()).norm()
-                                : focal * std::atan2(x.cross(f).norm(), x.dot(f));
-      point.track.push_back(element);
+    for (const TrackElement& element : track.point->track) {
       reconstruction.images.at(element.image_id).points2D[element.point2D_idx].point3D_id =
           point3D_id;
     }
-    point.error = error_sum_px / point.track.size();
-    sum_error_px += error_sum_px;
-    counts.num_observations += static_cast<int>(point.track.size());
-    reconstruction.points3D[point3D_id] = std::move(point);
+    sum_error_px += track.error_sum_px;
+    counts.num_observations += static_cast<int>(track.point->track.size());
+    reconstruction.points3D[point3D_id] = std::move(*track.point);
   }
   counts.num_points = static_cast<int>(reconstruction.points3D.size());
   counts.mean_reprojection_error_px =

@@ -22,6 +22,10 @@ void AddRelativePoseOptions(CLI::App& app, MapperOptions* o, MapperOptionText* t
                  "1: grid selection ranks matches by ramap's stored descriptor ratio, not Sampson "
                  "error")
       ->capture_default_str();
+  app.add_option("--RelativePose.nister_five_point", o->relative_pose.nister_five_point,
+                 "1: candidates of each five of the six matches from Nister's essential "
+                 "matrix, not Kneip's rotation-only solver (faster; see README)")
+      ->capture_default_str();
   app.add_option("--RelativePose.max_epipolar_error_px", o->relative_pose.max_epipolar_error_px,
                  "pixels")
       ->capture_default_str()
@@ -243,6 +247,7 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"sampler", CorrespondenceSamplerName(o.relative_pose.sampler)},
         {"max_epipolar_error_px", o.relative_pose.max_epipolar_error_px},
         {"use_descriptor_ratios", o.relative_pose.use_descriptor_ratios},
+        {"nister_five_point", o.relative_pose.nister_five_point},
         {"pure_rotation_parallax_px", o.relative_pose.pure_rotation_parallax_px}}},
       {"PoseGraph",
        {{"sequential", o.order == InputOrder::kAuto         ? "auto"

@@ -194,6 +194,38 @@ TEST(RelativePoseTest, GridIgnoresLowConfidenceOutliers) {
   EXPECT_GE(estimate.num_inliers, 140);
 }
 
+// The grid takes the most confident match of each chosen cell; when one of those six is wrong
+// (here: its bearing in image 2 is another match's, its keypoints unchanged so that the grid still
+// picks it), the candidates of the five-point solver on the other five must still recover the
+// pose, with either five-point solver.
+TEST(RelativePoseTest, OneBadMatchAmongTheSixIsOutvoted) {
+  for (const bool nister_five_point : {false, true}) {
+    SCOPED_TRACE(nister_five_point ? "Nister five-point" : "Kneip five-point");
+    std::vector<Motion> motions = Motions();
+    // A large roll too: a candidate rotation of the wrong handedness (R^T for R) is then far from
+    // the truth, not a start the refinement can still repair.
+    motions.push_back({"roll", Rotation(35, Eigen::Vector3d(0.1, 0.2, 1)), {0.5, 0.2, 0.3}});
+    for (const Motion& motion : motions) {
+      SCOPED_TRACE(motion.name);
+      SyntheticPair pair = MakePair(motion.R, motion.center2, 200, 0, 11);
+      RelativePoseOptions options;
+      options.nister_five_point = nister_five_point;
+      const std::vector<int> six = SelectGridCorrespondences(
+          pair.matches, options.grid_cols, options.grid_rows, 6, options.min_cell_distance);
+      ASSERT_EQ(six.size(), 6u);
+      const int bad = six[2], partner = six[5];
+      pair.matches.bearings2[bad] = pair.matches.bearings2[partner];
+      const RelativePoseEstimate estimate = EstimateRelativePose(pair.matches, options);
+      EXPECT_TRUE(estimate.success) << estimate.reason;
+      if (!estimate.success) continue;
+      EXPECT_LT(RotationErrorDeg(estimate, pair.R), 1e-6);
+      EXPECT_LT(TranslationErrorDeg(estimate, pair.t), 1e-5);
+      EXPECT_EQ(std::count(estimate.inliers.begin(), estimate.inliers.end(), bad), 0);
+      EXPECT_EQ(estimate.num_inliers, 199);
+    }
+  }
+}
+
 TEST(RelativePoseTest, RejectsFewerThanSix) {
   const Motion motion = Motions()[0];
   SyntheticPair pair = MakePair(motion.R, motion.center2, 5, 0, 1);

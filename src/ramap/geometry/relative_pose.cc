@@ -68,8 +68,17 @@ double GreatCircleSpread(const std::vector<Eigen::Vector3d>& f) {
   return std::sqrt(std::max(0.0, eig.eigenvalues()(0)));
 }
 
-// Matches on which the rotation candidates of the six-point solvers are ranked.
+// Preemptive scoring of the rotation candidates (Nister, "Preemptive RANSAC for Live Structure and
+// Motion Estimation", ICCV 2003), in two rounds: the five-point candidates (up to ~60 per pair) on
+// an even subset of kNumFirstRoundMatches, the best kNumFirstRoundSurvivors of them together with
+// the six-point eigensolver's (at most three) on kNumPreemptiveMatches. Against scoring every
+// candidate on 200 matches (scripts/bench_relative_poses.sh, scripts/reproduce_mapper.sh): the
+// same per-pair errors on the real sets (KITTI 07 rotation p90 0.309 -> 0.308 deg), the mapper
+// table within the spread that moving the subset from 200 to 201 matches gives, and the relative
+// poses of a 1101-frame drive 10% faster (32.1 -> 29.1 s on one thread).
 constexpr int kNumPreemptiveMatches = 200;
+constexpr int kNumFirstRoundMatches = 50;
+constexpr int kNumFirstRoundSurvivors = 3;
 
 // At most `max_count` of `indices`, evenly spaced (all of them when there are few enough).
 std::vector<int> EvenSubset(const std::vector<int>& indices, int max_count) {
@@ -142,21 +151,38 @@ opengv::bearingVectors_t ToOpenGv(const std::vector<Eigen::Vector3d>& f) {
   return opengv::bearingVectors_t(f.begin(), f.end());
 }
 
-// A candidate rotation (cam2_from_cam1) and the matches it was solved from.
+// A candidate rotation (cam2_from_cam1), the matches it was solved from and its translation
+// direction (from the support, then re-fitted when the candidate is scored).
 struct RotationCandidate {
   Eigen::Matrix3d R;
   std::vector<int> support;
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
 };
 
-// Candidate rotations from the six selected matches. Kneip's five-point rotation-only solver on
-// five of the six (the other inliers disambiguate its up to 20 roots), `leave_out` naming the one
-// left out; with leave_out < 0, the eigensolver on all six started from the identity and from the
-// six's pure-rotation fit (a good start under small baselines), and that fit itself. Trying every
-// five of the six means that one bad match among the six still leaves a clean subset.
+// The rotation (camera 2 to camera 1, OpenGV's convention) of an essential matrix E with
+// f1^T E f2 = 0, i.e. E = [t]x R. Of the two rotations E admits (R and R turned by 180 deg about t)
+// one is returned: they have the same epipolar errors, so scoring cannot tell them apart, and
+// ResolveCheirality chooses between them once the pose is refined.
+Eigen::Matrix3d RotationOfEssential(const Eigen::Matrix3d& E) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(E, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d U = svd.matrixU(), V = svd.matrixV();
+  if (U.determinant() < 0) U = -U;
+  if (V.determinant() < 0) V = -V;
+  Eigen::Matrix3d W;
+  W << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+  return U * W * V.transpose();
+}
+
+// Candidate rotations from the six selected matches. A five-point solver on five of the six (the
+// other inliers disambiguate its roots), `leave_out` naming the one left out: Kneip's rotation-only
+// solver or, with `nister_five_point`, Nister's essential matrices. With leave_out < 0, the
+// eigensolver on all six started from the identity and from the six's pure-rotation fit (a good
+// start under small baselines), and that fit itself. Trying every five of the six means that one
+// bad match among the six still leaves a clean subset.
 std::vector<RotationCandidate> RotationCandidatesFromSix(const std::vector<Eigen::Vector3d>& f1,
                                                          const std::vector<Eigen::Vector3d>& f2,
-                                                         const std::vector<int>& six,
-                                                         int leave_out) {
+                                                         const std::vector<int>& six, int leave_out,
+                                                         bool nister_five_point) {
   // The solvers see only the six (numbered 0-5 in the adapter): copying every bearing of the pair
   // into OpenGV's containers for each call cost more than the solvers.
   opengv::bearingVectors_t b1, b2;
@@ -168,7 +194,8 @@ std::vector<RotationCandidate> RotationCandidatesFromSix(const std::vector<Eigen
   auto add = [&](const opengv::rotation_t& R_2to1, const std::vector<int>& support) {
     if (!R_2to1.allFinite()) return;
     const Eigen::Matrix3d R = Orthonormalize(R_2to1.transpose());
-    if (IsRotation(R)) candidates.push_back({R, support});
+    if (IsRotation(R))
+      candidates.push_back({R, support, TranslationFromRotation(f1, f2, support, R)});
   };
   const int num_six = static_cast<int>(six.size());
   std::vector<int> local_six(num_six);
@@ -182,18 +209,52 @@ std::vector<RotationCandidate> RotationCandidatesFromSix(const std::vector<Eigen
         five.push_back(six[i]);
         local_five.push_back(i);
       }
-      for (const auto& R : opengv::relative_pose::fivept_kneip(adapter, local_five)) add(R, five);
+      if (nister_five_point) {
+        for (const auto& E : opengv::relative_pose::fivept_nister(adapter, local_five)) {
+          if (E.allFinite()) add(RotationOfEssential(E), five);
+        }
+      } else {
+        for (const auto& R : opengv::relative_pose::fivept_kneip(adapter, local_five)) add(R, five);
+      }
       return candidates;
     }
     add(opengv::relative_pose::eigensolver(adapter, local_six), six);
     const Eigen::Matrix3d R_rot = FitPureRotation(f1, f2, six);
-    candidates.push_back({R_rot, six});
+    candidates.push_back({R_rot, six, TranslationFromRotation(f1, f2, six, R_rot)});
     opengv::relative_pose::CentralRelativeAdapter started(b1, b2, R_rot.transpose());
     add(opengv::relative_pose::eigensolver(started, local_six), six);
   } catch (const std::exception&) {
     // A solver failing on a degenerate sample leaves the candidates found so far.
   }
   return candidates;
+}
+
+// The `count` candidates of lowest MSAC cost on the matches `subset`, best first, each with its
+// translation re-fitted on its inliers there (ScoreRotation).
+std::vector<RotationCandidate> BestCandidates(const std::vector<Eigen::Vector3d>& f1,
+                                              const std::vector<Eigen::Vector3d>& f2,
+                                              const std::vector<int>& subset,
+                                              double max_epipolar_error,
+                                              std::vector<RotationCandidate> candidates,
+                                              int count) {
+  std::vector<Eigen::Vector3d> f1_subset, f2_subset;
+  for (const int k : subset) {
+    f1_subset.push_back(f1[k]);
+    f2_subset.push_back(f2[k]);
+  }
+  std::vector<std::pair<double, size_t>> ranked;
+  for (size_t c = 0; c < candidates.size(); ++c) {
+    RotationCandidate& candidate = candidates[c];
+    const double cost = ScoreRotation(f1_subset, f2_subset, candidate.R, candidate.t,
+                                      max_epipolar_error, &candidate.t)
+                            .cost;
+    if (std::isfinite(cost)) ranked.emplace_back(cost, c);
+  }
+  const size_t kept = std::min(ranked.size(), static_cast<size_t>(count));
+  std::partial_sort(ranked.begin(), ranked.begin() + kept, ranked.end());
+  std::vector<RotationCandidate> best;
+  for (size_t r = 0; r < kept; ++r) best.push_back(std::move(candidates[ranked[r].second]));
+  return best;
 }
 
 // The RANSAC baseline: OpenGV's central relative pose problem with Nister's five-point solver.
@@ -455,33 +516,27 @@ std::optional<RelativePoseEstimate> SixPointHypothesis(const TwoViewCorresponden
   if (static_cast<int>(six.size()) < kNumSamples) {
     return Reject(Rejection::kNoHypothesis, "could not select six correspondences");
   }
-  Bearings f1_subset, f2_subset;
-  for (const int k : EvenSubset(all, kNumPreemptiveMatches)) {
-    f1_subset.push_back(f1[k]);
-    f2_subset.push_back(f2[k]);
-  }
-  double best_subset_cost = std::numeric_limits<double>::infinity();
-  auto consider = [&](const std::vector<RotationCandidate>& candidates) {
-    for (const RotationCandidate& candidate : candidates) {
-      Eigen::Vector3d candidate_t;
-      const Scored scored =
-          ScoreRotation(f1_subset, f2_subset, candidate.R,
-                        TranslationFromRotation(f1, f2, candidate.support, candidate.R),
-                        max_epipolar_error, &candidate_t);
-      if (scored.cost < best_subset_cost) {
-        best_subset_cost = scored.cost;
-        *R = candidate.R;
-        *t = candidate_t;
-      }
-    }
-  };
-  consider(RotationCandidatesFromSix(f1, f2, six, -1));
+  std::vector<RotationCandidate> candidates =
+      RotationCandidatesFromSix(f1, f2, six, -1, options.nister_five_point);
+  std::vector<RotationCandidate> five_point_candidates;
   for (int leave_out = 0; leave_out < kNumSamples; ++leave_out) {
-    consider(RotationCandidatesFromSix(f1, f2, six, leave_out));
+    for (RotationCandidate& candidate :
+         RotationCandidatesFromSix(f1, f2, six, leave_out, options.nister_five_point)) {
+      five_point_candidates.push_back(std::move(candidate));
+    }
   }
-  if (!std::isfinite(best_subset_cost)) {
+  for (RotationCandidate& candidate :
+       BestCandidates(f1, f2, EvenSubset(all, kNumFirstRoundMatches), max_epipolar_error,
+                      std::move(five_point_candidates), kNumFirstRoundSurvivors)) {
+    candidates.push_back(std::move(candidate));
+  }
+  const std::vector<RotationCandidate> best = BestCandidates(
+      f1, f2, EvenSubset(all, kNumPreemptiveMatches), max_epipolar_error, std::move(candidates), 1);
+  if (best.empty()) {
     return Reject(Rejection::kNoHypothesis, "the six-point solvers returned no rotation");
   }
+  *R = best.front().R;
+  *t = best.front().t;
   return std::nullopt;
 }
 

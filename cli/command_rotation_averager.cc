@@ -19,12 +19,21 @@
 namespace ramap::cli {
 namespace {
 
-// Relative poses by image name, from a database (stage 1) or a file.
+// Relative poses by image name, from a database (stage 1) or a file; resolves the rotation
+// averaging's edge weighting as the mapper does (a file's relative poses say nothing of the
+// cameras' focal lengths: auto is off there).
 std::vector<RelativePoseRecord> LoadRelativePoses(const std::string& database_path,
                                                   const std::string& relative_poses_path,
-                                                  const MapperOptions& options) {
-  if (!relative_poses_path.empty()) return ReadRelativePoses(relative_poses_path);
+                                                  MapperOptions* options_in_out) {
+  MapperOptions& options = *options_in_out;
+  if (!relative_poses_path.empty()) {
+    options.rotation_averaging.use_edge_weights =
+        options.rotation_edge_weights == EdgeWeighting::kOn;
+    return ReadRelativePoses(relative_poses_path);
+  }
   const FeatureDatabase database = ReadColmapDatabase(database_path, MapperDatabaseReadOptions());
+  options.rotation_averaging.use_edge_weights =
+      UseRotationEdgeWeights(options.rotation_edge_weights, database);
   const ImageBearings bearings = ComputeBearings(database, database_path);
   const std::vector<RelativePoseRecord> records = AcceptedRelativePoses(
       database, EstimateRelativePoses(database, bearings, options.relative_pose,
@@ -98,7 +107,7 @@ int RunRotationAverager(int argc, char** argv) {
   CheckFileOutput("--output_path", output_path, {database_path, relative_poses_path});
 
   const std::vector<RelativePoseRecord> records =
-      LoadRelativePoses(database_path, relative_poses_path, options);
+      LoadRelativePoses(database_path, relative_poses_path, &options);
   const RecordRotations averaged = AverageRecordRotations(
       records, options.order, options.pose_graph, options.rotation_averaging);
   WriteRotations(averaged.rotations, output_path);

@@ -70,6 +70,10 @@ void AddRotationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptionTe
       ->capture_default_str()
       ->check(AtLeast(0));
   app.add_option("--RotationAveraging.certificate", ra.compute_certificate)->capture_default_str();
+  app.add_option("--RotationAveraging.edge_weights", text->edge_weights,
+                 "auto|1|0: weight edges by their inlier counts (auto: when every camera's "
+                 "focal length is known)")
+      ->capture_default_str();
 }
 
 namespace {
@@ -220,6 +224,16 @@ void FinishMapperOptions(const MapperOptionText& text, MapperOptions* options) {
     throw InputError("--RotationAveraging.pruning",
                      "'" + text.pruning + "' is not fixed or duality");
   }
+  if (text.edge_weights == "auto") {
+    options->rotation_edge_weights = EdgeWeighting::kAuto;
+  } else if (text.edge_weights == "1") {
+    options->rotation_edge_weights = EdgeWeighting::kOn;
+  } else if (text.edge_weights == "0") {
+    options->rotation_edge_weights = EdgeWeighting::kOff;
+  } else {
+    throw InputError("--RotationAveraging.edge_weights",
+                     "'" + text.edge_weights + "' is not auto, 1 or 0");
+  }
   if (text.translation_solver == "irls") {
     options->translation_averaging.solver = TranslationSolver::kIrls;
   } else if (text.translation_solver == "admm") {
@@ -261,7 +275,10 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"sigma_deg", ra.sigma_deg},
         {"pruning", ra.pruning_mode == PruningThresholdMode::kFixedAngle ? "fixed" : "duality"},
         {"alpha_max_deg", ra.alpha_max_deg},
-        {"max_pruning_rounds", ra.max_pruning_rounds}}},
+        {"max_pruning_rounds", ra.max_pruning_rounds},
+        {"edge_weights", o.rotation_edge_weights == EdgeWeighting::kAuto ? "auto"
+                         : o.rotation_edge_weights == EdgeWeighting::kOn ? "1"
+                                                                         : "0"}}},
       {"TranslationAveraging",
        {{"min_triangulation_angle_deg", ta.min_triangulation_angle_deg},
         {"max_num_tracks", ta.max_num_tracks},

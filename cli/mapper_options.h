@@ -18,6 +18,7 @@ struct MapperOptionText {
   std::string loss = "geman_mcclure";
   std::string pruning = "fixed";
   std::string translation_solver = "irls";
+  std::string edge_weights = "auto";
 };
 
 // Stage 1: --RelativePose.* and --Mapper.num_threads.

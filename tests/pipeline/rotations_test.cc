@@ -27,6 +27,17 @@ TEST(RotationStage, RecordsBecomeAGraphNumberedByFirstAppearance) {
   EXPECT_EQ(RelativeRotationWeight(-3), 1.0);
 }
 
+TEST(RotationStage, EdgeWeightsFollowTheFocalLengthsOnAuto) {
+  FeatureDatabase database;
+  database.cameras[1].has_prior_focal_length = true;
+  database.cameras[2].has_prior_focal_length = true;
+  EXPECT_TRUE(UseRotationEdgeWeights(EdgeWeighting::kAuto, database));
+  EXPECT_FALSE(UseRotationEdgeWeights(EdgeWeighting::kOff, database));
+  database.cameras[2].has_prior_focal_length = false;  // a guessed focal length
+  EXPECT_FALSE(UseRotationEdgeWeights(EdgeWeighting::kAuto, database));
+  EXPECT_TRUE(UseRotationEdgeWeights(EdgeWeighting::kOn, database));
+}
+
 TEST(RotationStage, SequenceThroughKeyframesAndCollectionAtOnceAgree) {
   SyntheticRotationGraphOptions options;
   options.num_nodes = 120;

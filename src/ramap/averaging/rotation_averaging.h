@@ -69,7 +69,9 @@ struct RotationAveragingOptions {
   // predictions agree with (within alpha_max). Without this, an L1 start that left a node far off
   // strands it on an outlier edge once its inlier edges are pruned (seen at 30% outliers).
   bool reinitialize_suspect_nodes = true;
-  // Scale IRLS weights by the edges' own weights (inlier counts). Off as in Chatterjee & Govindu.
+  // Scale IRLS weights by the edges' own weights (inlier counts). Off here as in Chatterjee &
+  // Govindu; the mapper turns it on when every focal length is known (MapperOptions::
+  // rotation_edge_weights).
   bool use_edge_weights = false;
   // Compute the strong-duality certificate (a Fiedler value and a chordal refinement).
   bool compute_certificate = true;

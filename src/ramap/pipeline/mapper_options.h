@@ -14,6 +14,20 @@
 
 namespace ramap {
 
+// Whether rotation averaging weights each edge by its pair's inlier count (IRLS weights times the
+// count; RotationAveragingOptions::use_edge_weights).
+enum class EdgeWeighting {
+  // On when every camera's focal length is known (prior_focal_length 1), off otherwise. Measured
+  // (scripts/reproduce_mapper.sh, averaging alone): with the true intrinsics AUC@3 rises on every
+  // set (templeRing 59.4 -> 74.8, Herz-Jesus-P8 93.8 -> 97.5, kitti07_first160 59.8 -> 63.7,
+  // fountain-P11 97.4 -> 98.3, lund_door 97.89 -> 97.93); through focal lengths from the view
+  // graph it falls on three (fountain-P11 50.6 -> 45.4, kitti07_first160 49.9 -> 47.2,
+  // Herz-Jesus-P8 89.6 -> 88.9). With BA every set stays within 0.1.
+  kAuto,
+  kOn,
+  kOff,
+};
+
 struct MapperOptions {
   // Focal lengths of uncalibrated cameras (prior_focal_length 0) from the view graph, first.
   ViewGraphCalibrationOptions view_graph_calibration;
@@ -21,15 +35,17 @@ struct MapperOptions {
   InputOrder order = InputOrder::kAuto;
   KeyframeOptions pose_graph;
   RotationAveragingOptions rotation_averaging;
+  // Resolved into rotation_averaging.use_edge_weights per run (UseRotationEdgeWeights).
+  EdgeWeighting rotation_edge_weights = EdgeWeighting::kAuto;
   PairDirectionOptions pair_direction;
   TranslationAveragingOptions translation_averaging;
   StructureOptions structure;
   // What to do with position priors, when RunMapper is given any.
   GeoregistrationOptions georegistration;
-  // Final bundle adjustment ("averaging + BA"), on by default: averaging alone gives up 2-33 AUC@3
-  // points to COLMAP on the benchmark sets (BENCHMARKS.md, mapper table) and cannot fix a focal
-  // length the view graph leaves free; with BA ramap matches COLMAP. Averaging alone (false) is
-  // the fast option, 3-10x quicker.
+  // Final bundle adjustment ("averaging + BA"), on by default: averaging alone gives up 0.2-17
+  // AUC@3 points to COLMAP on the benchmark sets (BENCHMARKS.md, mapper table) and cannot fix a
+  // focal length the view graph leaves free; with BA ramap matches COLMAP. Averaging alone (false)
+  // is the fast option, 3-10x quicker.
   bool refine = true;
   BundleAdjustmentOptions bundle_adjustment;
   // When bundle adjustment moves a focal length by more than this fraction from the value

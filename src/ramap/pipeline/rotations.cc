@@ -10,6 +10,12 @@
 
 namespace ramap {
 
+bool UseRotationEdgeWeights(EdgeWeighting weighting, const FeatureDatabase& database) {
+  if (weighting != EdgeWeighting::kAuto) return weighting == EdgeWeighting::kOn;
+  return std::all_of(database.cameras.begin(), database.cameras.end(),
+                     [](const auto& entry) { return entry.second.has_prior_focal_length; });
+}
+
 RotationStageResult AverageViewGraphRotations(const RotationGraph& graph,
                                               const std::vector<uint32_t>& capture_order,
                                               bool sequential, const KeyframeOptions& pose_graph,
@@ -37,8 +43,11 @@ RotationStageResult AverageComponentRotations(
     std::map<uint32_t, Eigen::Quaterniond>* world_rotations) {
   const MapperOptions& options = context.options;
   Timer timer;
-  RotationStageResult stage = AverageViewGraphRotations(
-      graph, context.order, context.sequential, options.pose_graph, options.rotation_averaging);
+  RotationAveragingOptions rotation_averaging = options.rotation_averaging;
+  rotation_averaging.use_edge_weights =
+      UseRotationEdgeWeights(options.rotation_edge_weights, context.database);
+  RotationStageResult stage = AverageViewGraphRotations(graph, context.order, context.sequential,
+                                                        options.pose_graph, rotation_averaging);
   const RotationAveragingResult& rotations = stage.rotations;
   context.summary.num_keyframes += stage.num_keyframes;
   context.summary.num_loop_edges += stage.num_loop_edges;

@@ -14,6 +14,7 @@
 #include "ramap/graph/rotation_graph.h"
 #include "ramap/io/relative_pose_file.h"
 #include "ramap/pipeline/mapper_context.h"
+#include "ramap/pipeline/mapper_options.h"
 #include "ramap/scene/image_order.h"
 #include "ramap/scene/view_graph.h"
 
@@ -24,6 +25,11 @@ struct RotationStageResult {
   int num_keyframes = 0;   // 0 for unordered input
   int num_loop_edges = 0;  // edges joining frames of no common keyframe window
 };
+
+// Whether rotation averaging weights its edges by inlier counts: as `weighting` says, or with
+// kAuto when every camera of `database` has a known focal length (prior_focal_length 1): weights
+// help averaging through true intrinsics and hurt it through estimated ones (EdgeWeighting).
+bool UseRotationEdgeWeights(EdgeWeighting weighting, const FeatureDatabase& database);
 
 // `capture_order` lists node ids in capture order (ids not in the graph are ignored); it is only
 // used when `sequential`.

@@ -245,9 +245,10 @@ std::vector<RotationCandidate> BestCandidates(const std::vector<Eigen::Vector3d>
   std::vector<std::pair<double, size_t>> ranked;
   for (size_t c = 0; c < candidates.size(); ++c) {
     RotationCandidate& candidate = candidates[c];
-    const double cost = ScoreRotation(f1_subset, f2_subset, candidate.R, candidate.t,
-                                      max_epipolar_error, &candidate.t)
-                            .cost;
+    const Eigen::Vector3d t_start = candidate.t;
+    const double cost =
+        ScoreRotation(f1_subset, f2_subset, candidate.R, t_start, max_epipolar_error, &candidate.t)
+            .cost;
     if (std::isfinite(cost)) ranked.emplace_back(cost, c);
   }
   const size_t kept = std::min(ranked.size(), static_cast<size_t>(count));

@@ -197,16 +197,23 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
       ->check(AtLeast(2));
 }
 
+namespace {
+
+// The value of an "auto|1|0" option; throws InputError naming `option` on anything else.
+template <typename Choice>
+Choice AutoOnOff(const std::string& option, const std::string& text, Choice when_auto,
+                 Choice when_on, Choice when_off) {
+  if (text == "auto") return when_auto;
+  if (text == "1") return when_on;
+  if (text == "0") return when_off;
+  throw InputError(option, "'" + text + "' is not auto, 1 or 0");
+}
+
+}  // namespace
+
 void FinishMapperOptions(const MapperOptionText& text, MapperOptions* options) {
-  if (text.sequential == "auto") {
-    options->order = InputOrder::kAuto;
-  } else if (text.sequential == "1") {
-    options->order = InputOrder::kSequential;
-  } else if (text.sequential == "0") {
-    options->order = InputOrder::kUnordered;
-  } else {
-    throw InputError("--PoseGraph.sequential", "'" + text.sequential + "' is not auto, 1 or 0");
-  }
+  options->order = AutoOnOff("--PoseGraph.sequential", text.sequential, InputOrder::kAuto,
+                             InputOrder::kSequential, InputOrder::kUnordered);
   options->relative_pose.sampler = CorrespondenceSamplerFromName(text.sampler);
   if (text.loss == "geman_mcclure") {
     options->rotation_averaging.loss = RobustLoss::kGemanMcClure;
@@ -224,16 +231,9 @@ void FinishMapperOptions(const MapperOptionText& text, MapperOptions* options) {
     throw InputError("--RotationAveraging.pruning",
                      "'" + text.pruning + "' is not fixed or duality");
   }
-  if (text.edge_weights == "auto") {
-    options->rotation_edge_weights = EdgeWeighting::kAuto;
-  } else if (text.edge_weights == "1") {
-    options->rotation_edge_weights = EdgeWeighting::kOn;
-  } else if (text.edge_weights == "0") {
-    options->rotation_edge_weights = EdgeWeighting::kOff;
-  } else {
-    throw InputError("--RotationAveraging.edge_weights",
-                     "'" + text.edge_weights + "' is not auto, 1 or 0");
-  }
+  options->rotation_edge_weights =
+      AutoOnOff("--RotationAveraging.edge_weights", text.edge_weights, EdgeWeighting::kAuto,
+                EdgeWeighting::kOn, EdgeWeighting::kOff);
   if (text.translation_solver == "irls") {
     options->translation_averaging.solver = TranslationSolver::kIrls;
   } else if (text.translation_solver == "admm") {

@@ -78,8 +78,9 @@ struct RelativePoseOptions {
   // to the Five-Point Relative Pose Problem", PAMI 2004, as shipped by OpenGV), one rotation per
   // essential matrix: five times cheaper per call (34 vs 177 us), relative poses 1.6x faster on
   // KITTI 07 with per-pair errors as good or better on every real set
-  // (scripts/bench_relative_poses.sh), but KITTI 07's averaging alone is worse with it (AUC@3 60 ->
-  // 53: a few weak loop pairs come out a little wrong instead of grossly wrong, and are kept).
+  // (scripts/bench_relative_poses.sh), but KITTI 07's averaging alone is worse with it (AUC@3 64 ->
+  // 58 with the rotation edge weights, 60 -> 53 without: a few weak far-apart pairs come out a
+  // little wrong instead of grossly wrong, and are kept).
   bool nister_five_point = false;
   // RANSAC (sampler = ransac5): iterations cap and success probability.
   int ransac_max_iterations = 1000;

@@ -489,10 +489,9 @@ std::optional<RelativePoseEstimate> PureRotationOutcome(const Bearings& f1, cons
 }
 
 // The paper's hypothesis: six grid-selected (or random, or ROI) correspondences, the rotation
-// candidates of the six-point solver on them and on each five of them, ranked by preemptive
-// scoring (Nister, "Preemptive RANSAC", ICCV 2003: the up to ~40 candidates on an even subset of
-// the matches, only the best scored on all). A rejection when no six could be selected or no
-// solver returned a rotation.
+// candidates of the six-point solver on them and on each five of them, ranked by the two rounds
+// of preemptive scoring described at kNumPreemptiveMatches (only the best is then scored on all
+// matches). A rejection when no six could be selected or no solver returned a rotation.
 std::optional<RelativePoseEstimate> SixPointHypothesis(const TwoViewCorrespondences& matches,
                                                        const Bearings& f1, const Bearings& f2,
                                                        const std::vector<int>& all,

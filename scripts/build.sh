@@ -9,7 +9,9 @@ generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 exec 9>/tmp/ramap-build.lock
 flock 9
-if [[ ! -f $build_dir/CMakeCache.txt ]]; then
+# Configure unless a build system was generated: a configure that failed (a missing package) leaves
+# a cache but no build.ninja or Makefile, and must run again once the package is installed.
+if [[ ! -f $build_dir/build.ninja && ! -f $build_dir/Makefile ]]; then
   cmake -S "$root" -B "$build_dir" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "$@"
 fi
 cmake --build "$build_dir" -j "$jobs"

@@ -83,6 +83,48 @@ TEST(BlockNormalEquations, HeldColumnMovesToTheRightHandSide) {
   EXPECT_LT((solution.head(4) - expected_free).norm(), 1e-10);
 }
 
+// Many blocks over shared columns, as the cameras of a long drive share tracks: the assembled
+// equations hold every entry of B^T W B in its place and no other, and a column that no block
+// touches keeps its diagonal entry.
+TEST(BlockNormalEquations, ManyOverlappingBlocksAssembleTheDirectProduct) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> value(-1, 1);
+  std::uniform_int_distribution<int> column(0, 39);  // column 40 is in no block
+  const int num_blocks = 60;
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(3 * num_blocks, 41);
+  Eigen::VectorXd weights(num_blocks);
+  for (int b = 0; b < num_blocks; ++b) {
+    weights(b) = 0.5 + std::abs(value(rng));
+    for (int k = 0; k < 4; ++k) {
+      const int c = column(rng);
+      for (int r = 0; r < 3; ++r) dense(3 * b + r, c) = value(rng);
+    }
+  }
+  const Eigen::SparseMatrix<double> B = dense.sparseView();
+  const BlockNormalEquations equations(B, {});
+  Eigen::SparseMatrix<double> normal;
+  Eigen::VectorXd rhs;
+  equations.Assemble(weights, {}, {}, &normal, &rhs);
+  Eigen::VectorXd row_weights(3 * num_blocks);
+  for (int b = 0; b < num_blocks; ++b) row_weights.segment<3>(3 * b).setConstant(weights(b));
+  const Eigen::MatrixXd N = dense.transpose() * row_weights.asDiagonal() * dense;
+  ASSERT_EQ(normal.rows(), 41);
+  EXPECT_LT((Eigen::MatrixXd(normal) - Eigen::MatrixXd(N.triangularView<Eigen::Lower>())).norm(),
+            1e-12);
+  // The pattern: the lower triangle of the blocks' shared columns, and every diagonal entry.
+  int expected_entries = 0;
+  for (int i = 0; i < 41; ++i) {
+    for (int j = 0; j <= i; ++j) {
+      bool shared = i == j;
+      for (int b = 0; b < num_blocks && !shared; ++b) {
+        shared = dense.block(3 * b, i, 3, 1).any() && dense.block(3 * b, j, 3, 1).any();
+      }
+      expected_entries += shared;
+    }
+  }
+  EXPECT_EQ(equations.pattern().nonZeros(), expected_entries);
+}
+
 TEST(BlockNormalEquations, AColumnInTwoBlocksCannotBeEliminated) {
   EXPECT_THROW(BlockNormalEquations(MakeMatrix(), {3}), std::invalid_argument);
 }

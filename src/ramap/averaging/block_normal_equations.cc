@@ -2,71 +2,31 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <map>
 #include <stdexcept>
+#include <utility>
 
 namespace ramap {
 namespace {
 
-// Index of entry (row, col) in a compressed column-major matrix's value array.
-int ValueIndex(const Eigen::SparseMatrix<double>& m, int row, int col) {
-  const int* begin = m.innerIndexPtr() + m.outerIndexPtr()[col];
-  const int* end = m.innerIndexPtr() + m.outerIndexPtr()[col + 1];
-  const int* it = std::lower_bound(begin, end, row);
-  if (it == end || *it != row) throw std::logic_error("BlockNormalEquations: entry not in pattern");
-  return static_cast<int>(it - m.innerIndexPtr());
-}
-
 // The columns of block b of a row-major B with their 3 entries, by increasing column.
-std::map<int, Eigen::Vector3d> BlockColumns(const Eigen::SparseMatrix<double, Eigen::RowMajor>& B,
-                                            int b) {
-  std::map<int, Eigen::Vector3d> entries;
+std::vector<std::pair<int, Eigen::Vector3d>> BlockColumns(
+    const Eigen::SparseMatrix<double, Eigen::RowMajor>& B, int b) {
+  std::vector<std::pair<int, Eigen::Vector3d>> entries;
   for (int r = 0; r < 3; ++r) {
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(B, 3 * b + r); it; ++it) {
-      auto [slot, inserted] = entries.emplace(it.col(), Eigen::Vector3d::Zero());
-      slot->second(r) = it.value();
+      const auto slot = std::find_if(entries.begin(), entries.end(),
+                                     [&](const auto& entry) { return entry.first == it.col(); });
+      if (slot != entries.end()) {
+        slot->second(r) = it.value();
+        continue;
+      }
+      entries.emplace_back(static_cast<int>(it.col()), Eigen::Vector3d::Zero());
+      entries.back().second(r) = it.value();
     }
   }
+  std::sort(entries.begin(), entries.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
   return entries;
-}
-
-// The lower triangle of the pattern of sum_b (block b's kept columns)^2, with every diagonal
-// entry. The (column, row) keys are deduplicated as they come: blocks share most entries (the
-// cameras of a track appear in many), and the blocks' triangles together were 12 million triplets
-// (190 MiB, the translation averaging's peak) on a 4541-frame drive whose pattern has a tenth.
-Eigen::SparseMatrix<double> LowerPattern(int num_columns, const std::vector<int>& kept,
-                                         const std::vector<int>& column_begin) {
-  std::vector<uint64_t> keys;
-  const auto key = [](int row, int col) {
-    return (static_cast<uint64_t>(col) << 32) | static_cast<uint32_t>(row);
-  };
-  const auto deduplicate = [&keys] {
-    std::sort(keys.begin(), keys.end());
-    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  };
-  size_t deduplicate_at = size_t{1} << 22;
-  for (int c = 0; c < num_columns; ++c) keys.push_back(key(c, c));
-  for (size_t b = 0; b + 1 < column_begin.size(); ++b) {
-    for (int i = column_begin[b]; i < column_begin[b + 1]; ++i) {
-      for (int j = column_begin[b]; j <= i; ++j) keys.push_back(key(kept[i], kept[j]));
-    }
-    if (keys.size() >= deduplicate_at) {
-      deduplicate();
-      deduplicate_at = std::max(deduplicate_at, 2 * keys.size());
-    }
-  }
-  deduplicate();
-  Eigen::SparseMatrix<double> pattern(num_columns, num_columns);
-  pattern.resizeNonZeros(static_cast<Eigen::Index>(keys.size()));
-  int* outer = pattern.outerIndexPtr();
-  std::fill(outer, outer + num_columns + 1, 0);
-  for (size_t k = 0; k < keys.size(); ++k) {
-    ++outer[(keys[k] >> 32) + 1];
-    pattern.innerIndexPtr()[k] = static_cast<int>(keys[k] & 0xffffffffu);
-    pattern.valuePtr()[k] = 0.0;
-  }
-  for (int c = 0; c < num_columns; ++c) outer[c + 1] += outer[c];
-  return pattern;
 }
 
 }  // namespace
@@ -111,17 +71,63 @@ BlockNormalEquations::BlockNormalEquations(const Eigen::SparseMatrix<double>& B,
     }
   }
   column_begin_.push_back(static_cast<int>(kept_.size()));
-  // Every diagonal entry, so that the pattern is complete even for columns no block touches.
-  pattern_ = LowerPattern(static_cast<int>(kept_columns_.size()), kept_, column_begin_);
-  value_begin_.reserve(num_blocks + 1);
+  BuildPattern(static_cast<int>(kept_columns_.size()));
+}
+
+// Column by column: the rows below the diagonal that share a block with the column, found through
+// the blocks that hold it (a stamp per row instead of a sort of every block's entries: the blocks
+// share most entries, and their triangles were 12 million on a 4541-frame drive whose pattern has
+// a tenth), and each block's entries pointed at their slots as the column is laid out.
+void BlockNormalEquations::BuildPattern(int num_columns) {
+  const int num_blocks = static_cast<int>(column_begin_.size()) - 1;
+  // Each block's lower triangle, row by row, as value_index_ lays it out.
+  value_begin_.assign(num_blocks + 1, 0);
   for (int b = 0; b < num_blocks; ++b) {
-    value_begin_.push_back(static_cast<int>(value_index_.size()));
-    for (int i = column_begin_[b]; i < column_begin_[b + 1]; ++i) {
-      for (int j = column_begin_[b]; j <= i; ++j)
-        value_index_.push_back(ValueIndex(pattern_, kept_[i], kept_[j]));
+    const int n = column_begin_[b + 1] - column_begin_[b];
+    value_begin_[b + 1] = value_begin_[b] + n * (n + 1) / 2;
+  }
+  value_index_.assign(value_begin_.back(), -1);
+  // The (block, local index) of every kept column's appearances.
+  std::vector<int> appearances_begin(num_columns + 1, 0);
+  for (const int column : kept_) ++appearances_begin[column + 1];
+  for (int c = 0; c < num_columns; ++c) appearances_begin[c + 1] += appearances_begin[c];
+  std::vector<std::pair<int, int>> appearances(kept_.size());
+  std::vector<int> fill = appearances_begin;
+  for (int b = 0; b < num_blocks; ++b) {
+    for (int i = column_begin_[b]; i < column_begin_[b + 1]; ++i)
+      appearances[fill[kept_[i]]++] = {b, i - column_begin_[b]};
+  }
+  std::vector<int> outer(num_columns + 1, 0);
+  std::vector<int> inner;
+  std::vector<int> stamp(num_columns, -1);
+  std::vector<int> slot(num_columns, -1);
+  std::vector<int> rows;
+  for (int c = 0; c < num_columns; ++c) {
+    rows.assign(1, c);  // every diagonal entry, even of a column no block touches
+    stamp[c] = c;
+    for (int a = appearances_begin[c]; a < appearances_begin[c + 1]; ++a) {
+      const auto [b, local] = appearances[a];
+      for (int i = column_begin_[b] + local; i < column_begin_[b + 1]; ++i) {
+        if (stamp[kept_[i]] != c) stamp[kept_[i]] = c, rows.push_back(kept_[i]);
+      }
+    }
+    std::sort(rows.begin(), rows.end());
+    for (size_t r = 0; r < rows.size(); ++r) slot[rows[r]] = static_cast<int>(inner.size() + r);
+    inner.insert(inner.end(), rows.begin(), rows.end());
+    outer[c + 1] = static_cast<int>(inner.size());
+    // Entry (i, local) of block b, i >= local, sits at row i, column `local` of its triangle.
+    for (int a = appearances_begin[c]; a < appearances_begin[c + 1]; ++a) {
+      const auto [b, local] = appearances[a];
+      for (int i = local; i < column_begin_[b + 1] - column_begin_[b]; ++i) {
+        value_index_[value_begin_[b] + i * (i + 1) / 2 + local] = slot[kept_[column_begin_[b] + i]];
+      }
     }
   }
-  value_begin_.push_back(static_cast<int>(value_index_.size()));
+  pattern_.resize(num_columns, num_columns);
+  pattern_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+  std::copy(outer.begin(), outer.end(), pattern_.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), pattern_.innerIndexPtr());
+  std::fill(pattern_.valuePtr(), pattern_.valuePtr() + inner.size(), 0.0);
 }
 
 void BlockNormalEquations::Assemble(const Eigen::VectorXd& block_weights,

@@ -40,6 +40,9 @@ class BlockNormalEquations {
   const Eigen::SparseMatrix<double>& pattern() const { return pattern_; }
 
  private:
+  // The pattern of the reduced normal equations (lower triangle) and value_index_.
+  void BuildPattern(int num_columns);
+
   // The Gram matrix of a block, sum_r B_rc B_rc' over its 3 rows, and its Schur complement are
   // computed at each assembly from the block's column vectors (3 entries each) rather than stored:
   // a track block of four cameras has 12 columns, whose 144 Gram entries and their pattern indices

@@ -138,30 +138,37 @@ int AddTrackConstraints(const std::vector<uint32_t>& ids, const std::vector<Eige
                         const DirectionTable& directions, double min_angle,
                         std::unordered_map<uint32_t, int>* usage,
                         std::vector<Constraint>* constraints) {
+  // Every ordered pair's prediction, once: the reference and each camera's best pair are chosen
+  // among the same ones.
+  const size_t n = ids.size();
+  std::vector<std::optional<PointPrediction>> predictions(n * n);
+  for (size_t a = 0; a < n; ++a) {
+    for (size_t b = 0; b < n; ++b) {
+      if (a != b)
+        predictions[a * n + b] =
+            PredictPoint(ids[a], ids[b], rays[a], rays[b], directions, min_angle);
+    }
+  }
+  const auto wider = [](const std::optional<PointPrediction>& x,
+                        const std::optional<PointPrediction>& than) {
+    return x && (!than || x->ray_angle > than->ray_angle);
+  };
   std::optional<PointPrediction> reference;
   size_t ref_a = 0;
-  for (size_t a = 0; a < ids.size(); ++a) {
-    for (size_t b = 0; b < ids.size(); ++b) {
-      if (a == b) continue;
-      const auto prediction = PredictPoint(ids[a], ids[b], rays[a], rays[b], directions, min_angle);
-      if (prediction && (!reference || prediction->ray_angle > reference->ray_angle)) {
-        reference = prediction;
-        ref_a = a;
-      }
+  for (size_t a = 0; a < n; ++a) {
+    for (size_t b = 0; b < n; ++b) {
+      if (wider(predictions[a * n + b], reference)) reference = predictions[a * n + b], ref_a = a;
     }
   }
   if (!reference) return 0;
   int added = 0;
-  for (size_t k = 0; k < ids.size(); ++k) {
+  for (size_t k = 0; k < n; ++k) {
     if (k == ref_a) continue;
     // Camera k predicts X from its best-conditioned pair with any other camera of the track
     // (a sequence frame often has no verified pair with the reference cameras themselves).
     std::optional<PointPrediction> best;
-    for (size_t partner = 0; partner < ids.size(); ++partner) {
-      if (partner == k) continue;
-      const auto prediction =
-          PredictPoint(ids[k], ids[partner], rays[k], rays[partner], directions, min_angle);
-      if (prediction && (!best || prediction->ray_angle > best->ray_angle)) best = prediction;
+    for (size_t partner = 0; partner < n; ++partner) {
+      if (wider(predictions[k * n + partner], best)) best = predictions[k * n + partner];
     }
     if (!best) continue;
     Constraint constraint;
@@ -365,10 +372,9 @@ IrlsLayout MakeIrlsLayout(const StackedSystem& system) {
 // The IRLS weights 1 / max(|r_b|, floor_b) of the residuals B x, and the smoothed objective the
 // weighted squares majorise: |r| above the floor, (r^2 / floor + floor) / 2 below it, so at least
 // floor / 2 per block (`least_cost` receives that least value).
-double IrlsWeights(const StackedSystem& system, const IrlsLayout& layout, const Eigen::VectorXd& x,
-                   const TranslationAveragingOptions& options, Eigen::VectorXd* block_weights,
-                   double* least_cost) {
-  const Eigen::VectorXd residuals = system.B * x;
+double IrlsWeights(const StackedSystem& system, const IrlsLayout& layout,
+                   const Eigen::VectorXd& residuals, const TranslationAveragingOptions& options,
+                   Eigen::VectorXd* block_weights, double* least_cost) {
   block_weights->resize(layout.num_blocks);
   double cost = 0;
   *least_cost = 0;
@@ -383,21 +389,22 @@ double IrlsWeights(const StackedSystem& system, const IrlsLayout& layout, const 
   return cost;
 }
 
-// The smoothed objective of IrlsWeights at x.
+// The smoothed objective of IrlsWeights for the residuals B x.
 double IrlsObjective(const StackedSystem& system, const IrlsLayout& layout,
-                     const Eigen::VectorXd& x, const TranslationAveragingOptions& options) {
+                     const Eigen::VectorXd& residuals, const TranslationAveragingOptions& options) {
   Eigen::VectorXd weights;
   double least_cost = 0;
-  return IrlsWeights(system, layout, x, options, &weights, &least_cost);
+  return IrlsWeights(system, layout, residuals, options, &weights, &least_cost);
 }
 
 // Active set of the pair scales after a step to `next`: a free scale below the bound is held; a
 // held scale is released when its pair row alone (the only row it appears in) would put it above
 // the bound. Without priors every row is homogeneous but for the held scales, so at least one
-// must stay held: the one its pair would lengthen least. Returns how many scales changed set.
+// must stay held: the one its pair would lengthen least. `next_residuals` (B next) are brought up
+// to date when a scale moves to its bound. Returns how many scales changed set.
 int UpdateHeldScales(const StackedSystem& system, const IrlsLayout& layout, Eigen::VectorXd* next,
-                     std::vector<bool>* held) {
-  const Eigen::VectorXd next_residuals = system.B * *next;
+                     Eigen::VectorXd* next_residuals, std::vector<bool>* held) {
+  bool clipped = false;
   const std::vector<bool> before = *held;
   int tightest = -1;
   double tightest_preferred = std::numeric_limits<double>::infinity();
@@ -406,15 +413,17 @@ int UpdateHeldScales(const StackedSystem& system, const IrlsLayout& layout, Eige
     if ((*held)[k]) {
       const Eigen::Vector3d& column = layout.scale_columns[k];
       const double preferred =
-          scale - column.dot(next_residuals.segment<3>(3 * (layout.first_pair_block + k))) /
+          scale - column.dot(next_residuals->segment<3>(3 * (layout.first_pair_block + k))) /
                       column.squaredNorm();
       if (preferred < tightest_preferred) tightest_preferred = preferred, tightest = k;
       if (preferred > system.scale_bound) (*held)[k] = false;
     } else if (scale < system.scale_bound) {
       scale = system.scale_bound;
       (*held)[k] = true;
+      clipped = true;
     }
   }
+  if (clipped) *next_residuals = system.B * *next;
   if (system.num_prior_columns == 0 && std::find(held->begin(), held->end(), true) == held->end() &&
       tightest >= 0) {
     (*held)[tightest] = true;
@@ -423,6 +432,38 @@ int UpdateHeldScales(const StackedSystem& system, const IrlsLayout& layout, Eige
   for (size_t k = 0; k < held->size(); ++k) moved += (*held)[k] != before[k];
   return moved;
 }
+
+// The stacked system's weighted least squares over the camera positions alone: the pair scales
+// and prior constants eliminated (block_normal_equations.h), the pattern analysed once for the
+// least-squares start and every IRLS step.
+class PositionSolver {
+ public:
+  explicit PositionSolver(const StackedSystem& system)
+      : equations_(system.B, ExtraColumns(system)) {
+    factorization_.analyzePattern(equations_.pattern());
+  }
+
+  // v = (positions, scales, constants) minimising sum_b w_b |B_b v|^2 with the held scales at
+  // their values and the free ones at their rows' minimisers.
+  Eigen::VectorXd Solve(const Eigen::VectorXd& block_weights, const std::vector<bool>& held,
+                        const std::vector<double>& held_values) {
+    equations_.Assemble(block_weights, held, held_values, &normal_, &rhs_);
+    FactorizeWithRidge(normal_, &factorization_);
+    return equations_.Expand(factorization_.solve(rhs_), held, held_values);
+  }
+
+ private:
+  static std::vector<int> ExtraColumns(const StackedSystem& system) {
+    std::vector<int> columns(system.num_extra_cols());
+    std::iota(columns.begin(), columns.end(), system.num_position_cols);
+    return columns;
+  }
+
+  BlockNormalEquations equations_;
+  SparseCholesky factorization_;
+  Eigen::SparseMatrix<double> normal_;
+  Eigen::VectorXd rhs_;
+};
 
 // The same problem by iteratively reweighted least squares: each 3-row block (a track constraint
 // or a pair row) is weighted by 1 / max(|r|, irls_min_residual), which makes the weighted squares
@@ -439,7 +480,8 @@ int UpdateHeldScales(const StackedSystem& system, const IrlsLayout& layout, Eige
 // exact data that excess vanishes and the steps go on to the exact solution); the best iterate is
 // returned.
 Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
-                            const TranslationAveragingOptions& options, int* iterations) {
+                            const TranslationAveragingOptions& options, PositionSolver* solver,
+                            int* iterations) {
   const int num_position_cols = system.num_position_cols;
   const int num_scales = system.num_extra_cols();
   const IrlsLayout layout = MakeIrlsLayout(system);
@@ -447,16 +489,10 @@ Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
   for (int k = 0; k < num_scales; ++k) {
     held[k] = k >= system.num_pair_scales || x(num_position_cols + k) <= system.scale_bound;
   }
-  std::vector<int> scale_column_ids(num_scales);
-  for (int k = 0; k < num_scales; ++k) scale_column_ids[k] = num_position_cols + k;
-  const BlockNormalEquations equations(system.B, scale_column_ids);
   std::vector<double> held_values(num_scales, system.scale_bound);
   for (int k = system.num_pair_scales; k < num_scales; ++k) held_values[k] = 1.0;
-  SparseCholesky solver;
-  solver.analyzePattern(equations.pattern());
   Eigen::VectorXd block_weights;
-  Eigen::SparseMatrix<double> normal;
-  Eigen::VectorXd rhs;
+  Eigen::VectorXd residuals = system.B * x;  // kept with x: each product is one pass over B
   double best_cost = std::numeric_limits<double>::infinity();
   Eigen::VectorXd best_x = x;
   // Objectives compare across a step only while the active set stays nearly the same: on the
@@ -466,26 +502,29 @@ Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
   int iteration = 0;
   for (; iteration < options.max_irls_iterations; ++iteration) {
     double least_cost = 0;
-    const double cost = IrlsWeights(system, layout, x, options, &block_weights, &least_cost);
+    const double cost =
+        IrlsWeights(system, layout, residuals, options, &block_weights, &least_cost);
     const bool settled = num_moved <= kSettledShareOfScales * num_scales &&
                          best_cost - cost < options.irls_cost_tolerance * (best_cost - least_cost);
     if (cost < best_cost) best_cost = cost, best_x = x;
     if (settled) break;
-    equations.Assemble(block_weights, held, held_values, &normal, &rhs);
-    FactorizeWithRidge(normal, &solver);
-    Eigen::VectorXd next = equations.Expand(solver.solve(rhs), held, held_values);
+    Eigen::VectorXd next = solver->Solve(block_weights, held, held_values);
+    Eigen::VectorXd next_residuals = system.B * next;
     if (options.irls_extrapolation > 1) {
       Eigen::VectorXd extrapolated =
           ProjectScales(x + options.irls_extrapolation * (next - x), system);
-      if (IrlsObjective(system, layout, extrapolated, options) <
-          IrlsObjective(system, layout, next, options)) {
+      Eigen::VectorXd extrapolated_residuals = system.B * extrapolated;
+      if (IrlsObjective(system, layout, extrapolated_residuals, options) <
+          IrlsObjective(system, layout, next_residuals, options)) {
         next = std::move(extrapolated);
+        next_residuals = std::move(extrapolated_residuals);
       }
     }
-    num_moved = UpdateHeldScales(system, layout, &next, &held);
+    num_moved = UpdateHeldScales(system, layout, &next, &next_residuals, &held);
     const double change = (next.head(num_position_cols) - x.head(num_position_cols)).norm() /
                           std::max(1e-12, next.head(num_position_cols).norm());
     x = std::move(next);
+    residuals = std::move(next_residuals);
     if (change < options.irls_tolerance) {
       ++iteration;
       break;
@@ -494,7 +533,7 @@ Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
   *iterations = iteration;
   // The last step's result unless an earlier iterate had the lower objective.
   double least_cost = 0;
-  const double cost = IrlsWeights(system, layout, x, options, &block_weights, &least_cost);
+  const double cost = IrlsWeights(system, layout, residuals, options, &block_weights, &least_cost);
   return cost <= best_cost ? x : best_x;
 }
 
@@ -680,18 +719,13 @@ Eigen::Vector3d CenterIn(const Eigen::VectorXd& x, const std::map<uint32_t, int>
 // Start: least squares with every scale at 1, min ||B_c c + B_s 1||^2, then each scale set to the
 // projected baseline it implies (at least the bound).
 Eigen::VectorXd LeastSquaresStart(const StackedSystem& system, const std::vector<PairRow>& pairs,
-                                  const std::map<uint32_t, int>& column) {
-  const Eigen::SparseMatrix<double>& B = system.B;
+                                  const std::map<uint32_t, int>& column, PositionSolver* solver) {
+  const int num_blocks = static_cast<int>(system.B.rows() / 3);
+  const int num_extra = system.num_extra_cols();
+  Eigen::VectorXd x =
+      solver->Solve(Eigen::VectorXd::Ones(num_blocks), std::vector<bool>(num_extra, true),
+                    std::vector<double>(num_extra, 1.0));
   const int num_position_cols = system.num_position_cols;
-  Eigen::VectorXd x = Eigen::VectorXd::Ones(B.cols());
-  const Eigen::SparseMatrix<double> B_c = B.leftCols(num_position_cols);
-  const Eigen::SparseMatrix<double> B_s = B.rightCols(system.num_extra_cols());
-  Eigen::SparseMatrix<double> normal_c = B_c.transpose() * B_c;
-  SparseCholesky least_squares;
-  least_squares.analyzePattern(normal_c);
-  FactorizeWithRidge(normal_c, &least_squares);
-  x.head(num_position_cols) = least_squares.solve(
-      -(B_c.transpose() * (B_s * Eigen::VectorXd::Ones(system.num_extra_cols()))));
   for (size_t k = 0; k < pairs.size(); ++k) {
     x(num_position_cols + k) =
         pairs[k].direction.dot(CenterIn(x, column, pairs[k].j) - CenterIn(x, column, pairs[k].i));
@@ -739,9 +773,11 @@ TranslationAveragingResult AverageTranslations(
       AssembleSystem(constraints, pairs, used_priors, column, num_cameras, options);
 
   int iterations = 0;
-  Eigen::VectorXd x = LeastSquaresStart(system, pairs, column);
-  x = options.solver == TranslationSolver::kIrls ? SolveByIrls(system, x, options, &iterations)
-                                                 : SolveByAdmm(system, x, options, &iterations);
+  PositionSolver solver(system);
+  Eigen::VectorXd x = LeastSquaresStart(system, pairs, column, &solver);
+  x = options.solver == TranslationSolver::kIrls
+          ? SolveByIrls(system, x, options, &solver, &iterations)
+          : SolveByAdmm(system, x, options, &iterations);
   result.num_solver_iterations = iterations;
 
   // The documented scale: mean projected pair baseline = 1.

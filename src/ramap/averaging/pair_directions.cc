@@ -41,20 +41,22 @@ std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& r
   }
   if (static_cast<int>(normals.size()) < options.min_num_matches) return std::nullopt;
 
-  // The direction minimises sum w (n . t)^2: the eigenvector of the smallest eigenvalue.
+  // The direction minimises sum w (n . t)^2: the eigenvector of the smallest eigenvalue. Each
+  // round's weights come from the last round's direction as the scatter is summed.
   const double scale = std::sin(options.residual_scale_deg * kDegToRad);
-  std::vector<double> weights(normals.size(), 1.0);
+  const auto weight = [scale](const Eigen::Vector3d& normal, const Eigen::Vector3d& direction) {
+    const double r = normal.dot(direction) / scale;
+    return 1.0 / (1.0 + r * r);
+  };
   Eigen::Vector3d direction = Eigen::Vector3d::Zero();
   for (int round = 0; round <= options.num_reweighting_rounds; ++round) {
     Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-    for (size_t k = 0; k < normals.size(); ++k)
-      scatter += weights[k] * normals[k] * normals[k].transpose();
+    for (const Eigen::Vector3d& normal : normals) {
+      const double w = round == 0 ? 1.0 : weight(normal, direction);
+      scatter.triangularView<Eigen::Lower>() += w * normal * normal.transpose();
+    }
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
     direction = solver.eigenvectors().col(0);
-    for (size_t k = 0; k < normals.size(); ++k) {
-      const double r = normals[k].dot(direction) / scale;
-      weights[k] = 1.0 / (1.0 + r * r);
-    }
   }
   if (!direction.allFinite()) return std::nullopt;
 
@@ -62,7 +64,7 @@ std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& r
   // depths must be positive for the right sign.
   int votes_for = 0, votes_against = 0;
   for (size_t k = 0; k < rays1.size(); ++k) {
-    if (weights[k] < 0.5) continue;  // a wrong match does not vote
+    if (weight(normals[k], direction) < 0.5) continue;  // a wrong match does not vote
     const std::optional<Eigen::Vector2d> depths = TwoRayDepths(rays1[k], rays2[k], direction);
     if (!depths) continue;  // parallel rays: no depth
     if ((*depths)(0) > 0 && (*depths)(1) > 0) ++votes_for;

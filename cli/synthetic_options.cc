@@ -34,6 +34,17 @@ void AddDriveOptions(CLI::App& app, SyntheticSceneOptions* options) {
   app.add_option("--Synthetic.aliased_pair_ratio", options->aliased_pair_ratio,
                  "the same as a fraction of the matched pairs (the larger count is used)")
       ->capture_default_str();
+  app.add_option("--Synthetic.facade_distance_m", options->facade_distance,
+                 "sequential: points on two facades this far left and right of the road (0: "
+                 "anywhere in view)")
+      ->capture_default_str();
+  app.add_option("--Synthetic.facade_height_m", options->facade_height,
+                 "facades rise this far above the camera")
+      ->capture_default_str();
+  app.add_option("--Synthetic.keypoint_columns", options->keypoint_columns,
+                 "columns per stored keypoint: 2 (x, y), 4 (+ scale, orientation), 6 (+ affine "
+                 "shape)")
+      ->capture_default_str();
 }
 
 }  // namespace

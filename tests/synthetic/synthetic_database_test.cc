@@ -20,6 +20,7 @@ TEST(SyntheticDatabase, RoundTripsThroughTheColmapDatabase) {
   options.num_images = 15;
   options.num_points = 600;
   options.num_outlier_pairs = 2;
+  options.keypoint_columns = 6;  // as COLMAP stores SIFT: the extra columns survive the trip
   const SyntheticScene scene = BuildSyntheticScene(options);
   test::TempDir dir;
   WriteColmapDatabase(scene.database, dir / "database.db");
@@ -30,6 +31,7 @@ TEST(SyntheticDatabase, RoundTripsThroughTheColmapDatabase) {
   ASSERT_EQ(read.images.size(), scene.database.images.size());
   for (const auto& [image_id, image] : scene.database.images) {
     EXPECT_EQ(read.images.at(image_id).name, image.name);
+    EXPECT_EQ(read.keypoints.at(image_id).num_cols, 6);
     EXPECT_EQ(read.keypoints.at(image_id).data, scene.database.keypoints.at(image_id).data);
   }
   ASSERT_EQ(read.matches.size(), scene.database.matches.size());

@@ -338,6 +338,53 @@ TEST(Synthetic, ViewDistanceLimitsTracksAndFrameGapLimitsLoops) {
   EXPECT_TRUE(has_loop);
 }
 
+// A straight road along +z: facade points stand beside it, none in the middle, and the scene is
+// still a matched sequence.
+TEST(Synthetic, FacadesPutThePointsBesideTheRoad) {
+  SyntheticSceneOptions options = Layout(SyntheticLayout::kSequential, SyntheticPath::kLine);
+  options.facade_distance = 6.0;
+  options.facade_roughness = 0.1;
+  options.rotation_jitter_deg = 0.2;
+  const SyntheticScene scene = BuildSyntheticScene(options);
+  ASSERT_GT(scene.ground_truth.points3D.size(), 200u);
+  int left = 0, right = 0;
+  for (const auto& [id, point] : scene.ground_truth.points3D) {
+    // The path's jitter (0.2 deg, 5 cm) moves a facade by a few decimetres at 30 m ahead.
+    EXPECT_NEAR(std::abs(point.xyz.x()), 6.0, 0.7) << point.xyz.transpose();
+    EXPECT_LT(point.xyz.y(), 1.5 + 1.0);
+    (point.xyz.x() < 0 ? left : right)++;
+  }
+  EXPECT_GT(left, 50);
+  EXPECT_GT(right, 50);
+  EXPECT_EQ(scene.database.two_view_geometries.size(), scene.database.matches.size());
+}
+
+// Scale and orientation, or an affine shape, are stored beside x and y without changing anything
+// else of the scene.
+TEST(Synthetic, ExtraKeypointColumnsLeaveTheSceneAsItWas) {
+  const SyntheticSceneOptions options = SmallOptions();
+  const SyntheticScene plain = BuildSyntheticScene(options);
+  for (const int columns : {4, 6}) {
+    SyntheticSceneOptions with_shapes = options;
+    with_shapes.keypoint_columns = columns;
+    const SyntheticScene scene = BuildSyntheticScene(with_shapes);
+    for (const auto& [image_id, keypoints] : scene.database.keypoints) {
+      const Keypoints& xy_only = plain.database.keypoints.at(image_id);
+      ASSERT_EQ(keypoints.num_cols, columns);
+      ASSERT_EQ(keypoints.size(), xy_only.size());
+      for (size_t k = 0; k < keypoints.size(); ++k) {
+        EXPECT_EQ(keypoints.xy(k), xy_only.xy(k));
+        const float* shape = &keypoints.data[k * columns + 2];
+        const double scale = columns == 4 ? shape[0] : std::hypot(shape[0], shape[2]);
+        EXPECT_GE(scale, 1.5 - 1e-5);
+        EXPECT_LE(scale, 12.0 + 1e-5);
+      }
+    }
+    EXPECT_EQ(scene.database.matches.size(), plain.database.matches.size());
+    EXPECT_EQ(scene.ground_truth.points3D.size(), plain.ground_truth.points3D.size());
+  }
+}
+
 TEST(Synthetic, UnorderedPairsShareEnoughPoints) {
   SyntheticSceneOptions options = Layout(SyntheticLayout::kUnordered, SyntheticPath::kLine);
   options.outlier_ratio = 0.0;
@@ -381,6 +428,9 @@ TEST(Synthetic, BadOptionsAreRejected) {
   expect_rejected([](SyntheticSceneOptions& o) { o.max_depth = o.min_depth; });
   expect_rejected([](SyntheticSceneOptions& o) { o.camera.params = {500, 320, 240}; });
   expect_rejected([](SyntheticSceneOptions& o) { o.path = SyntheticPath::kGiven; });
+  expect_rejected([](SyntheticSceneOptions& o) { o.keypoint_columns = 3; });
+  expect_rejected([](SyntheticSceneOptions& o) { o.facade_height = 0.0; });
+  expect_rejected([](SyntheticSceneOptions& o) { o.facade_distance = -1.0; });
 }
 
 // Reads the first `max_poses` lines of a KITTI odometry pose file (camera-to-world 3x4 rows).

@@ -144,6 +144,15 @@ bool UsesObjectPoints(const SyntheticSceneOptions& options) {
   return options.layout == SyntheticLayout::kUnordered || options.path == SyntheticPath::kCircle;
 }
 
+// A point on the left or right facade of a street, in the frame of a camera looking down it.
+Eigen::Vector3d FacadePoint(const SyntheticSceneOptions& options, Rng& rng) {
+  constexpr double kGroundBelowCamera = 1.5;
+  const double side = Uniform(rng, 0.0, 1.0) < 0.5 ? -1.0 : 1.0;
+  const double across = side * options.facade_distance + Gaussian(rng, options.facade_roughness);
+  return Eigen::Vector3d(across, Uniform(rng, -options.facade_height, kGroundBelowCamera),
+                         Uniform(rng, options.min_depth, options.max_depth));
+}
+
 std::vector<Eigen::Vector3d> MakePoints(const SyntheticSceneOptions& options,
                                         const std::vector<Rigid3d>& poses, Rng& rng) {
   std::vector<Eigen::Vector3d> points;
@@ -158,6 +167,10 @@ std::vector<Eigen::Vector3d> MakePoints(const SyntheticSceneOptions& options,
     }
     // In the view of a random frame, so that every part of any path has structure in front of it.
     const size_t frame = std::uniform_int_distribution<size_t>(0, poses.size() - 1)(rng);
+    if (options.facade_distance > 0) {
+      points.push_back(poses[frame].Inverse() * FacadePoint(options, rng));
+      continue;
+    }
     const double x = Uniform(rng, 0.0, static_cast<double>(camera.width));
     const double y = Uniform(rng, 0.0, static_cast<double>(camera.height));
     const double distance = Uniform(rng, options.min_depth, options.max_depth);
@@ -266,6 +279,13 @@ void CheckViewAndAliasingOptions(const SyntheticSceneOptions& o) {
   }
   if (o.num_aliased_pair_matches < 8) {
     throw InputError("Synthetic.num_aliased_pair_matches", "must be at least 8");
+  }
+  CheckNonNegative(o.facade_distance, "facade_distance");
+  CheckPositive(o.facade_height, "facade_height");
+  CheckNonNegative(o.facade_roughness, "facade_roughness");
+  if (o.keypoint_columns != 2 && o.keypoint_columns != 4 && o.keypoint_columns != 6) {
+    throw InputError("Synthetic.keypoint_columns",
+                     "must be 2, 4 or 6, got " + std::to_string(o.keypoint_columns));
   }
 }
 
@@ -682,9 +702,36 @@ void AddGroundTruthPoints(const std::vector<Eigen::Vector3d>& points, SceneObser
   }
 }
 
+// An image's keypoints as the database stores them: x, y and, with more columns, a random scale
+// and orientation (4) or the affine shape they make (6).
+Keypoints StoredKeypoints(const SyntheticSceneOptions& options,
+                          const std::vector<Point2D>& points2D, Rng* shape_rng) {
+  Keypoints keypoints;
+  keypoints.num_cols = options.keypoint_columns;
+  keypoints.data.reserve(keypoints.num_cols * points2D.size());
+  for (const Point2D& point2D : points2D) {
+    keypoints.data.push_back(static_cast<float>(point2D.xy.x()));
+    keypoints.data.push_back(static_cast<float>(point2D.xy.y()));
+    if (keypoints.num_cols == 2) continue;
+    const double scale = Uniform(*shape_rng, 1.5, 12.0);
+    const double orientation = Uniform(*shape_rng, -M_PI, M_PI);
+    if (keypoints.num_cols == 4) {
+      keypoints.data.insert(keypoints.data.end(),
+                            {static_cast<float>(scale), static_cast<float>(orientation)});
+      continue;
+    }
+    const double c = scale * std::cos(orientation), s = scale * std::sin(orientation);
+    keypoints.data.insert(keypoints.data.end(), {static_cast<float>(c), static_cast<float>(-s),
+                                                 static_cast<float>(s), static_cast<float>(c)});
+  }
+  return keypoints;
+}
+
 // Every image: in the database with its keypoints, in the ground truth with its pose.
 void AddImages(const SyntheticSceneOptions& options, const std::vector<Rigid3d>& poses,
                SceneObservations* seen, SyntheticScene* scene) {
+  // Its own stream, so that the keypoints' shapes leave the rest of the scene as it was.
+  Rng shape_rng(options.seed ^ 0x5eed5ba9e5ull);
   for (size_t i = 0; i < poses.size(); ++i) {
     const uint32_t image_id = static_cast<uint32_t>(i + 1);
     Image image;
@@ -693,14 +740,7 @@ void AddImages(const SyntheticSceneOptions& options, const std::vector<Rigid3d>&
     image.camera_id = CameraIdOf(options, i);
     scene->database.images[image_id] = image;
 
-    Keypoints keypoints;
-    keypoints.num_cols = 2;
-    keypoints.data.reserve(2 * seen->points2D[i].size());
-    for (const Point2D& point2D : seen->points2D[i]) {
-      keypoints.data.push_back(static_cast<float>(point2D.xy.x()));
-      keypoints.data.push_back(static_cast<float>(point2D.xy.y()));
-    }
-    scene->database.keypoints[image_id] = std::move(keypoints);
+    scene->database.keypoints[image_id] = StoredKeypoints(options, seen->points2D[i], &shape_rng);
 
     image.cam_from_world = poses[i];
     image.points2D = std::move(seen->points2D[i]);

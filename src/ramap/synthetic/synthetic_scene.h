@@ -90,6 +90,18 @@ struct SyntheticSceneOptions {
   // (world units). 0: no limit. With a limit, each point is tested only against the cameras near
   // it, so that thousands of frames are built in seconds instead of minutes.
   double max_view_distance = 0.0;
+  // Sequential paths but the orbit: when > 0, the points stand on two facades along the road
+  // instead of anywhere in view: this far left and right of a random frame's camera (along its x
+  // axis), from facade_height above it to 1.5 below (the ground; y points down), a random
+  // distance in [min_depth, max_depth] ahead, with facade_roughness of noise across the facade
+  // (windows, balconies). A street: near-planar structure on both sides, little in the middle.
+  double facade_distance = 0.0;
+  double facade_height = 10.0;
+  double facade_roughness = 0.2;
+  // Columns per stored keypoint: 2 (x, y), 4 (x, y, scale, orientation, as older COLMAP
+  // databases hold SIFT) or 6 (x, y and an affine shape, as COLMAP writes SIFT). The extra
+  // columns are random and do not change the scene.
+  int keypoint_columns = 2;
   // Aliased pairs, as repetitive structure (facades, fences) gives: two frames that are not
   // matched by the layout get verified matches consistent with a relative pose whose rotation is
   // aliased_min_angle_deg to aliased_max_angle_deg off the true one (about a random axis). Their

@@ -1,5 +1,6 @@
 #include "ramap/pipeline/translations.h"
 
+#include <map>
 #include <set>
 #include <unordered_map>
 
@@ -81,6 +82,47 @@ std::vector<TranslationTrack> TranslationTracks(
   return translation_tracks;
 }
 
+// Images that only pure rotations link to the rest (the car waiting at a light, a panorama turned
+// on one spot) have no direction to any other camera and are left out by translation averaging;
+// a pure rotation means the two centres coincide (against the scene's depth), so each such image
+// stands at the mean centre of its positioned pure-rotation neighbours, spreading along chains of
+// them. Returns how many were placed.
+int PlaceStandstillImages(const MapperContext& context, const RotationGraph& graph,
+                          const std::vector<EdgeStatus>& edge_status,
+                          TranslationAveragingResult* positions) {
+  std::multimap<uint32_t, uint32_t> rotation_neighbours;
+  for (size_t e = 0; e < graph.edges.size(); ++e) {
+    const ImagePair& pair = context.pairs[graph.edges[e].pair_index];
+    if (edge_status[e] != EdgeStatus::kKept || !(pair.estimate.flags & kRelativePosePureRotation)) {
+      continue;
+    }
+    rotation_neighbours.emplace(pair.image_id1, pair.image_id2);
+    rotation_neighbours.emplace(pair.image_id2, pair.image_id1);
+  }
+  std::vector<uint32_t>& left_out = positions->unconstrained_images;
+  const size_t num_left_out = left_out.size();
+  for (bool placed = true; placed;) {
+    placed = false;
+    for (auto it = left_out.begin(); it != left_out.end();) {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      int count = 0;
+      const auto [begin, end] = rotation_neighbours.equal_range(*it);
+      for (auto neighbour = begin; neighbour != end; ++neighbour) {
+        const auto found = positions->centers.find(neighbour->second);
+        if (found != positions->centers.end()) sum += found->second, ++count;
+      }
+      if (count == 0) {
+        ++it;
+        continue;
+      }
+      positions->centers[*it] = sum / count;
+      it = left_out.erase(it);
+      placed = true;
+    }
+  }
+  return static_cast<int>(num_left_out - left_out.size());
+}
+
 // The georegistration's progress line.
 std::string GeoregistrationLine(const GeoregistrationSummary& geo) {
   if (!geo.georegistered) return "not georegistered: " + geo.problem;
@@ -135,6 +177,7 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
     context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(), error.what());
     return std::nullopt;
   }
+  const int num_standstill = PlaceStandstillImages(context, graph, edge_status, &positions);
   for (const uint32_t id : positions.unconstrained_images) {
     context.image_reasons[id] =
         "no translation constraint links it to the rest (too little parallax?)";
@@ -145,7 +188,10 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
                      std::to_string(positions.centers.size()) + " positions from " +
                          std::to_string(directions.size()) + " pair directions and " +
                          std::to_string(positions.num_tracks_used) + " tracks, " +
-                         std::to_string(positions.num_solver_iterations) + " solver iterations");
+                         std::to_string(positions.num_solver_iterations) + " solver iterations" +
+                         (num_standstill > 0 ? ", " + std::to_string(num_standstill) +
+                                                   " placed by pure rotations (standing still)"
+                                             : ""));
   return result;
 }
 

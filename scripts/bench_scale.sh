@@ -3,7 +3,8 @@
 # trajectories (../shared/data/gt_trajectories), built by `ramap synthesize` the way issue #15
 # describes them (each frame matched with its next 10 and with every frame within 8 m that is
 # more than 100 frames away; 3% of the pairs aliased, i.e. verified matches of a relative pose
-# 12-40 deg off; 2% outlier matches; landmarks within 40 m of the cameras), then `ramap mapper`
+# 12-40 deg off; 2% outlier matches; landmarks on facades 8 m left and right of the road, seen
+# within 40 m; 4-column keypoints), then `ramap mapper`
 # (averaging alone, --Mapper.refine 0) and `ramap evaluate` against the drive's ground truth.
 # Prints one markdown table row per drive (stage times from summary.json, peak memory, ATE as a
 # share of the path, rotation error) and the log-log slopes of time and memory against frames.
@@ -32,7 +33,7 @@ rows=()
 for run in "${runs[@]}"; do
   sequence=${run%%:*}
   frames=${run##*:}
-  scene=$scale_dir/kitti${sequence}_${frames}
+  scene=$scale_dir/kitti${sequence}_${frames}_facades
   if [[ ! -f $scene/scene.done ]]; then
     rm -rf "$scene"
     # 20 landmarks per frame; KITTI's camera (image 0 of the odometry calibration).
@@ -44,14 +45,16 @@ for run in "${runs[@]}"; do
       --Synthetic.num_points "$num_points" --Synthetic.max_view_distance 40 \
       --Synthetic.overlap 10 --Synthetic.loop_radius_m 8 --Synthetic.loop_min_frame_gap 100 \
       --Synthetic.loop_max_angle_deg 180 --Synthetic.aliased_pair_ratio 0.03 \
-      --Synthetic.outlier_ratio 0.02 >&2
+      --Synthetic.outlier_ratio 0.02 --Synthetic.facade_distance_m 8 \
+      --Synthetic.keypoint_columns 4 >&2
     touch "$scene/scene.done"
   fi
   rm -rf "$scene/sparse" "$scene/eval.json"
   "$ramap" mapper --database_path "$scene/database.db" --output_path "$scene/sparse" \
     --Mapper.refine 0 --Mapper.num_threads "$threads" "${extra_args[@]}" > "$scene/mapper.log"
   "$ramap" evaluate --model_path "$scene/sparse/0" --ground_truth "$scene/ground_truth.txt" \
-    --ground_truth_format tum --output_path "$scene/eval.json" > /dev/null
+    --ground_truth_format tum --database_path "$scene/database.db" \
+    --output_path "$scene/eval.json" > /dev/null
   rows+=("KITTI $sequence|$scene")
 done
 

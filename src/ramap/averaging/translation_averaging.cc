@@ -254,6 +254,8 @@ using SparseCholesky = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>;
 // succeeds. Not relative from the start: exact position priors weigh ~1e8 and a relative shift
 // would pull every camera by millimetres.
 void FactorizeWithRidge(const Eigen::SparseMatrix<double>& matrix, SparseCholesky* solver) {
+  // The retries below answer CHOLMOD's "not positive definite" warnings: not for the user's eyes.
+  solver->cholmod().print = 0;
   solver->setShift(1e-10);
   solver->factorize(matrix);
   if (solver->info() == Eigen::Success) return;

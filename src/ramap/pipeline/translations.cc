@@ -82,23 +82,29 @@ std::vector<TranslationTrack> TranslationTracks(
   return translation_tracks;
 }
 
-// Images that only pure rotations link to the rest (the car waiting at a light, a panorama turned
-// on one spot) have no direction to any other camera and are left out by translation averaging;
-// a pure rotation means the two centres coincide (against the scene's depth), so each such image
-// stands at the mean centre of its positioned pure-rotation neighbours, spreading along chains of
-// them. Returns how many were placed.
-int PlaceStandstillImages(const MapperContext& context, const RotationGraph& graph,
-                          const std::vector<EdgeStatus>& edge_status,
-                          TranslationAveragingResult* positions) {
-  std::multimap<uint32_t, uint32_t> rotation_neighbours;
+// The kept pure-rotation edges between rotated images, both ways.
+std::multimap<uint32_t, uint32_t> PureRotationNeighbours(
+    const MapperContext& context, const RotationGraph& graph,
+    const std::vector<EdgeStatus>& edge_status) {
+  std::multimap<uint32_t, uint32_t> neighbours;
   for (size_t e = 0; e < graph.edges.size(); ++e) {
     const ImagePair& pair = context.pairs[graph.edges[e].pair_index];
     if (edge_status[e] != EdgeStatus::kKept || !(pair.estimate.flags & kRelativePosePureRotation)) {
       continue;
     }
-    rotation_neighbours.emplace(pair.image_id1, pair.image_id2);
-    rotation_neighbours.emplace(pair.image_id2, pair.image_id1);
+    neighbours.emplace(pair.image_id1, pair.image_id2);
+    neighbours.emplace(pair.image_id2, pair.image_id1);
   }
+  return neighbours;
+}
+
+// Images that only pure rotations link to the rest (the car waiting at a light, a panorama turned
+// on one spot) have no direction to any other camera and are left out by translation averaging;
+// a pure rotation means the two centres coincide (against the scene's depth), so each such image
+// stands at the mean centre of its positioned pure-rotation neighbours, spreading along chains of
+// them. Returns how many were placed.
+int PlaceStandstillImages(const std::multimap<uint32_t, uint32_t>& rotation_neighbours,
+                          TranslationAveragingResult* positions) {
   std::vector<uint32_t>& left_out = positions->unconstrained_images;
   const size_t num_left_out = left_out.size();
   for (bool placed = true; placed;) {
@@ -148,6 +154,7 @@ PriorAlignment RefitWithPriors(const MapperContext& context,
     if (!refit.summary.georegistered) return alignment;
     refit.summary.used_in_translation_averaging = true;
     *positions = std::move(constrained);
+    PlaceStandstillImages(translations->pure_rotation_neighbours, positions);
     return refit;
   } catch (const StageFailure&) {
     return alignment;  // the positions without priors stand
@@ -177,7 +184,8 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
     context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(), error.what());
     return std::nullopt;
   }
-  const int num_standstill = PlaceStandstillImages(context, graph, edge_status, &positions);
+  result.pure_rotation_neighbours = PureRotationNeighbours(context, graph, edge_status);
+  const int num_standstill = PlaceStandstillImages(result.pure_rotation_neighbours, &positions);
   for (const uint32_t id : positions.unconstrained_images) {
     context.image_reasons[id] =
         "no translation constraint links it to the rest (too little parallax?)";

@@ -26,6 +26,8 @@ struct ComponentTranslations {
   std::vector<Track> tracks;  // feature tracks over the kept pairs (triangulated later)
   std::vector<TranslationTrack> translation_tracks;  // their observations by rotated images
   TranslationAveragingResult positions;
+  // Kept pure-rotation edges, both ways: they place the images nothing else positions.
+  std::multimap<uint32_t, uint32_t> pure_rotation_neighbours;
 };
 
 // The pair directions and tracks of the edges with edge_status kKept, then the camera centres;

@@ -264,7 +264,8 @@ void CheckNonNegative(double value, const char* option) {
   }
 }
 
-// The view-distance, revisit and aliasing options of SyntheticSceneOptions::Check.
+// The view-distance, revisit, aliasing, facade and keypoint options of
+// SyntheticSceneOptions::Check.
 void CheckViewAndAliasingOptions(const SyntheticSceneOptions& o) {
   CheckNonNegative(o.max_view_distance, "max_view_distance");
   if (o.loop_min_frame_gap < 0) throw InputError("Synthetic.loop_min_frame_gap", "must be >= 0");

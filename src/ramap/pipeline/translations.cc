@@ -3,6 +3,7 @@
 #include <map>
 #include <set>
 #include <unordered_map>
+#include <utility>
 
 #include "ramap/graph/tracks.h"
 #include "ramap/pipeline/mapper_options.h"
@@ -14,21 +15,38 @@
 namespace ramap {
 namespace {
 
-// The direction of every edge rotation averaging kept between two rotated images (pure rotations
-// aside), from its inlier bearings and the averaged rotations, on the mapper's threads;
-// `kept_pairs` gets every kept pair.
-std::vector<PairDirection> KeptPairDirections(
-    const MapperContext& context, const RotationGraph& graph,
-    const std::vector<EdgeStatus>& edge_status,
-    const std::map<uint32_t, Eigen::Quaterniond>& world_rotations, std::set<uint64_t>* kept_pairs) {
-  std::vector<const ImagePair*> kept;
+// The edges rotation averaging kept between two rotated images: every pair id, the pairs with a
+// translation, and the pure rotations (both ways, for PlaceStandstillImages).
+struct KeptEdges {
+  std::set<uint64_t> pair_ids;
+  std::vector<const ImagePair*> with_translation;
+  std::multimap<uint32_t, uint32_t> pure_rotation_neighbours;
+};
+
+KeptEdges SplitKeptEdges(const MapperContext& context, const RotationGraph& graph,
+                         const std::vector<EdgeStatus>& edge_status,
+                         const std::map<uint32_t, Eigen::Quaterniond>& world_rotations) {
+  KeptEdges kept;
   for (size_t e = 0; e < graph.edges.size(); ++e) {
     if (edge_status[e] != EdgeStatus::kKept) continue;
     const ImagePair& pair = context.pairs[graph.edges[e].pair_index];
     if (!world_rotations.count(pair.image_id1) || !world_rotations.count(pair.image_id2)) continue;
-    kept_pairs->insert(ImagePairToPairId(pair.image_id1, pair.image_id2));
-    if (!(pair.estimate.flags & kRelativePosePureRotation)) kept.push_back(&pair);
+    kept.pair_ids.insert(ImagePairToPairId(pair.image_id1, pair.image_id2));
+    if (!(pair.estimate.flags & kRelativePosePureRotation)) {
+      kept.with_translation.push_back(&pair);
+      continue;
+    }
+    kept.pure_rotation_neighbours.emplace(pair.image_id1, pair.image_id2);
+    kept.pure_rotation_neighbours.emplace(pair.image_id2, pair.image_id1);
   }
+  return kept;
+}
+
+// The direction of each of the `kept` pairs from its inlier bearings and the averaged rotations,
+// on the mapper's threads.
+std::vector<PairDirection> KeptPairDirections(
+    const MapperContext& context, const std::vector<const ImagePair*>& kept,
+    const std::map<uint32_t, Eigen::Quaterniond>& world_rotations) {
   std::vector<std::optional<Eigen::Vector3d>> found(kept.size());
   ParallelFor(kept.size(), context.options.num_threads, [&](size_t k) {
     const ImagePair& pair = *kept[k];
@@ -80,22 +98,6 @@ std::vector<TranslationTrack> TranslationTracks(
     if (observations.size() >= 2) translation_tracks.push_back(observations);
   }
   return translation_tracks;
-}
-
-// The kept pure-rotation edges between rotated images, both ways.
-std::multimap<uint32_t, uint32_t> PureRotationNeighbours(
-    const MapperContext& context, const RotationGraph& graph,
-    const std::vector<EdgeStatus>& edge_status) {
-  std::multimap<uint32_t, uint32_t> neighbours;
-  for (size_t e = 0; e < graph.edges.size(); ++e) {
-    const ImagePair& pair = context.pairs[graph.edges[e].pair_index];
-    if (edge_status[e] != EdgeStatus::kKept || !(pair.estimate.flags & kRelativePosePureRotation)) {
-      continue;
-    }
-    neighbours.emplace(pair.image_id1, pair.image_id2);
-    neighbours.emplace(pair.image_id2, pair.image_id1);
-  }
-  return neighbours;
 }
 
 // Images that only pure rotations link to the rest (the car waiting at a light, a panorama turned
@@ -170,9 +172,9 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
     MapperComponentSummary* component) {
   Timer timer;
   ComponentTranslations result;
-  std::set<uint64_t> kept_pairs;
-  result.directions = KeptPairDirections(context, graph, edge_status, world_rotations, &kept_pairs);
-  result.tracks = BuildTracks(context.database.two_view_geometries, kept_pairs);
+  KeptEdges kept = SplitKeptEdges(context, graph, edge_status, world_rotations);
+  result.directions = KeptPairDirections(context, kept.with_translation, world_rotations);
+  result.tracks = BuildTracks(context.database.two_view_geometries, kept.pair_ids);
   result.translation_tracks = TranslationTracks(result.tracks, context.bearings, world_rotations);
   const std::vector<PairDirection>& directions = result.directions;
   TranslationAveragingResult& positions = result.positions;
@@ -184,7 +186,7 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
     context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(), error.what());
     return std::nullopt;
   }
-  result.pure_rotation_neighbours = PureRotationNeighbours(context, graph, edge_status);
+  result.pure_rotation_neighbours = std::move(kept.pure_rotation_neighbours);
   const int num_standstill = PlaceStandstillImages(result.pure_rotation_neighbours, &positions);
   for (const uint32_t id : positions.unconstrained_images) {
     context.image_reasons[id] =

@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <utility>
 
 #include "mapper_options.h"
 #include "options.h"
@@ -19,27 +20,24 @@
 namespace ramap::cli {
 namespace {
 
-// Relative poses by image name, from a database (stage 1) or a file; resolves the rotation
-// averaging's edge weighting as the mapper does (a file's relative poses say nothing of the
-// cameras' focal lengths: auto is off there).
-std::vector<RelativePoseRecord> LoadRelativePoses(const std::string& database_path,
-                                                  const std::string& relative_poses_path,
-                                                  MapperOptions* options_in_out) {
-  MapperOptions& options = *options_in_out;
-  if (!relative_poses_path.empty()) {
-    options.rotation_averaging.use_edge_weights =
-        options.rotation_edge_weights == EdgeWeighting::kOn;
-    return ReadRelativePoses(relative_poses_path);
-  }
+// Relative poses by image name, from a database (stage 1) or a file, and whether the cameras'
+// focal lengths are known (a file's relative poses say nothing of the cameras: not known).
+struct LoadedRelativePoses {
+  std::vector<RelativePoseRecord> records;
+  bool focal_lengths_known = false;
+};
+
+LoadedRelativePoses LoadRelativePoses(const std::string& database_path,
+                                      const std::string& relative_poses_path,
+                                      const MapperOptions& options) {
+  if (!relative_poses_path.empty()) return {ReadRelativePoses(relative_poses_path), false};
   const FeatureDatabase database = ReadColmapDatabase(database_path, MapperDatabaseReadOptions());
-  options.rotation_averaging.use_edge_weights =
-      UseRotationEdgeWeights(options.rotation_edge_weights, database);
   const ImageBearings bearings = ComputeBearings(database, database_path);
-  const std::vector<RelativePoseRecord> records = AcceptedRelativePoses(
+  std::vector<RelativePoseRecord> records = AcceptedRelativePoses(
       database, EstimateRelativePoses(database, bearings, options.relative_pose,
                                       options.num_threads, &std::cout));
   if (records.empty()) throw InputError(database_path, "no image pair gave a relative pose");
-  return records;
+  return {std::move(records), AllFocalLengthsKnown(database)};
 }
 
 // Edges outside the largest component were consistent, only not connected to it: they are not
@@ -106,10 +104,12 @@ int RunRotationAverager(int argc, char** argv) {
   }
   CheckFileOutput("--output_path", output_path, {database_path, relative_poses_path});
 
-  const std::vector<RelativePoseRecord> records =
-      LoadRelativePoses(database_path, relative_poses_path, &options);
+  const LoadedRelativePoses loaded = LoadRelativePoses(database_path, relative_poses_path, options);
+  // The edge weighting resolved as the mapper resolves it.
+  options.rotation_averaging.use_edge_weights =
+      UseRotationEdgeWeights(options.rotation_edge_weights, loaded.focal_lengths_known);
   const RecordRotations averaged = AverageRecordRotations(
-      records, options.order, options.pose_graph, options.rotation_averaging);
+      loaded.records, options.order, options.pose_graph, options.rotation_averaging);
   WriteRotations(averaged.rotations, output_path);
   PrintRotationSummary(averaged, output_path);
   return 0;

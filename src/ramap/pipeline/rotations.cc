@@ -10,10 +10,18 @@
 
 namespace ramap {
 
-bool UseRotationEdgeWeights(EdgeWeighting weighting, const FeatureDatabase& database) {
-  if (weighting != EdgeWeighting::kAuto) return weighting == EdgeWeighting::kOn;
+bool AllFocalLengthsKnown(const FeatureDatabase& database) {
   return std::all_of(database.cameras.begin(), database.cameras.end(),
                      [](const auto& entry) { return entry.second.has_prior_focal_length; });
+}
+
+bool UseRotationEdgeWeights(EdgeWeighting weighting, bool focal_lengths_known) {
+  if (weighting != EdgeWeighting::kAuto) return weighting == EdgeWeighting::kOn;
+  return focal_lengths_known;
+}
+
+bool UseRotationEdgeWeights(EdgeWeighting weighting, const FeatureDatabase& database) {
+  return UseRotationEdgeWeights(weighting, AllFocalLengthsKnown(database));
 }
 
 RotationStageResult AverageViewGraphRotations(const RotationGraph& graph,

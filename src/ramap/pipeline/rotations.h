@@ -30,6 +30,12 @@ struct RotationStageResult {
 // kAuto when every camera of `database` has a known focal length (prior_focal_length 1): weights
 // help averaging through true intrinsics and hurt it through estimated ones (EdgeWeighting).
 bool UseRotationEdgeWeights(EdgeWeighting weighting, const FeatureDatabase& database);
+// The same for input whose focal lengths are known or not (relative poses read from a file carry
+// no cameras: not known).
+bool UseRotationEdgeWeights(EdgeWeighting weighting, bool focal_lengths_known);
+
+// Whether every camera of `database` has a known focal length (prior_focal_length 1).
+bool AllFocalLengthsKnown(const FeatureDatabase& database);
 
 // `capture_order` lists node ids in capture order (ids not in the graph are ignored); it is only
 // used when `sequential`.

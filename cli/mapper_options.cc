@@ -26,6 +26,16 @@ void AddRelativePoseOptions(CLI::App& app, MapperOptions* o, MapperOptionText* t
                  "1: candidates of each five of the six matches from Nister's essential "
                  "matrix, not Kneip's rotation-only solver (faster; see README)")
       ->capture_default_str();
+  app.add_option("--RelativePose.confident_inlier_ratio", o->relative_pose.confident_inlier_ratio,
+                 "stop solving five-point candidates once one explains this fraction of 50 "
+                 "matches (pairs of at least confident_min_matches; above 1: never)")
+      ->capture_default_str();
+  app.add_option("--RelativePose.confident_max_rms_error_px",
+                 o->relative_pose.confident_max_rms_error_px,
+                 "...and whose inliers there have at most this RMS epipolar error")
+      ->capture_default_str();
+  app.add_option("--RelativePose.confident_min_matches", o->relative_pose.confident_min_matches)
+      ->capture_default_str();
   app.add_option("--RelativePose.max_epipolar_error_px", o->relative_pose.max_epipolar_error_px,
                  "pixels")
       ->capture_default_str()
@@ -262,6 +272,9 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"max_epipolar_error_px", o.relative_pose.max_epipolar_error_px},
         {"use_descriptor_ratios", o.relative_pose.use_descriptor_ratios},
         {"nister_five_point", o.relative_pose.nister_five_point},
+        {"confident_inlier_ratio", o.relative_pose.confident_inlier_ratio},
+        {"confident_max_rms_error_px", o.relative_pose.confident_max_rms_error_px},
+        {"confident_min_matches", o.relative_pose.confident_min_matches},
         {"pure_rotation_parallax_px", o.relative_pose.pure_rotation_parallax_px}}},
       {"PoseGraph",
        {{"sequential", o.order == InputOrder::kAuto         ? "auto"

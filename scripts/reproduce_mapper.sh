@@ -6,11 +6,13 @@
 # images.bin). Run it before and after a change and diff the two files.
 #
 #   scripts/reproduce_mapper.sh OUT_FILE      (RAMAP_BINARY: the ramap to run; KINDS: "bench" or
-#                                              "bench-unknown-intrinsics" to run one of the two)
+#                                              "bench-unknown-intrinsics" to run one of the two;
+#                                              RAMAP_MAPPER_ARGS: more mapper options)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=$1
 ramap=${RAMAP_BINARY:-$root/build/ramap}
+read -r -a extra_args <<<"${RAMAP_MAPPER_ARGS:-}"
 data_dir=${RAMAP_DATA_DIR:-$root/../shared/data}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -27,7 +29,7 @@ for kind in ${KINDS:-bench bench-unknown-intrinsics}; do
     for refine in 0 1; do
       run=$work/${kind}_${name}_$refine
       if ! "$ramap" mapper --database_path "$db" --output_path "$run" --Mapper.refine "$refine" \
-        --Mapper.num_threads 1 "${fixed[@]}" > "$run.log" 2>&1; then
+        --Mapper.num_threads 1 "${fixed[@]}" "${extra_args[@]}" > "$run.log" 2>&1; then
         echo "$kind $name $refine FAILED" >> "$out"
         continue
       fi

@@ -107,6 +107,7 @@ int CountInFront(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen
 struct Scored {
   double cost = std::numeric_limits<double>::infinity();
   std::vector<int> inliers;
+  double inlier_sum_sq = 0;  // of the inliers' errors
 };
 
 // MSAC score of (R, t) over all matches.
@@ -123,6 +124,7 @@ Scored ScoreHypothesis(const std::vector<Eigen::Vector3d>& f1,
       scored.cost += threshold_sq;
     } else {
       scored.cost += r * r;
+      scored.inlier_sum_sq += r * r;
       scored.inliers.push_back(static_cast<int>(k));
     }
   }
@@ -229,32 +231,62 @@ std::vector<RotationCandidate> RotationCandidatesFromSix(const std::vector<Eigen
   return candidates;
 }
 
-// The `count` candidates of lowest MSAC cost on the matches `subset`, best first, each with its
-// translation re-fitted on its inliers there (ScoreRotation).
-std::vector<RotationCandidate> BestCandidates(const std::vector<Eigen::Vector3d>& f1,
-                                              const std::vector<Eigen::Vector3d>& f2,
-                                              const std::vector<int>& subset,
-                                              double max_epipolar_error,
-                                              std::vector<RotationCandidate> candidates,
-                                              int count) {
-  std::vector<Eigen::Vector3d> f1_subset, f2_subset;
-  for (const int k : subset) {
-    f1_subset.push_back(f1[k]);
-    f2_subset.push_back(f2[k]);
+// The bearings of some of a pair's matches, for preemptive scoring.
+struct MatchSubset {
+  std::vector<Eigen::Vector3d> f1, f2;
+};
+
+MatchSubset SubsetOf(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen::Vector3d>& f2,
+                     const std::vector<int>& indices) {
+  MatchSubset subset;
+  for (const int k : indices) {
+    subset.f1.push_back(f1[k]);
+    subset.f2.push_back(f2[k]);
   }
+  return subset;
+}
+
+// A candidate with its MSAC cost, inlier count and inliers' RMS error on a subset.
+struct ScoredCandidate {
+  RotationCandidate candidate;
+  double cost = std::numeric_limits<double>::infinity();
+  int num_inliers = 0;
+  double rms_inlier_error = std::numeric_limits<double>::infinity();
+};
+
+// When a five-point candidate ends the search (RelativePoseOptions::confident_inlier_ratio).
+struct ConfidentCriterion {
+  double min_inliers = std::numeric_limits<double>::infinity();
+  double max_rms_error = 0;  // radians
+};
+
+bool IsConfident(const ScoredCandidate& scored, const ConfidentCriterion& criterion) {
+  return scored.num_inliers >= criterion.min_inliers &&
+         scored.rms_inlier_error <= criterion.max_rms_error;
+}
+
+// Scores `candidate` on `subset`, re-fitting its translation there (ScoreRotation).
+ScoredCandidate ScoreCandidate(const MatchSubset& subset, double max_epipolar_error,
+                               RotationCandidate candidate) {
+  const Eigen::Vector3d t_start = candidate.t;
+  const Scored scored =
+      ScoreRotation(subset.f1, subset.f2, candidate.R, t_start, max_epipolar_error, &candidate.t);
+  const int num_inliers = static_cast<int>(scored.inliers.size());
+  const double rms_inlier_error = num_inliers > 0 ? std::sqrt(scored.inlier_sum_sq / num_inliers)
+                                                  : std::numeric_limits<double>::infinity();
+  return {std::move(candidate), scored.cost, num_inliers, rms_inlier_error};
+}
+
+// The `count` candidates of lowest cost, best first.
+std::vector<RotationCandidate> BestScored(std::vector<ScoredCandidate> scored, int count) {
   std::vector<std::pair<double, size_t>> ranked;
-  for (size_t c = 0; c < candidates.size(); ++c) {
-    RotationCandidate& candidate = candidates[c];
-    const Eigen::Vector3d t_start = candidate.t;
-    const double cost =
-        ScoreRotation(f1_subset, f2_subset, candidate.R, t_start, max_epipolar_error, &candidate.t)
-            .cost;
-    if (std::isfinite(cost)) ranked.emplace_back(cost, c);
+  for (size_t c = 0; c < scored.size(); ++c) {
+    if (std::isfinite(scored[c].cost)) ranked.emplace_back(scored[c].cost, c);
   }
   const size_t kept = std::min(ranked.size(), static_cast<size_t>(count));
   std::partial_sort(ranked.begin(), ranked.begin() + kept, ranked.end());
   std::vector<RotationCandidate> best;
-  for (size_t r = 0; r < kept; ++r) best.push_back(std::move(candidates[ranked[r].second]));
+  for (size_t r = 0; r < kept; ++r) best.push_back(std::move(scored[ranked[r].second].candidate));
   return best;
 }
 
@@ -311,6 +343,12 @@ void RelativePoseOptions::Check() const {
   }
   if (!(min_motion_deg >= 0)) throw InputError(source, "min_motion_deg must be >= 0");
   if (!(min_bearing_spread >= 0)) throw InputError(source, "min_bearing_spread must be >= 0");
+  if (!(confident_inlier_ratio >= 0))
+    throw InputError(source, "confident_inlier_ratio must be >= 0");
+  if (confident_min_matches < 0) throw InputError(source, "confident_min_matches must be >= 0");
+  if (!(confident_max_rms_error_px >= 0)) {
+    throw InputError(source, "confident_max_rms_error_px must be >= 0");
+  }
   if (max_refinement_matches < kNumSamples) {
     throw InputError(source, "max_refinement_matches must be at least 6");
   }
@@ -489,9 +527,10 @@ std::optional<RelativePoseEstimate> PureRotationOutcome(const Bearings& f1, cons
 }
 
 // The paper's hypothesis: six grid-selected (or random, or ROI) correspondences, the rotation
-// candidates of the six-point solver on them and on each five of them, ranked by the two rounds
-// of preemptive scoring described at kNumPreemptiveMatches (only the best is then scored on all
-// matches). A rejection when no six could be selected or no solver returned a rotation.
+// candidates of the six-point solver on them and on each five of them (until one is confident:
+// RelativePoseOptions::confident_inlier_ratio), ranked by the two rounds of preemptive scoring
+// described at kNumPreemptiveMatches (only the best is then scored on all matches). A rejection
+// when no six could be selected or no solver returned a rotation.
 std::optional<RelativePoseEstimate> SixPointHypothesis(const TwoViewCorrespondences& matches,
                                                        const Bearings& f1, const Bearings& f2,
                                                        const std::vector<int>& all,
@@ -518,20 +557,31 @@ std::optional<RelativePoseEstimate> SixPointHypothesis(const TwoViewCorresponden
   }
   std::vector<RotationCandidate> candidates =
       RotationCandidatesFromSix(f1, f2, six, -1, options.nister_five_point);
-  std::vector<RotationCandidate> five_point_candidates;
-  for (int leave_out = 0; leave_out < kNumSamples; ++leave_out) {
+  const MatchSubset first_round = SubsetOf(f1, f2, EvenSubset(all, kNumFirstRoundMatches));
+  const bool may_stop_early = static_cast<int>(all.size()) >= options.confident_min_matches;
+  const ConfidentCriterion confident_criterion{
+      options.confident_inlier_ratio * static_cast<double>(first_round.f1.size()),
+      options.confident_max_rms_error_px / matches.focal_length_px};
+  bool confident = false;
+  std::vector<ScoredCandidate> five_point_candidates;
+  for (int leave_out = 0; leave_out < kNumSamples && !confident; ++leave_out) {
     for (RotationCandidate& candidate :
          RotationCandidatesFromSix(f1, f2, six, leave_out, options.nister_five_point)) {
-      five_point_candidates.push_back(std::move(candidate));
+      five_point_candidates.push_back(
+          ScoreCandidate(first_round, max_epipolar_error, std::move(candidate)));
+      confident |= may_stop_early && IsConfident(five_point_candidates.back(), confident_criterion);
     }
   }
   for (RotationCandidate& candidate :
-       BestCandidates(f1, f2, EvenSubset(all, kNumFirstRoundMatches), max_epipolar_error,
-                      std::move(five_point_candidates), kNumFirstRoundSurvivors)) {
+       BestScored(std::move(five_point_candidates), kNumFirstRoundSurvivors)) {
     candidates.push_back(std::move(candidate));
   }
-  const std::vector<RotationCandidate> best = BestCandidates(
-      f1, f2, EvenSubset(all, kNumPreemptiveMatches), max_epipolar_error, std::move(candidates), 1);
+  const MatchSubset second_round = SubsetOf(f1, f2, EvenSubset(all, kNumPreemptiveMatches));
+  std::vector<ScoredCandidate> finalists;
+  for (RotationCandidate& candidate : candidates) {
+    finalists.push_back(ScoreCandidate(second_round, max_epipolar_error, std::move(candidate)));
+  }
+  const std::vector<RotationCandidate> best = BestScored(std::move(finalists), 1);
   if (best.empty()) {
     return Reject(Rejection::kNoHypothesis, "the six-point solvers returned no rotation");
   }

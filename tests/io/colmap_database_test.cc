@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "ramap/io/sqlite.h"
@@ -341,6 +343,28 @@ TEST(ColmapDatabase, RoundTripPreservesEverything) {
   FeatureDatabase smaller = MakeSmallDatabase();
   WriteColmapDatabase(smaller, path);
   ExpectSameDatabase(smaller, ReadColmapDatabase(path, ReadEverything()));
+}
+
+// Another process holding the database's lock for a moment (a writer; the last reader of a WAL
+// database checkpointing it as it closes) makes a read wait, not fail: two mapper runs on one
+// database must both succeed.
+TEST(ColmapDatabase, ReadWaitsForAnotherConnectionsLock) {
+  const FeatureDatabase database = MakeSmallDatabase();
+  TempDir dir;
+  const std::string path = dir / "db.db";
+  WriteColmapDatabase(database, path);
+  sqlite::Connection holder(path, sqlite::Connection::OpenExisting(), path);
+  holder.Execute("PRAGMA journal_mode = DELETE");  // so that an exclusive lock shuts out readers
+  holder.Execute("BEGIN EXCLUSIVE TRANSACTION");
+  holder.Execute("UPDATE images SET name = name");
+  std::thread release([&holder] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    holder.Execute("COMMIT");
+  });
+  FeatureDatabase read;
+  EXPECT_NO_THROW(read = ReadColmapDatabase(path, ReadEverything()));
+  release.join();
+  ExpectSameDatabase(database, read);
 }
 
 // ramap's descriptor ratios live in an extra table, written only when there are some, read back

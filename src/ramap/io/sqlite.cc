@@ -20,6 +20,9 @@ Connection::Connection(const std::string& path, int flags, std::string source)
   }
   // Extended codes tell "not a database" apart from I/O errors.
   sqlite3_extended_result_codes(db_, 1);
+  // Another process's lock (a writer, or the last reader of a WAL database checkpointing it as it
+  // closes, as when two mapper runs share a database) is waited out, not an error.
+  sqlite3_busy_timeout(db_, kBusyTimeoutMs);
 }
 
 Connection::~Connection() { sqlite3_close_v2(db_); }

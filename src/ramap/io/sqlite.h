@@ -14,6 +14,9 @@ struct sqlite3_stmt;
 namespace ramap::sqlite {
 
 // An open database; closed when destroyed.
+// How long a statement waits for another connection's lock before failing.
+constexpr int kBusyTimeoutMs = 10000;
+
 class Connection {
  public:
   // `flags` are sqlite3_open_v2 flags; see OpenExisting() / Create().

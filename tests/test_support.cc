@@ -170,6 +170,37 @@ MapperOptions AveragingOnly() {
   return options;
 }
 
+SyntheticScene StandstillLineScene() {
+  SyntheticSceneOptions options;
+  options.layout = SyntheticLayout::kSequential;
+  options.path = SyntheticPath::kLine;
+  options.num_images = 30;
+  options.num_points = 1500;
+  options.pixel_noise_sigma = 0.0;
+  options.outlier_ratio = 0.0;
+  options.seed = 11;
+  const SyntheticScene line = BuildSyntheticScene(options);
+  options.path = SyntheticPath::kGiven;
+  for (const auto& [id, image] : line.ground_truth.images) {
+    options.given_poses.push_back(image.cam_from_world);
+  }
+  const Eigen::Vector3d stop = options.given_poses[10].Inverse().translation;
+  for (const int frame : {9, 11}) {  // images 10 and 12
+    Rigid3d& pose = options.given_poses[frame];
+    pose.translation = -(pose.rotation * stop);
+  }
+  SyntheticScene scene = BuildSyntheticScene(options);
+  for (auto it = scene.database.two_view_geometries.begin();
+       it != scene.database.two_view_geometries.end();) {
+    const TwoViewGeometry& geometry = it->second;
+    const bool with_11 = geometry.image_id1 == 11 || geometry.image_id2 == 11;
+    const uint32_t other = geometry.image_id1 == 11 ? geometry.image_id2 : geometry.image_id1;
+    it = with_11 && other != 10 && other != 12 ? scene.database.two_view_geometries.erase(it)
+                                               : std::next(it);
+  }
+  return scene;
+}
+
 Camera VgaPinholeCamera(double fx, double fy) {
   Camera camera;
   camera.camera_id = 1;

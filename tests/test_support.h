@@ -9,6 +9,7 @@
 
 #include "ramap/pipeline/mapper.h"
 #include "ramap/scene/camera.h"
+#include "ramap/synthetic/synthetic_scene.h"
 
 namespace ramap::test {
 
@@ -54,6 +55,11 @@ std::string CachedColmapModel(const ColmapRun& run);
 MapperOptions AveragingOnly();
 
 Camera VgaPinholeCamera(double fx = 500, double fy = 500);
+
+// A car waiting at a light: a noise-free 30-frame line (images 1-30) in which images 10-12 share
+// one centre and turn a little, and image 11's only verified pairs are its pure rotations to 10
+// and 12, so that it has no direction to any camera.
+SyntheticScene StandstillLineScene();
 
 // A fresh folder under the system's temporary folder, removed with its contents at scope end.
 class TempDir {

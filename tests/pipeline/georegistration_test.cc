@@ -191,6 +191,27 @@ INSTANTIATE_TEST_SUITE_P(Uses, GeoregisteredMapper,
                          ::testing::Values(MapperCase{false, true}, MapperCase{false, false},
                                            MapperCase{true, true}));
 
+// The refit with priors is a second translation averaging: an image that only pure rotations
+// link to the rest (test::StandstillLineScene's image 11, here without a prior of its own) must
+// again be placed with its neighbours, in the priors' frame, not dropped.
+TEST(GeoregisteredMapper, AFrameStandingStillIsPlacedAfterTheRefitWithPriors) {
+  const SyntheticScene scene = test::StandstillLineScene();
+  PositionPriors priors = NoisyPriors(scene.ground_truth, 0.0, {});
+  priors.by_image.erase(11);
+  MapperOptions options = test::AveragingOnly();
+  options.georegistration.use_in_translation_averaging = true;
+  const MapperResult result = RunMapper(scene.database, options, "synthetic", nullptr, priors);
+  ASSERT_EQ(result.reconstructions.size(), 1u);
+  const GeoregistrationSummary& geo = result.summary.components.front().georegistration;
+  ASSERT_TRUE(geo.georegistered) << geo.problem;
+  EXPECT_TRUE(geo.used_in_translation_averaging);
+  const Reconstruction& model = result.reconstructions.front();
+  EXPECT_EQ(model.images.size(), 30u);
+  ASSERT_TRUE(model.images.count(11));
+  const Eigen::Vector3d truth = CameraCenter(scene.ground_truth.images.at(11).cam_from_world);
+  EXPECT_LT((CameraCenter(model.images.at(11).cam_from_world) - truth).norm(), 1e-3);
+}
+
 TEST(GeoregisteredMapper, PriorsThatCannotGeoregisterLeaveTheModelAsWithout) {
   const SyntheticScene scene = LoopScene();
   PositionPriors identical;

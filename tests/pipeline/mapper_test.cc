@@ -85,30 +85,10 @@ TEST(Mapper, NoisySequenceWithWrongMatchesAndOutlierPairs) {
   EXPECT_LT(evaluation.ate_rmse_over_path_length, 0.01);
 }
 
-// A car waiting at a light: frames 10-12 share one centre and turn a little, and frame 11's only
-// verified pairs are its pure rotations to 10 and 12. It has no direction to any camera, yet it
-// stands where they stand.
+// A car waiting at a light (test::StandstillLineScene): frame 11 has no direction to any camera,
+// yet it stands where frames 10 and 12 stand.
 TEST(Mapper, AFrameLinkedOnlyByPureRotationsStandsWithItsNeighbours) {
-  SyntheticSceneOptions options = NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 30);
-  const SyntheticScene line = BuildSyntheticScene(options);
-  options.path = SyntheticPath::kGiven;
-  for (const auto& [id, image] : line.ground_truth.images) {
-    options.given_poses.push_back(image.cam_from_world);
-  }
-  const Eigen::Vector3d stop = options.given_poses[10].Inverse().translation;
-  for (const int frame : {9, 11}) {  // images 10 and 12
-    Rigid3d& pose = options.given_poses[frame];
-    pose.translation = -(pose.rotation * stop);
-  }
-  SyntheticScene scene = BuildSyntheticScene(options);
-  for (auto it = scene.database.two_view_geometries.begin();
-       it != scene.database.two_view_geometries.end();) {
-    const TwoViewGeometry& geometry = it->second;
-    const bool with_11 = geometry.image_id1 == 11 || geometry.image_id2 == 11;
-    const uint32_t other = geometry.image_id1 == 11 ? geometry.image_id2 : geometry.image_id1;
-    it = with_11 && other != 10 && other != 12 ? scene.database.two_view_geometries.erase(it)
-                                               : std::next(it);
-  }
+  const SyntheticScene scene = test::StandstillLineScene();
   MapperResult result;
   const PoseEvaluation evaluation = MapAndEvaluate(scene, &result);
   EXPECT_EQ(evaluation.num_registered, 30);

@@ -170,15 +170,20 @@ MapperOptions AveragingOnly() {
   return options;
 }
 
-SyntheticScene StandstillLineScene() {
+SyntheticSceneOptions NoiseFree(SyntheticLayout layout, SyntheticPath path, int num_images) {
   SyntheticSceneOptions options;
-  options.layout = SyntheticLayout::kSequential;
-  options.path = SyntheticPath::kLine;
-  options.num_images = 30;
+  options.layout = layout;
+  options.path = path;
+  options.num_images = num_images;
   options.num_points = 1500;
   options.pixel_noise_sigma = 0.0;
   options.outlier_ratio = 0.0;
   options.seed = 11;
+  return options;
+}
+
+SyntheticScene StandstillLineScene() {
+  SyntheticSceneOptions options = NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 30);
   const SyntheticScene line = BuildSyntheticScene(options);
   options.path = SyntheticPath::kGiven;
   for (const auto& [id, image] : line.ground_truth.images) {

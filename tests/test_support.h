@@ -56,6 +56,9 @@ MapperOptions AveragingOnly();
 
 Camera VgaPinholeCamera(double fx = 500, double fy = 500);
 
+// A scene without keypoint noise or wrong matches: 1500 points, seed 11.
+SyntheticSceneOptions NoiseFree(SyntheticLayout layout, SyntheticPath path, int num_images);
+
 // A car waiting at a light: a noise-free 30-frame line (images 1-30) in which images 10-12 share
 // one centre and turn a little, and image 11's only verified pairs are its pure rotations to 10
 // and 12, so that it has no direction to any camera.

@@ -23,18 +23,6 @@ PoseEvaluation MapAndEvaluate(const SyntheticScene& scene, MapperResult* result_
   return evaluation;
 }
 
-SyntheticSceneOptions NoiseFree(SyntheticLayout layout, SyntheticPath path, int num_images) {
-  SyntheticSceneOptions options;
-  options.layout = layout;
-  options.path = path;
-  options.num_images = num_images;
-  options.num_points = 1500;
-  options.pixel_noise_sigma = 0.0;
-  options.outlier_ratio = 0.0;
-  options.seed = 11;
-  return options;
-}
-
 struct ExactCase {
   const char* name;
   SyntheticSceneOptions options;
@@ -63,10 +51,12 @@ INSTANTIATE_TEST_SUITE_P(
     Scenes, MapperExactRecovery,
     ::testing::Values(
         ExactCase{"forward_line",
-                  NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 30)},
-        ExactCase{"loop", NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLoop, 60)},
-        ExactCase{"orbit", NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kCircle, 24)},
-        ExactCase{"unordered", NoiseFree(SyntheticLayout::kUnordered, SyntheticPath::kLine, 20)}),
+                  test::NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 30)},
+        ExactCase{"loop", test::NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLoop, 60)},
+        ExactCase{"orbit",
+                  test::NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kCircle, 24)},
+        ExactCase{"unordered",
+                  test::NoiseFree(SyntheticLayout::kUnordered, SyntheticPath::kLine, 20)}),
     [](const ::testing::TestParamInfo<ExactCase>& info) { return info.param.name; });
 
 TEST(Mapper, NoisySequenceWithWrongMatchesAndOutlierPairs) {
@@ -98,7 +88,7 @@ TEST(Mapper, AFrameLinkedOnlyByPureRotationsStandsWithItsNeighbours) {
 // Two sequences that share no verified pair: two models, largest first, both complete.
 TEST(Mapper, EveryConnectedComponentIsReconstructed) {
   SyntheticScene scene =
-      BuildSyntheticScene(NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 30));
+      BuildSyntheticScene(test::NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 30));
   for (auto it = scene.database.two_view_geometries.begin();
        it != scene.database.two_view_geometries.end();) {
     const bool crosses = (it->second.image_id1 <= 18) != (it->second.image_id2 <= 18);
@@ -125,7 +115,7 @@ void ExpectInputError(const FeatureDatabase& database, const std::string& messag
 
 TEST(Mapper, UnusableDatabasesAreClearErrors) {
   const SyntheticScene scene =
-      BuildSyntheticScene(NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 10));
+      BuildSyntheticScene(test::NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 10));
   FeatureDatabase no_geometries = scene.database;
   no_geometries.two_view_geometries.clear();
   ExpectInputError(no_geometries, "no image pair has verified matches");

@@ -343,8 +343,9 @@ void RelativePoseOptions::Check() const {
   }
   if (!(min_motion_deg >= 0)) throw InputError(source, "min_motion_deg must be >= 0");
   if (!(min_bearing_spread >= 0)) throw InputError(source, "min_bearing_spread must be >= 0");
-  if (!(confident_inlier_ratio >= 0))
+  if (!(confident_inlier_ratio >= 0)) {
     throw InputError(source, "confident_inlier_ratio must be >= 0");
+  }
   if (confident_min_matches < 0) throw InputError(source, "confident_min_matches must be >= 0");
   if (!(confident_max_rms_error_px >= 0)) {
     throw InputError(source, "confident_max_rms_error_px must be >= 0");

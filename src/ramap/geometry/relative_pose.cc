@@ -559,9 +559,11 @@ std::optional<RelativePoseEstimate> SixPointHypothesis(const TwoViewCorresponden
   std::vector<RotationCandidate> candidates =
       RotationCandidatesFromSix(f1, f2, six, -1, options.nister_five_point);
   const MatchSubset first_round = SubsetOf(f1, f2, EvenSubset(all, kNumFirstRoundMatches));
-  const bool may_stop_early = static_cast<int>(all.size()) >= options.confident_min_matches;
+  // A pair too weak to stop early needs more inliers than any candidate can have.
   const ConfidentCriterion confident_criterion{
-      options.confident_inlier_ratio * static_cast<double>(first_round.f1.size()),
+      static_cast<int>(all.size()) >= options.confident_min_matches
+          ? options.confident_inlier_ratio * static_cast<double>(first_round.f1.size())
+          : std::numeric_limits<double>::infinity(),
       options.confident_max_rms_error_px / matches.focal_length_px};
   bool confident = false;
   std::vector<ScoredCandidate> five_point_candidates;
@@ -570,7 +572,7 @@ std::optional<RelativePoseEstimate> SixPointHypothesis(const TwoViewCorresponden
          RotationCandidatesFromSix(f1, f2, six, leave_out, options.nister_five_point)) {
       five_point_candidates.push_back(
           ScoreCandidate(first_round, max_epipolar_error, std::move(candidate)));
-      confident |= may_stop_early && IsConfident(five_point_candidates.back(), confident_criterion);
+      confident |= IsConfident(five_point_candidates.back(), confident_criterion);
     }
   }
   for (RotationCandidate& candidate :

@@ -32,7 +32,17 @@ void AddRelativePoseOptions(CLI::App& app, MapperOptions* o, MapperOptionText* t
       ->capture_default_str();
   app.add_option("--RelativePose.confident_max_rms_error_px",
                  o->relative_pose.confident_max_rms_error_px,
-                 "...and whose inliers there have at most this RMS epipolar error")
+                 "...and whose inliers there have at most this RMS epipolar error (after one "
+                 "refinement on them)")
+      ->capture_default_str();
+  app.add_option("--RelativePose.confident_narrow_view_deg",
+                 o->relative_pose.confident_narrow_view_deg,
+                 "matches spread less than this (RMS angle to their mean bearing) are a narrow "
+                 "view...")
+      ->capture_default_str();
+  app.add_option("--RelativePose.confident_narrow_view_rms_error_px",
+                 o->relative_pose.confident_narrow_view_rms_error_px,
+                 "...whose confident candidates must meet this error bound instead")
       ->capture_default_str();
   app.add_option("--RelativePose.confident_min_matches", o->relative_pose.confident_min_matches)
       ->capture_default_str();
@@ -274,6 +284,8 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"nister_five_point", o.relative_pose.nister_five_point},
         {"confident_inlier_ratio", o.relative_pose.confident_inlier_ratio},
         {"confident_max_rms_error_px", o.relative_pose.confident_max_rms_error_px},
+        {"confident_narrow_view_deg", o.relative_pose.confident_narrow_view_deg},
+        {"confident_narrow_view_rms_error_px", o.relative_pose.confident_narrow_view_rms_error_px},
         {"confident_min_matches", o.relative_pose.confident_min_matches},
         {"pure_rotation_parallax_px", o.relative_pose.pure_rotation_parallax_px}}},
       {"PoseGraph",

@@ -277,6 +277,56 @@ ScoredCandidate ScoreCandidate(const MatchSubset& subset, double max_epipolar_er
   return {std::move(candidate), scored.cost, num_inliers, rms_inlier_error};
 }
 
+// `scored` refined on its inliers among `subset` (a few steps) and scored again there; the better
+// of the two.
+ScoredCandidate RefinedOnSubset(const MatchSubset& subset, double max_epipolar_error,
+                                const ScoredCandidate& scored) {
+  const std::vector<int> inliers = ScoreHypothesis(subset.f1, subset.f2, scored.candidate.R,
+                                                   scored.candidate.t, max_epipolar_error)
+                                       .inliers;
+  // Ten steps at loose tolerances: the test asks whether a good fit exists, not for its last digit.
+  EpipolarRefinementOptions refinement;
+  refinement.max_iterations = 10;
+  refinement.function_tolerance = 1e-6;
+  refinement.parameter_tolerance = 1e-8;
+  RotationCandidate refined = scored.candidate;
+  if (static_cast<int>(inliers.size()) < kNumSamples ||
+      !RefineEpipolarPose(subset.f1, subset.f2, inliers, &refined.R, &refined.t, refinement)) {
+    return scored;
+  }
+  ScoredCandidate rescored = ScoreCandidate(subset, max_epipolar_error, std::move(refined));
+  return rescored.cost < scored.cost ? rescored : scored;
+}
+
+// How widely bearings spread: the RMS angle (radians) to their mean direction.
+double BearingSpread(const std::vector<Eigen::Vector3d>& f) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& v : f) mean += v;
+  if (f.empty() || mean.norm() < 1e-12) return M_PI;
+  mean.normalize();
+  double sum_sq = 0;
+  for (const Eigen::Vector3d& v : f) sum_sq += std::pow(AngleBetween(v, mean), 2);
+  return std::sqrt(sum_sq / static_cast<double>(f.size()));
+}
+
+// The confident criterion of a pair (RelativePoseOptions::confident_inlier_ratio) on the first
+// preemptive round's matches.
+ConfidentCriterion ConfidentCriterionOf(const MatchSubset& first_round, int num_matches,
+                                        double focal_length_px,
+                                        const RelativePoseOptions& options) {
+  ConfidentCriterion criterion;
+  // A pair too weak to stop early needs more inliers than any candidate can have.
+  if (num_matches >= options.confident_min_matches) {
+    criterion.min_inliers =
+        options.confident_inlier_ratio * static_cast<double>(first_round.f1.size());
+  }
+  const bool narrow = BearingSpread(first_round.f1) < options.confident_narrow_view_deg * kDegToRad;
+  criterion.max_rms_error =
+      (narrow ? options.confident_narrow_view_rms_error_px : options.confident_max_rms_error_px) /
+      focal_length_px;
+  return criterion;
+}
+
 // The `count` candidates of lowest cost, best first.
 std::vector<RotationCandidate> BestScored(std::vector<ScoredCandidate> scored, int count) {
   std::vector<std::pair<double, size_t>> ranked;
@@ -347,8 +397,12 @@ void RelativePoseOptions::Check() const {
     throw InputError(source, "confident_inlier_ratio must be >= 0");
   }
   if (confident_min_matches < 0) throw InputError(source, "confident_min_matches must be >= 0");
-  if (!(confident_max_rms_error_px >= 0)) {
-    throw InputError(source, "confident_max_rms_error_px must be >= 0");
+  if (!(confident_max_rms_error_px >= 0) || !(confident_narrow_view_rms_error_px >= 0)) {
+    throw InputError(
+        source, "confident_max_rms_error_px and confident_narrow_view_rms_error_px must be >= 0");
+  }
+  if (!(confident_narrow_view_deg >= 0)) {
+    throw InputError(source, "confident_narrow_view_deg must be >= 0");
   }
   if (max_refinement_matches < kNumSamples) {
     throw InputError(source, "max_refinement_matches must be at least 6");
@@ -531,13 +585,12 @@ std::optional<RelativePoseEstimate> PureRotationOutcome(const Bearings& f1, cons
 // candidates of the six-point solver on them and on each five of them (until one is confident:
 // RelativePoseOptions::confident_inlier_ratio), ranked by the two rounds of preemptive scoring
 // described at kNumPreemptiveMatches (only the best is then scored on all matches). A rejection
-// when no six could be selected or no solver returned a rotation.
-std::optional<RelativePoseEstimate> SixPointHypothesis(const TwoViewCorrespondences& matches,
-                                                       const Bearings& f1, const Bearings& f2,
-                                                       const std::vector<int>& all,
-                                                       const RelativePoseOptions& options,
-                                                       double max_epipolar_error,
-                                                       Eigen::Matrix3d* R, Eigen::Vector3d* t) {
+// when no six could be selected or no solver returned a rotation. Counts the five-point subsets
+// solved.
+std::optional<RelativePoseEstimate> SixPointHypothesis(
+    const TwoViewCorrespondences& matches, const Bearings& f1, const Bearings& f2,
+    const std::vector<int>& all, const RelativePoseOptions& options, double max_epipolar_error,
+    Eigen::Matrix3d* R, Eigen::Vector3d* t, int* num_five_point_subsets) {
   std::vector<int> six;
   switch (options.sampler) {
     case CorrespondenceSampler::kGrid:
@@ -559,20 +612,22 @@ std::optional<RelativePoseEstimate> SixPointHypothesis(const TwoViewCorresponden
   std::vector<RotationCandidate> candidates =
       RotationCandidatesFromSix(f1, f2, six, -1, options.nister_five_point);
   const MatchSubset first_round = SubsetOf(f1, f2, EvenSubset(all, kNumFirstRoundMatches));
-  // A pair too weak to stop early needs more inliers than any candidate can have.
-  const ConfidentCriterion confident_criterion{
-      static_cast<int>(all.size()) >= options.confident_min_matches
-          ? options.confident_inlier_ratio * static_cast<double>(first_round.f1.size())
-          : std::numeric_limits<double>::infinity(),
-      options.confident_max_rms_error_px / matches.focal_length_px};
+  const ConfidentCriterion confident_criterion = ConfidentCriterionOf(
+      first_round, static_cast<int>(all.size()), matches.focal_length_px, options);
   bool confident = false;
   std::vector<ScoredCandidate> five_point_candidates;
   for (int leave_out = 0; leave_out < kNumSamples && !confident; ++leave_out) {
+    ++*num_five_point_subsets;
     for (RotationCandidate& candidate :
          RotationCandidatesFromSix(f1, f2, six, leave_out, options.nister_five_point)) {
-      five_point_candidates.push_back(
-          ScoreCandidate(first_round, max_epipolar_error, std::move(candidate)));
-      confident |= IsConfident(five_point_candidates.back(), confident_criterion);
+      ScoredCandidate scored =
+          ScoreCandidate(first_round, max_epipolar_error, std::move(candidate));
+      if (scored.num_inliers >= confident_criterion.min_inliers &&
+          !IsConfident(scored, confident_criterion)) {
+        scored = RefinedOnSubset(first_round, max_epipolar_error, scored);
+      }
+      confident |= IsConfident(scored, confident_criterion);
+      five_point_candidates.push_back(std::move(scored));
     }
   }
   for (RotationCandidate& candidate :
@@ -601,7 +656,8 @@ std::optional<RelativePoseEstimate> BestHypothesis(const TwoViewCorrespondences&
                                                    const std::vector<int>& all,
                                                    const RelativePoseOptions& options,
                                                    double max_epipolar_error, Eigen::Matrix3d* R,
-                                                   Eigen::Vector3d* t, std::vector<int>* inliers) {
+                                                   Eigen::Vector3d* t, std::vector<int>* inliers,
+                                                   int* num_five_point_subsets) {
   Scored best;
   if (options.sampler == CorrespondenceSampler::kRansac5) {
     Eigen::Vector3d t_ransac;
@@ -610,8 +666,8 @@ std::optional<RelativePoseEstimate> BestHypothesis(const TwoViewCorrespondences&
     }
     best = ScoreRotation(f1, f2, *R, t_ransac, max_epipolar_error, t);
   } else {
-    if (auto rejected =
-            SixPointHypothesis(matches, f1, f2, all, options, max_epipolar_error, R, t)) {
+    if (auto rejected = SixPointHypothesis(matches, f1, f2, all, options, max_epipolar_error, R, t,
+                                           num_five_point_subsets)) {
       return rejected;
     }
     best = ScoreRotation(f1, f2, *R, *t, max_epipolar_error, t);
@@ -719,8 +775,9 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
   Eigen::Matrix3d R;
   Eigen::Vector3d t;
   std::vector<int> inliers;
+  int num_five_point_subsets = 0;
   if (auto rejected = BestHypothesis(matches, f1, f2, all, options, thresholds.max_epipolar_error,
-                                     &R, &t, &inliers)) {
+                                     &R, &t, &inliers, &num_five_point_subsets)) {
     return *rejected;
   }
   if (auto rejected =
@@ -735,7 +792,9 @@ RelativePoseEstimate EstimateRelativePose(const TwoViewCorrespondences& matches,
                       " of the matches are inliers");
   }
   const int num_in_front = ResolveCheirality(f1, f2, inliers, &R, &t);
-  return FinalEstimate(f1, f2, inliers, R, t, num_in_front, thresholds);
+  RelativePoseEstimate estimate = FinalEstimate(f1, f2, inliers, R, t, num_in_front, thresholds);
+  estimate.num_five_point_subsets = num_five_point_subsets;
+  return estimate;
 }
 
 }  // namespace ramap

@@ -75,6 +75,9 @@ struct RelativePoseEstimate {
   double median_parallax_deg = 0;
   // Fraction of inliers in front of both cameras (1 for pure rotation).
   double cheirality_ratio = 0;
+  // Leave-one-out five-point subsets solved (six unless a candidate was confident first:
+  // RelativePoseOptions::confident_inlier_ratio); 0 without the six-point hypothesis.
+  int num_five_point_subsets = 0;
   uint32_t flags = kRelativePoseNone;
   // Why the edge was rejected: the kind, and in words with its numbers (empty on success).
   RelativePoseRejection rejection = RelativePoseRejection::kNone;

@@ -123,6 +123,11 @@ void AddTranslationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptio
   app.add_option(
       "--TranslationAveraging.irls_extrapolation", ta.irls_extrapolation,
       "IRLS steps taken this many times over when that lowers the objective more (1: plain)");
+  app.add_option("--TranslationAveraging.max_pcg_iterations", ta.max_pcg_iterations,
+                 "IRLS steps reuse the last factorisation for up to this many conjugate-gradient "
+                 "iterations before refactorising (0: refactorise every step)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--TranslationAveraging.max_admm_iterations", ta.max_admm_iterations)
       ->capture_default_str()
       ->check(AtLeast(0));
@@ -312,6 +317,7 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"max_irls_iterations", ta.max_irls_iterations},
         {"irls_cost_tolerance", ta.irls_cost_tolerance},
         {"irls_extrapolation", ta.irls_extrapolation},
+        {"max_pcg_iterations", ta.max_pcg_iterations},
         {"max_admm_iterations", ta.max_admm_iterations},
         {"admm_rho", ta.admm_rho},
         {"pair_constraint_weight", ta.pair_constraint_weight}}},

@@ -203,6 +203,33 @@ TEST(TranslationAveraging, ExtrapolatedStepsReachTheSameSolutionInFewerSteps) {
   EXPECT_LT(RelativeCenterError(scene, extrapolated), 0.1);
 }
 
+// IRLS steps solved by conjugate gradients with the last step's factor reach the solution of
+// steps that refactorise every time, with fewer factorisations.
+TEST(TranslationAveraging, StepsReusingTheLastFactorReachTheSameSolution) {
+  std::mt19937 rng(3);
+  auto [scene, tracks, directions] = NoisyRing(&rng);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  for (size_t k = 0; k < directions.size(); k += 10) {
+    directions[k].direction =
+        Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng)).normalized();
+  }
+  TranslationAveragingOptions options;
+  options.max_pcg_iterations = 0;
+  const TranslationAveragingResult refactorised =
+      AverageTranslations(scene.rotations, directions, tracks, options);
+  options.max_pcg_iterations = 20;
+  const TranslationAveragingResult reused =
+      AverageTranslations(scene.rotations, directions, tracks, options);
+  // One factorisation for the least-squares start and one per step.
+  EXPECT_EQ(refactorised.num_factorizations, refactorised.num_solver_iterations + 1);
+  EXPECT_LT(2 * reused.num_factorizations, refactorised.num_factorizations);
+  EXPECT_NEAR(reused.l1_cost, refactorised.l1_cost, 1e-6 * refactorised.l1_cost);
+  ASSERT_EQ(reused.centers.size(), refactorised.centers.size());
+  for (const auto& [id, center] : refactorised.centers) {
+    EXPECT_LT((reused.centers.at(id) - center).norm(), 1e-5) << "image " << id;
+  }
+}
+
 TEST(TranslationAveraging, PerImageQuotaGivesEveryCameraTracksPastTheCap) {
   std::mt19937 rng(5);
   Scene line = ForwardLine(40, 1500, rng);

@@ -253,10 +253,12 @@ using SparseCholesky = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>;
 // model), the shift grows from 1e-10 of the largest diagonal entry until the factorisation
 // succeeds. Not relative from the start: exact position priors weigh ~1e8 and a relative shift
 // would pull every camera by millimetres.
+constexpr double kRidgeShift = 1e-10;
+
 void FactorizeWithRidge(const Eigen::SparseMatrix<double>& matrix, SparseCholesky* solver) {
   // The retries below answer CHOLMOD's "not positive definite" warnings: not for the user's eyes.
   solver->cholmod().print = 0;
-  solver->setShift(1e-10);
+  solver->setShift(kRidgeShift);
   solver->factorize(matrix);
   if (solver->info() == Eigen::Success) return;
   const double scale = std::max(1.0, matrix.diagonal().cwiseAbs().maxCoeff());
@@ -440,8 +442,10 @@ int UpdateHeldScales(const StackedSystem& system, const IrlsLayout& layout, Eige
 // least-squares start and every IRLS step.
 class PositionSolver {
  public:
-  explicit PositionSolver(const StackedSystem& system)
-      : equations_(system.B, ExtraColumns(system)) {
+  PositionSolver(const StackedSystem& system, const TranslationAveragingOptions& options)
+      : equations_(system.B, ExtraColumns(system)),
+        max_pcg_iterations_(options.max_pcg_iterations),
+        pcg_tolerance_(options.pcg_tolerance) {
     factorization_.analyzePattern(equations_.pattern());
   }
 
@@ -450,9 +454,15 @@ class PositionSolver {
   Eigen::VectorXd Solve(const Eigen::VectorXd& block_weights, const std::vector<bool>& held,
                         const std::vector<double>& held_values) {
     equations_.Assemble(block_weights, held, held_values, &normal_, &rhs_);
-    FactorizeWithRidge(normal_, &factorization_);
-    return equations_.Expand(factorization_.solve(rhs_), held, held_values);
+    if (!SolveWithLastFactor()) {
+      FactorizeWithRidge(normal_, &factorization_);
+      last_solution_ = factorization_.solve(rhs_);
+      ++num_factorizations_;
+    }
+    return equations_.Expand(last_solution_, held, held_values);
   }
+
+  int num_factorizations() const { return num_factorizations_; }
 
  private:
   static std::vector<int> ExtraColumns(const StackedSystem& system) {
@@ -461,10 +471,47 @@ class PositionSolver {
     return columns;
   }
 
+  // Conjugate gradients on the new equations, preconditioned by the last factorisation and started
+  // from the last solution (TranslationAveragingOptions::max_pcg_iterations); last_solution_
+  // becomes the result. False, last_solution_ unchanged, when there is no factor yet or the
+  // residual does not reach the tolerance in time.
+  bool SolveWithLastFactor() {
+    if (num_factorizations_ == 0 || max_pcg_iterations_ == 0) return false;
+    const auto normal = normal_.selfadjointView<Eigen::Lower>();
+    // The factorised matrices carry the ridge shift (FactorizeWithRidge); so does this one.
+    const auto apply = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+      return normal * v + kRidgeShift * v;
+    };
+    Eigen::VectorXd u = last_solution_;
+    Eigen::VectorXd residual = rhs_ - apply(u);
+    const double target = pcg_tolerance_ * rhs_.norm();
+    Eigen::VectorXd preconditioned = factorization_.solve(residual);
+    Eigen::VectorXd direction = preconditioned;
+    double product = residual.dot(preconditioned);
+    for (int iteration = 0; iteration < max_pcg_iterations_; ++iteration) {
+      if (residual.norm() <= target) break;
+      const Eigen::VectorXd applied = apply(direction);
+      const double step = product / direction.dot(applied);
+      u += step * direction;
+      residual -= step * applied;
+      preconditioned = factorization_.solve(residual);
+      const double next_product = residual.dot(preconditioned);
+      direction = preconditioned + (next_product / product) * direction;
+      product = next_product;
+    }
+    if (!(residual.norm() <= target) || !u.allFinite()) return false;
+    last_solution_ = std::move(u);
+    return true;
+  }
+
   BlockNormalEquations equations_;
   SparseCholesky factorization_;
   Eigen::SparseMatrix<double> normal_;
   Eigen::VectorXd rhs_;
+  Eigen::VectorXd last_solution_;  // of the reduced equations
+  int num_factorizations_ = 0;
+  int max_pcg_iterations_ = 0;
+  double pcg_tolerance_ = 0;
 };
 
 // The same problem by iteratively reweighted least squares: each 3-row block (a track constraint
@@ -562,6 +609,9 @@ void TranslationAveragingOptions::Check() const {
               "in [0, 1)", irls_cost_tolerance);
   CheckOption(irls_extrapolation >= 1 && irls_extrapolation <= 3, s + "irls_extrapolation",
               "in [1, 3]", irls_extrapolation);
+  CheckOption(max_pcg_iterations >= 0, s + "max_pcg_iterations", ">= 0", max_pcg_iterations);
+  CheckOption(pcg_tolerance > 0 && pcg_tolerance < 1, s + "pcg_tolerance", "in (0, 1)",
+              pcg_tolerance);
   CheckOption(irls_min_residual > 0, s + "irls_min_residual", "> 0", irls_min_residual);
   CheckOption(max_admm_iterations >= 0, s + "max_admm_iterations", ">= 0", max_admm_iterations);
   CheckOption(admm_tolerance > 0, s + "admm_tolerance", "> 0", admm_tolerance);
@@ -775,12 +825,13 @@ TranslationAveragingResult AverageTranslations(
       AssembleSystem(constraints, pairs, used_priors, column, num_cameras, options);
 
   int iterations = 0;
-  PositionSolver solver(system);
+  PositionSolver solver(system, options);
   Eigen::VectorXd x = LeastSquaresStart(system, pairs, column, &solver);
   x = options.solver == TranslationSolver::kIrls
           ? SolveByIrls(system, x, options, &solver, &iterations)
           : SolveByAdmm(system, x, options, &iterations);
   result.num_solver_iterations = iterations;
+  result.num_factorizations = solver.num_factorizations();
 
   // The documented scale: mean projected pair baseline = 1.
   double projected = 0.0;

@@ -77,7 +77,8 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
           {"max_residual_deg", c.max_rotation_residual_deg}}},
         {"translation_averaging",
          {{"num_constraints", c.num_translation_constraints},
-          {"num_solver_iterations", c.num_solver_iterations}}},
+          {"num_solver_iterations", c.num_solver_iterations},
+          {"num_factorizations", c.num_factorizations}}},
     };
     if (c.bundle_adjustment.num_observations > 0) {
       const BundleAdjustmentSummary& ba = c.bundle_adjustment;

@@ -38,6 +38,7 @@ struct MapperComponentSummary {
   double max_rotation_residual_deg = 0.0;
   int num_translation_constraints = 0;
   int num_solver_iterations = 0;
+  int num_factorizations = 0;
   BundleAdjustmentSummary bundle_adjustment;  // zeros when not refined
   GeoregistrationSummary georegistration;     // num_priors 0 when run without priors
 };

@@ -194,11 +194,13 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
   }
   component->num_translation_constraints = positions.num_constraints;
   component->num_solver_iterations = positions.num_solver_iterations;
+  component->num_factorizations = positions.num_factorizations;
   context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(),
                      std::to_string(positions.centers.size()) + " positions from " +
                          std::to_string(directions.size()) + " pair directions and " +
                          std::to_string(positions.num_tracks_used) + " tracks, " +
-                         std::to_string(positions.num_solver_iterations) + " solver iterations" +
+                         std::to_string(positions.num_solver_iterations) + " solver iterations (" +
+                         std::to_string(positions.num_factorizations) + " factorisations)" +
                          (num_standstill > 0 ? ", " + std::to_string(num_standstill) +
                                                    " placed by pure rotations (standing still)"
                                              : ""));

@@ -217,7 +217,7 @@ TEST(TranslationAveraging, StepsReusingTheLastFactorReachTheSameSolution) {
   options.max_pcg_iterations = 0;
   const TranslationAveragingResult refactorised =
       AverageTranslations(scene.rotations, directions, tracks, options);
-  options.max_pcg_iterations = 20;
+  options.max_pcg_iterations = 40;
   const TranslationAveragingResult reused =
       AverageTranslations(scene.rotations, directions, tracks, options);
   // One factorisation for the least-squares start and one per step.

@@ -255,6 +255,10 @@ using SparseCholesky = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>;
 // would pull every camera by millimetres.
 constexpr double kRidgeShift = 1e-10;
 
+// Conjugate-gradient iterations before their convergence rate forecasts whether the rest reach
+// the tolerance (PositionSolver::SolveWithLastFactor).
+constexpr int kPcgIterationsBeforeForecast = 3;
+
 void FactorizeWithRidge(const Eigen::SparseMatrix<double>& matrix, SparseCholesky* solver) {
   // The retries below answer CHOLMOD's "not positive definite" warnings: not for the user's eyes.
   solver->cholmod().print = 0;
@@ -488,8 +492,19 @@ class PositionSolver {
     Eigen::VectorXd preconditioned = factorization_.solve(residual);
     Eigen::VectorXd direction = preconditioned;
     double product = residual.dot(preconditioned);
+    const double initial = residual.norm();
     for (int iteration = 0; iteration < max_pcg_iterations_; ++iteration) {
-      if (residual.norm() <= target) break;
+      const double norm = residual.norm();
+      if (norm <= target) break;
+      // A step whose reweighting moved the equations far converges slowly from the first
+      // iterations on: stop as soon as the mean rate so far would not reach the target in time.
+      if (iteration >= kPcgIterationsBeforeForecast) {
+        const double rate = std::pow(norm / initial, 1.0 / iteration);
+        if (!(rate < 1) ||
+            iteration + std::log(target / norm) / std::log(rate) > max_pcg_iterations_) {
+          break;
+        }
+      }
       const Eigen::VectorXd applied = apply(direction);
       const double step = product / direction.dot(applied);
       u += step * direction;

@@ -53,7 +53,7 @@ std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& r
     Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
     for (const Eigen::Vector3d& normal : normals) {
       const double w = round == 0 ? 1.0 : weight(normal, direction);
-      scatter.triangularView<Eigen::Lower>() += w * normal * normal.transpose();
+      scatter.noalias() += (w * normal) * normal.transpose();
     }
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
     direction = solver.eigenvectors().col(0);

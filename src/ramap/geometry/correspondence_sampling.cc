@@ -130,16 +130,18 @@ std::vector<int> SelectGridCorrespondences(const TwoViewCorrespondences& matches
 
   // Fill: matches from unused image-1 cells first, then from the most populated cross-cell
   // assignments, then the most confident.
+  // Each match's assignment count, looked up once rather than at every comparison of the sort.
   std::map<std::pair<int, int>, int> assignment_count;
   for (int k = 0; k < n; ++k) ++assignment_count[{cell1[k], cell2[k]}];
+  std::vector<int> count_of_match(n);
+  for (int k = 0; k < n; ++k) count_of_match[k] = assignment_count[{cell1[k], cell2[k]}];
   std::vector<int> rest;
   for (int k = 0; k < n; ++k) {
     if (!used_match[k]) rest.push_back(k);
   }
   SortByConfidence(matches, &rest);
-  std::stable_sort(rest.begin(), rest.end(), [&](int a, int b) {
-    return assignment_count[{cell1[a], cell2[a]}] > assignment_count[{cell1[b], cell2[b]}];
-  });
+  std::stable_sort(rest.begin(), rest.end(),
+                   [&](int a, int b) { return count_of_match[a] > count_of_match[b]; });
   for (bool require_new_cell : {true, false}) {
     for (int k : rest) {
       if (static_cast<int>(selected.size()) >= num_samples) return selected;

@@ -140,15 +140,19 @@ TEST(TranslationAveraging, ExactOnARing) {
   EXPECT_LT(RelativeCenterError(scene, result), 1e-6);
 }
 
+// Wrong pair directions: every 10th is replaced by a random one.
+void RandomiseEveryTenthDirection(std::vector<PairDirection>* directions, std::mt19937* rng) {
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  for (size_t k = 0; k < directions->size(); k += 10) {
+    (*directions)[k].direction =
+        Eigen::Vector3d(uniform(*rng), uniform(*rng), uniform(*rng)).normalized();
+  }
+}
+
 TEST(TranslationAveraging, AccurateWithNoiseAndRobustToWrongDirections) {
   std::mt19937 rng(3);
   auto [scene, tracks, directions] = NoisyRing(&rng);
-  // Every 10th pair direction is replaced by a random one.
-  std::uniform_real_distribution<double> uniform(-1, 1);
-  for (size_t k = 0; k < directions.size(); k += 10) {
-    directions[k].direction =
-        Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng)).normalized();
-  }
+  RandomiseEveryTenthDirection(&directions, &rng);
   const TranslationAveragingResult result =
       AverageTranslations(scene.rotations, directions, tracks);
   ASSERT_EQ(result.centers.size(), 30u);
@@ -208,11 +212,7 @@ TEST(TranslationAveraging, ExtrapolatedStepsReachTheSameSolutionInFewerSteps) {
 TEST(TranslationAveraging, StepsReusingTheLastFactorReachTheSameSolution) {
   std::mt19937 rng(3);
   auto [scene, tracks, directions] = NoisyRing(&rng);
-  std::uniform_real_distribution<double> uniform(-1, 1);
-  for (size_t k = 0; k < directions.size(); k += 10) {
-    directions[k].direction =
-        Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng)).normalized();
-  }
+  RandomiseEveryTenthDirection(&directions, &rng);
   TranslationAveragingOptions options;
   options.max_pcg_iterations = 0;
   const TranslationAveragingResult refactorised =

@@ -31,6 +31,26 @@ int ClampCell(double v, double size, int num) {
   return std::clamp(c, 0, num - 1);
 }
 
+// The matches not yet used, in the order that fills a grid selection: from the most populated
+// (image-1 cell, image-2 cell) assignments first, then the most confident.
+std::vector<int> FillOrder(const TwoViewCorrespondences& matches, const std::vector<int>& cell1,
+                           const std::vector<int>& cell2, const std::vector<bool>& used_match) {
+  const int n = static_cast<int>(cell1.size());
+  std::map<std::pair<int, int>, int> assignment_count;
+  for (int k = 0; k < n; ++k) ++assignment_count[{cell1[k], cell2[k]}];
+  // Each match's count looked up once, not at every comparison of the sort.
+  std::vector<int> count_of_match(n);
+  for (int k = 0; k < n; ++k) count_of_match[k] = assignment_count[{cell1[k], cell2[k]}];
+  std::vector<int> rest;
+  for (int k = 0; k < n; ++k) {
+    if (!used_match[k]) rest.push_back(k);
+  }
+  SortByConfidence(matches, &rest);
+  std::stable_sort(rest.begin(), rest.end(),
+                   [&](int a, int b) { return count_of_match[a] > count_of_match[b]; });
+  return rest;
+}
+
 }  // namespace
 
 std::string CorrespondenceSamplerName(CorrespondenceSampler sampler) {
@@ -128,22 +148,10 @@ std::vector<int> SelectGridCorrespondences(const TwoViewCorrespondences& matches
   }
   if (static_cast<int>(selected.size()) >= num_samples) return selected;
 
-  // Fill: matches from unused image-1 cells first, then from the most populated cross-cell
-  // assignments, then the most confident.
-  // Each match's assignment count, looked up once rather than at every comparison of the sort.
-  std::map<std::pair<int, int>, int> assignment_count;
-  for (int k = 0; k < n; ++k) ++assignment_count[{cell1[k], cell2[k]}];
-  std::vector<int> count_of_match(n);
-  for (int k = 0; k < n; ++k) count_of_match[k] = assignment_count[{cell1[k], cell2[k]}];
-  std::vector<int> rest;
-  for (int k = 0; k < n; ++k) {
-    if (!used_match[k]) rest.push_back(k);
-  }
-  SortByConfidence(matches, &rest);
-  std::stable_sort(rest.begin(), rest.end(),
-                   [&](int a, int b) { return count_of_match[a] > count_of_match[b]; });
+  // Fill: matches from unused image-1 cells first, then any.
+  const std::vector<int> rest = FillOrder(matches, cell1, cell2, used_match);
   for (bool require_new_cell : {true, false}) {
-    for (int k : rest) {
+    for (const int k : rest) {
       if (static_cast<int>(selected.size()) >= num_samples) return selected;
       if (used_match[k] || (require_new_cell && used_cell1[cell1[k]])) continue;
       selected.push_back(k);

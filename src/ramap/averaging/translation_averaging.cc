@@ -532,9 +532,9 @@ class PositionSolver {
 // The same problem by iteratively reweighted least squares: each 3-row block (a track constraint
 // or a pair row) is weighted by 1 / max(|r|, irls_min_residual), which makes the weighted squares
 // an approximation of the sum of block norms (the L1 objective of Ozyesil & Singer's LUD), and each
-// step is one direct sparse solve, so that scale travels the length of a long sequence in one step
-// rather than over thousands of ADMM iterations (block_normal_equations.h keeps each step to a
-// reweighting and a numeric refactorisation of the camera system). Scales at their bound are held
+// step is one sparse solve, so that scale travels the length of a long sequence in one step rather
+// than over thousands of ADMM iterations (block_normal_equations.h keeps each step to a reweighting
+// and a solve of the camera system: PositionSolver). Scales at their bound are held
 // there (their columns move to the right-hand side), the others are eliminated at their rows'
 // minimiser; a held scale is released when its pair row alone would want it above the bound.
 // Prior constants are always held at 1; prior blocks are weighted by 1 / max(|r|,

@@ -15,12 +15,12 @@
 //
 // The stacked system is solved in the L1 sense, min ||B v||_1 over v = (centres, scales) with the
 // scales >= 1 and one camera held at the origin, started from the least-squares solution with
-// every scale at 1: by default by iteratively reweighted least squares (one direct sparse solve per
-// step), or by ADMM (Boyd et al., "Distributed Optimization and Statistical Learning via ADMM",
-// 2011; the bound is a projection), the design's solver, whose long tail on sequences makes it
-// slower and, stopped by its tolerances, less accurate (KITTI 07: 7.1 s and ATE 2.7% of the path,
-// against IRLS's 1.1 s and 1.9%). The result is then scaled so that the mean projected baseline
-// of the pairs is one.
+// every scale at 1: by default by iteratively reweighted least squares (one sparse solve per step:
+// a Cholesky factorisation, or conjugate gradients preconditioned with the last one), or by ADMM
+// (Boyd et al., "Distributed Optimization and Statistical Learning via ADMM", 2011; the bound is a
+// projection), the design's solver, whose long tail on sequences makes it slower and, stopped by
+// its tolerances, less accurate (KITTI 07: 7.1 s and ATE 2.7% of the path, against IRLS's 1.1 s
+// and 1.9%). The result is then scaled so that the mean projected baseline of the pairs is one.
 //
 // Position priors (GPS, in a frame the rotations are already aligned to) add rows W (c_i - p_i)
 // with W the prior's square-root information, Huber-weighted in IRLS. They fix the gauge (no

@@ -259,17 +259,18 @@ constexpr double kRidgeShift = 1e-10;
 // the tolerance (PositionSolver::SolveWithLastFactor).
 constexpr int kPcgIterationsBeforeForecast = 3;
 
-void FactorizeWithRidge(const Eigen::SparseMatrix<double>& matrix, SparseCholesky* solver) {
+// Returns the shift that was factorised.
+double FactorizeWithRidge(const Eigen::SparseMatrix<double>& matrix, SparseCholesky* solver) {
   // The retries below answer CHOLMOD's "not positive definite" warnings: not for the user's eyes.
   solver->cholmod().print = 0;
   solver->setShift(kRidgeShift);
   solver->factorize(matrix);
-  if (solver->info() == Eigen::Success) return;
+  if (solver->info() == Eigen::Success) return kRidgeShift;
   const double scale = std::max(1.0, matrix.diagonal().cwiseAbs().maxCoeff());
   for (const double relative_shift : {1e-10, 1e-8, 1e-6, 1e-4}) {
     solver->setShift(relative_shift * scale);
     solver->factorize(matrix);
-    if (solver->info() == Eigen::Success) return;
+    if (solver->info() == Eigen::Success) return relative_shift * scale;
   }
   throw StageFailure("translation averaging: factorisation failed");
 }
@@ -459,7 +460,7 @@ class PositionSolver {
                         const std::vector<double>& held_values) {
     equations_.Assemble(block_weights, held, held_values, &normal_, &rhs_);
     if (!SolveWithLastFactor()) {
-      FactorizeWithRidge(normal_, &factorization_);
+      shift_ = FactorizeWithRidge(normal_, &factorization_);
       last_solution_ = factorization_.solve(rhs_);
       ++num_factorizations_;
     }
@@ -482,9 +483,10 @@ class PositionSolver {
   bool SolveWithLastFactor() {
     if (num_factorizations_ == 0 || max_pcg_iterations_ == 0) return false;
     const auto normal = normal_.selfadjointView<Eigen::Lower>();
-    // The factorised matrices carry the ridge shift (FactorizeWithRidge); so does this one.
+    // The same shift as the last factorisation's (FactorizeWithRidge), so that a step solves the
+    // system a refactorisation would have.
     const auto apply = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
-      return normal * v + kRidgeShift * v;
+      return normal * v + shift_ * v;
     };
     Eigen::VectorXd u = last_solution_;
     Eigen::VectorXd residual = rhs_ - apply(u);
@@ -524,6 +526,7 @@ class PositionSolver {
   Eigen::SparseMatrix<double> normal_;
   Eigen::VectorXd rhs_;
   Eigen::VectorXd last_solution_;  // of the reduced equations
+  double shift_ = kRidgeShift;     // of the last factorisation
   int num_factorizations_ = 0;
   int max_pcg_iterations_ = 0;
   double pcg_tolerance_ = 0;

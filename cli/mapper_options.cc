@@ -128,6 +128,19 @@ void AddTranslationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptio
                  "iterations before refactorising (0: refactorise every step)")
       ->capture_default_str()
       ->check(AtLeast(0));
+  WindowedTranslationOptions& windows = o->translation_windows;
+  app.add_option("--TranslationAveraging.window_min_num_images", windows.min_num_images,
+                 "sequences of at least this many images are solved in windows joined by their "
+                 "shared frames and loops (0: never)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--TranslationAveraging.window_frames", windows.window_frames, "frames per window")
+      ->capture_default_str()
+      ->check(AtLeast(3));
+  app.add_option("--TranslationAveraging.window_overlap_frames", windows.overlap_frames,
+                 "frames each window shares with the next (>= 2, below window_frames)")
+      ->capture_default_str()
+      ->check(AtLeast(2));
   app.add_option("--TranslationAveraging.max_admm_iterations", ta.max_admm_iterations)
       ->capture_default_str()
       ->check(AtLeast(0));

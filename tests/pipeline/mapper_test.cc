@@ -12,8 +12,9 @@
 namespace ramap {
 namespace {
 
-PoseEvaluation MapAndEvaluate(const SyntheticScene& scene, MapperResult* result_out = nullptr) {
-  const MapperResult result = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
+PoseEvaluation MapAndEvaluate(const SyntheticScene& scene, MapperResult* result_out = nullptr,
+                              const MapperOptions& options = test::AveragingOnly()) {
+  const MapperResult result = RunMapper(scene.database, options, "synthetic");
   std::vector<std::string> names;
   for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
   EXPECT_FALSE(result.reconstructions.empty());
@@ -83,6 +84,58 @@ TEST(Mapper, AFrameLinkedOnlyByPureRotationsStandsWithItsNeighbours) {
   const PoseEvaluation evaluation = MapAndEvaluate(scene, &result);
   EXPECT_EQ(evaluation.num_registered, 30);
   EXPECT_LT(evaluation.ate_rmse_over_extent, 1e-4);
+}
+
+// Averaging options that solve translation averaging of any sequence in windows of
+// `window_frames` frames sharing `overlap_frames` (windowed_translation_averaging.h).
+MapperOptions InWindows(int window_frames, int overlap_frames) {
+  MapperOptions options = test::AveragingOnly();
+  options.translation_windows.min_num_images = 2;
+  options.translation_windows.window_frames = window_frames;
+  options.translation_windows.overlap_frames = overlap_frames;
+  return options;
+}
+
+// The 60-frame loop in six windows joined by their shared frames and the loop's pairs: as exact as
+// in one system.
+TEST(Mapper, TranslationsInWindowsAreExactWithoutNoise) {
+  const SyntheticScene scene =
+      BuildSyntheticScene(test::NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLoop, 60));
+  MapperResult result;
+  const PoseEvaluation evaluation = MapAndEvaluate(scene, &result, InWindows(10, 4));
+  EXPECT_EQ(evaluation.num_registered, 60);
+  EXPECT_LT(evaluation.ate_rmse_over_extent, 1e-5);
+  EXPECT_EQ(result.summary.components.front().num_translation_windows, 6);
+}
+
+// Noise, wrong matches and outlier pairs, in windows of 10: within the bound of the one-system
+// test above (NoisySequenceWithWrongMatchesAndOutlierPairs).
+TEST(Mapper, TranslationsInWindowsOfANoisySequence) {
+  SyntheticSceneOptions options;
+  options.path = SyntheticPath::kLoop;
+  options.num_images = 60;
+  options.num_points = 2000;
+  options.pixel_noise_sigma = 0.5;
+  options.outlier_ratio = 0.1;
+  options.num_outlier_pairs = 5;
+  options.seed = 4;
+  const SyntheticScene scene = BuildSyntheticScene(options);
+  const PoseEvaluation evaluation = MapAndEvaluate(scene, nullptr, InWindows(10, 4));
+  EXPECT_EQ(evaluation.num_registered, 60);
+  EXPECT_LT(evaluation.ate_rmse_over_path_length, 0.01);
+}
+
+// Windows of 7 frames every 5: those of frames 6-12 and 11-17 share only frames 11 and 12, and
+// frame 11 has no position of its own (it stands with 10 and 12). They are merged, with a window
+// of context on either side, into frames 1-22, and solved again (six windows -> three); frame 11
+// still stands where its neighbours stand.
+TEST(Mapper, WindowsTiedByAStandstillAreMerged) {
+  const SyntheticScene scene = test::StandstillLineScene();
+  MapperResult result;
+  const PoseEvaluation evaluation = MapAndEvaluate(scene, &result, InWindows(5, 2));
+  EXPECT_EQ(evaluation.num_registered, 30);
+  EXPECT_LT(evaluation.ate_rmse_over_extent, 1e-4);
+  EXPECT_EQ(result.summary.components.front().num_translation_windows, 3);
 }
 
 // Two sequences that share no verified pair: two models, largest first, both complete.

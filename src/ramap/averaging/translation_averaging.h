@@ -174,6 +174,7 @@ struct TranslationAveragingResult {
   int num_solver_iterations = 0;
   int num_factorizations = 0;  // of the camera system (the others reused one: max_pcg_iterations)
   int num_priors_used = 0;
+  int num_windows = 0;  // solved in this many windows (windowed_translation_averaging.h); 0: one
   double l1_cost = 0.0;
   double seconds = 0.0;
 };

@@ -14,6 +14,7 @@ void MapperOptions::Check() const {
   rotation_averaging.Check();
   pair_direction.Check();
   translation_averaging.Check();
+  translation_windows.Check();
   structure.Check();
   bundle_adjustment.Check();
   CheckOption(min_component_size >= 2, "--Mapper.min_component_size", ">= 2", min_component_size);

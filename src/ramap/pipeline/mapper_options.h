@@ -4,6 +4,7 @@
 #include "ramap/averaging/pair_directions.h"
 #include "ramap/averaging/rotation_averaging.h"
 #include "ramap/averaging/translation_averaging.h"
+#include "ramap/averaging/windowed_translation_averaging.h"
 #include "ramap/geometry/relative_pose.h"
 #include "ramap/graph/keyframes.h"
 #include "ramap/pipeline/georegistration.h"
@@ -39,6 +40,8 @@ struct MapperOptions {
   EdgeWeighting rotation_edge_weights = EdgeWeighting::kAuto;
   PairDirectionOptions pair_direction;
   TranslationAveragingOptions translation_averaging;
+  // Long sequences: translation averaging window by window, joined by shared frames and loops.
+  WindowedTranslationOptions translation_windows;
   StructureOptions structure;
   // What to do with position priors, when RunMapper is given any.
   GeoregistrationOptions georegistration;

@@ -78,7 +78,8 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
         {"translation_averaging",
          {{"num_constraints", c.num_translation_constraints},
           {"num_solver_iterations", c.num_solver_iterations},
-          {"num_factorizations", c.num_factorizations}}},
+          {"num_factorizations", c.num_factorizations},
+          {"num_windows", c.num_translation_windows}}},
     };
     if (c.bundle_adjustment.num_observations > 0) {
       const BundleAdjustmentSummary& ba = c.bundle_adjustment;

@@ -39,6 +39,7 @@ struct MapperComponentSummary {
   int num_translation_constraints = 0;
   int num_solver_iterations = 0;
   int num_factorizations = 0;
+  int num_translation_windows = 0;            // 0: translation averaging in one system
   BundleAdjustmentSummary bundle_adjustment;  // zeros when not refined
   GeoregistrationSummary georegistration;     // num_priors 0 when run without priors
 };

@@ -5,6 +5,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "ramap/averaging/windowed_translation_averaging.h"
 #include "ramap/graph/tracks.h"
 #include "ramap/pipeline/mapper_options.h"
 #include "ramap/pipeline/mapper_summary.h"
@@ -163,6 +164,29 @@ PriorAlignment RefitWithPriors(const MapperContext& context,
   }
 }
 
+// Translation averaging of the component: in windows for a long enough sequence
+// (WindowedTranslationOptions), in one system otherwise or when the windows cannot be joined.
+// `how` receives the progress line's note on it.
+TranslationAveragingResult SolvePositions(const MapperContext& context,
+                                          const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+                                          const ComponentTranslations& inputs, std::string* how) {
+  const WindowedTranslationOptions& windowed = context.options.translation_windows;
+  if (context.sequential && windowed.min_num_images > 0 &&
+      rotations.size() >= static_cast<size_t>(windowed.min_num_images)) {
+    try {
+      TranslationAveragingResult positions = AverageTranslationsInWindows(
+          context.order, rotations, inputs.directions, inputs.translation_tracks,
+          context.options.translation_averaging, windowed, context.options.num_threads);
+      *how = ", in " + std::to_string(positions.num_windows) + " windows";
+      return positions;
+    } catch (const StageFailure& error) {
+      *how = ", in one system (" + std::string(error.what()) + ")";
+    }
+  }
+  return AverageTranslations(rotations, inputs.directions, inputs.translation_tracks,
+                             context.options.translation_averaging);
+}
+
 }  // namespace
 
 std::optional<ComponentTranslations> AverageComponentTranslations(
@@ -178,9 +202,9 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
   result.translation_tracks = TranslationTracks(result.tracks, context.bearings, world_rotations);
   const std::vector<PairDirection>& directions = result.directions;
   TranslationAveragingResult& positions = result.positions;
+  std::string how;
   try {
-    positions = AverageTranslations(world_rotations, directions, result.translation_tracks,
-                                    context.options.translation_averaging);
+    positions = SolvePositions(context, world_rotations, result, &how);
   } catch (const StageFailure& error) {
     for (const auto& [id, rotation] : world_rotations) context.image_reasons[id] = error.what();
     context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(), error.what());
@@ -195,12 +219,13 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
   component->num_translation_constraints = positions.num_constraints;
   component->num_solver_iterations = positions.num_solver_iterations;
   component->num_factorizations = positions.num_factorizations;
+  component->num_translation_windows = positions.num_windows;
   context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(),
                      std::to_string(positions.centers.size()) + " positions from " +
                          std::to_string(directions.size()) + " pair directions and " +
                          std::to_string(positions.num_tracks_used) + " tracks, " +
                          std::to_string(positions.num_solver_iterations) + " solver iterations (" +
-                         std::to_string(positions.num_factorizations) + " factorisations)" +
+                         std::to_string(positions.num_factorizations) + " factorisations)" + how +
                          (num_standstill > 0 ? ", " + std::to_string(num_standstill) +
                                                    " placed by pure rotations (standing still)"
                                              : ""));

@@ -224,12 +224,31 @@ void AddCrossDirections(const std::vector<std::map<uint32_t, Eigen::Vector3d>>& 
                         const std::vector<PairDirection>& cross_directions,
                         const WindowAlignmentOptions& options,
                         std::vector<Eigen::Vector4d>* parameters, ceres::Problem* problem) {
-  for (const PairDirection& pair : cross_directions) {
+  // The usable directions' windows, and how many each pair of windows has.
+  std::vector<std::pair<int, int>> between(cross_directions.size(), {-1, -1});
+  std::map<std::pair<int, int>, int> count;
+  for (size_t k = 0; k < cross_directions.size(); ++k) {
+    const PairDirection& pair = cross_directions[k];
     const auto found1 = windows_of.find(pair.image_id1);
     const auto found2 = windows_of.find(pair.image_id2);
     if (found1 == windows_of.end() || found2 == windows_of.end()) continue;
     const int a = found1->second.front(), b = found2->second.front();
     if (a == b || !(pair.direction.norm() > 0)) continue;
+    between[k] = {a, b};
+    ++count[{std::min(a, b), std::max(a, b)}];
+  }
+  // Every stride-th direction of a pair of windows, at most max_directions_per_window_pair.
+  std::map<std::pair<int, int>, int> seen;
+  for (size_t k = 0; k < cross_directions.size(); ++k) {
+    const auto [a, b] = between[k];
+    if (a < 0) continue;
+    const std::pair<int, int> key = {std::min(a, b), std::max(a, b)};
+    const int stride = options.max_directions_per_window_pair > 0
+                           ? (count[key] + options.max_directions_per_window_pair - 1) /
+                                 options.max_directions_per_window_pair
+                           : 1;
+    if (seen[key]++ % stride != 0) continue;
+    const PairDirection& pair = cross_directions[k];
     auto* error =
         new CrossDirectionError{windows[a].at(pair.image_id1), windows[b].at(pair.image_id2),
                                 pair.direction.normalized(), options.direction_sigma_rad};

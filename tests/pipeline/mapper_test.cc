@@ -60,7 +60,8 @@ INSTANTIATE_TEST_SUITE_P(
                   test::NoiseFree(SyntheticLayout::kUnordered, SyntheticPath::kLine, 20)}),
     [](const ::testing::TestParamInfo<ExactCase>& info) { return info.param.name; });
 
-TEST(Mapper, NoisySequenceWithWrongMatchesAndOutlierPairs) {
+// A 60-frame loop with 0.5 px of noise, 10% wrong matches and 5 outlier pairs.
+SyntheticScene NoisyLoop() {
   SyntheticSceneOptions options;
   options.path = SyntheticPath::kLoop;
   options.num_images = 60;
@@ -69,7 +70,11 @@ TEST(Mapper, NoisySequenceWithWrongMatchesAndOutlierPairs) {
   options.outlier_ratio = 0.1;
   options.num_outlier_pairs = 5;
   options.seed = 4;
-  const SyntheticScene scene = BuildSyntheticScene(options);
+  return BuildSyntheticScene(options);
+}
+
+TEST(Mapper, NoisySequenceWithWrongMatchesAndOutlierPairs) {
+  const SyntheticScene scene = NoisyLoop();
   const PoseEvaluation evaluation = MapAndEvaluate(scene);
   EXPECT_EQ(evaluation.num_registered, 60);
   EXPECT_LT(evaluation.relative_rotation_error_median_deg, 0.1);
@@ -111,15 +116,7 @@ TEST(Mapper, TranslationsInWindowsAreExactWithoutNoise) {
 // Noise, wrong matches and outlier pairs, in windows of 10: within the bound of the one-system
 // test above (NoisySequenceWithWrongMatchesAndOutlierPairs).
 TEST(Mapper, TranslationsInWindowsOfANoisySequence) {
-  SyntheticSceneOptions options;
-  options.path = SyntheticPath::kLoop;
-  options.num_images = 60;
-  options.num_points = 2000;
-  options.pixel_noise_sigma = 0.5;
-  options.outlier_ratio = 0.1;
-  options.num_outlier_pairs = 5;
-  options.seed = 4;
-  const SyntheticScene scene = BuildSyntheticScene(options);
+  const SyntheticScene scene = NoisyLoop();
   const PoseEvaluation evaluation = MapAndEvaluate(scene, nullptr, InWindows(10, 4));
   EXPECT_EQ(evaluation.num_registered, 60);
   EXPECT_LT(evaluation.ate_rmse_over_path_length, 0.01);

@@ -6,11 +6,11 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <set>
 #include <string>
 #include <utility>
 
+#include "ramap/util/disjoint_sets.h"
 #include "ramap/util/error.h"
 
 namespace ramap {
@@ -60,12 +60,7 @@ std::vector<SharedImage> SharedImages(
 // distinct positions (which fixes their relative scale as well as their offset).
 std::string UntiedWindowProblem(const std::vector<std::map<uint32_t, Eigen::Vector3d>>& windows,
                                 const std::map<uint32_t, std::vector<int>>& windows_of) {
-  std::vector<int> parent(windows.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto find = [&](int w) {
-    while (parent[w] != w) w = parent[w] = parent[parent[w]];
-    return w;
-  };
+  DisjointSets sets(windows.size());
   // A union for each pair of windows tied by shared images.
   std::set<std::pair<int, int>> linked;
   for (const auto& [image_id, in] : windows_of) {
@@ -73,11 +68,11 @@ std::string UntiedWindowProblem(const std::vector<std::map<uint32_t, Eigen::Vect
     for (size_t k = 1; k < in.size(); ++k) linked.emplace(in[k - 1], in[k]);
   }
   for (const auto& [a, b] : linked) {
-    if (WindowsTied(windows[a], windows[b])) parent[find(a)] = find(b);
+    if (WindowsTied(windows[a], windows[b])) sets.Union(a, b);
   }
   if (windows.empty() || windows.front().empty()) return "the first window has no centres";
   for (size_t w = 1; w < windows.size(); ++w) {
-    if (!windows[w].empty() && find(static_cast<int>(w)) != find(0)) {
+    if (!windows[w].empty() && sets.Find(w) != sets.Find(0)) {
       return "window " + std::to_string(w) + " shares fewer than two images with the others";
     }
   }

@@ -4,31 +4,10 @@
 #include <limits>
 #include <stdexcept>
 
+#include "ramap/util/disjoint_sets.h"
+
 namespace ramap {
 namespace {
-
-// Union-find over dense indices; the root of a set is its smallest index, so the result does not
-// depend on the order of the unions.
-class DisjointSets {
- public:
-  explicit DisjointSets(size_t size) : parent_(size) {
-    for (size_t k = 0; k < size; ++k) parent_[k] = static_cast<uint32_t>(k);
-  }
-  uint32_t Find(uint32_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];  // path halving
-      x = parent_[x];
-    }
-    return x;
-  }
-  void Union(uint32_t a, uint32_t b) {
-    const uint32_t ra = Find(a), rb = Find(b);
-    if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
-  }
-
- private:
-  std::vector<uint32_t> parent_;
-};
 
 // Dense numbering of the (image, keypoint) observations the matches mention: each image's keypoint
 // indices up to the largest matched one, images in increasing id.

@@ -9,6 +9,7 @@
 #include "ramap/io/point_colors.h"
 #include "ramap/pipeline/mapper.h"
 #include "ramap/pipeline/mapper_output.h"
+#include "ramap/pipeline/stage_log.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/timer.h"
@@ -40,16 +41,21 @@ int RunMapper(int argc, char** argv) {
   const ModelFormat format = ModelFormatFromName(output_type, "--output_type");
   CheckFolderOutput("--output_path", output_path, {database_path, image_path, prior_text.path});
 
+  std::ostream* progress = log_level > 0 ? &std::cout : nullptr;
+  Timer read_timer;
   const FeatureDatabase database = ReadColmapDatabase(database_path, MapperDatabaseReadOptions());
+  if (progress) {
+    PrintStageLine(*progress, "reading the database", read_timer.ElapsedSeconds(),
+                   std::to_string(database.images.size()) + " images, " +
+                       std::to_string(database.two_view_geometries.size()) + " verified pairs");
+  }
   CheckImageNamesFit(database, format, database_path, "--output_type " + output_type);
   const LocalizedPriors priors = LoadPosePriors(prior_text, database, "ramap mapper", std::cerr);
-  MapperResult result = ramap::RunMapper(database, options, database_path,
-                                         log_level > 0 ? &std::cout : nullptr, priors.priors);
+  MapperResult result = ramap::RunMapper(database, options, database_path, progress, priors.priors);
   if (!image_path.empty()) {
     Timer timer;
     const PointColorSummary colors = ColorModelsFromImages(image_path, &result.reconstructions);
-    PrintPointColors(colors, image_path, timer.ElapsedSeconds(),
-                     log_level > 0 ? &std::cout : nullptr, std::cerr);
+    PrintPointColors(colors, image_path, timer.ElapsedSeconds(), progress, std::cerr);
   }
   const nlohmann::json run = {
       {"command", "mapper"},
@@ -57,7 +63,11 @@ int RunMapper(int argc, char** argv) {
       {"image_path", image_path},
       {"options", MapperOptionsToJson(options)},
       {"pose_priors", PosePriorOptionsToJson(prior_text, options.georegistration)}};
+  Timer write_timer;
   WriteMapperOutput(result, output_path, format, run);
+  if (progress) {
+    PrintStageLine(*progress, "writing the models", write_timer.ElapsedSeconds(), output_path);
+  }
   PrintMapperSummary(result.summary, output_path, std::cout);
   return 0;
 }

@@ -123,23 +123,27 @@ void CheckModel(const Reconstruction& model, const ModelFiles& files) {
     CheckPoint(point, files.points3D, label);
     for (size_t k = 0; k < point.track.size(); ++k) {
       const TrackElement& element = point.track[k];
-      const std::string where = label + " track element " + std::to_string(k + 1) + " (image " +
-                                std::to_string(element.image_id) + ", point2D " +
-                                std::to_string(element.point2D_idx) + ")";
+      // Labels are built only for the message: building one per element took 0.6 s on a
+      // 4541-frame model.
+      const auto where = [&] {
+        return label + " track element " + std::to_string(k + 1) + " (image " +
+               std::to_string(element.image_id) + ", point2D " +
+               std::to_string(element.point2D_idx) + ")";
+      };
       const auto it = model.images.find(element.image_id);
       if (it == model.images.end()) {
-        throw InputError(files.points3D, where + " names an image that " +
+        throw InputError(files.points3D, where() + " names an image that " +
                                              fs::path(files.images).filename().string() +
                                              " does not have");
       }
       if (element.point2D_idx >= it->second.points2D.size()) {
-        throw InputError(files.points3D, where + ": point2D index out of range, the image has " +
+        throw InputError(files.points3D, where() + ": point2D index out of range, the image has " +
                                              std::to_string(it->second.points2D.size()) +
                                              " points");
       }
       if (it->second.points2D[element.point2D_idx].point3D_id != point3D_id) {
         throw InputError(files.points3D,
-                         where + ": that image point does not name this 3D point back");
+                         where() + ": that image point does not name this 3D point back");
       }
     }
   }
@@ -150,19 +154,21 @@ void CheckModel(const Reconstruction& model, const ModelFiles& files) {
       const Point2D& point2D = image.points2D[idx];
       if (point2D.point3D_id == kInvalidPoint3DId) continue;
       const auto it = model.points3D.find(point2D.point3D_id);
-      const std::string where = label + " point2D " + std::to_string(idx) + " names 3D point " +
-                                std::to_string(point2D.point3D_id);
+      const auto where = [&] {
+        return label + " point2D " + std::to_string(idx) + " names 3D point " +
+               std::to_string(point2D.point3D_id);
+      };
       if (it == model.points3D.end()) {
         throw InputError(
             files.images,
-            where + ", which " + fs::path(files.points3D).filename().string() + " does not have");
+            where() + ", which " + fs::path(files.points3D).filename().string() + " does not have");
       }
       bool listed = false;
       for (const TrackElement& element : it->second.track) {
         listed |= element.image_id == image_id && element.point2D_idx == idx;
       }
       if (!listed) {
-        throw InputError(files.images, where + ", whose track does not list this observation");
+        throw InputError(files.images, where() + ", whose track does not list this observation");
       }
     }
   }
@@ -248,13 +254,20 @@ class BinaryReader {
   std::string item_ = "the header";
 };
 
+// Little-endian values, gathered in a buffer and written a mebibyte at a time: one ostream call
+// per value took 1.6 s for the 130 MB images.bin of a 4541-frame drive. The rest is written when
+// the writer goes out of scope; stream errors stay in the stream's state for the caller to check.
 class BinaryWriter {
  public:
-  explicit BinaryWriter(std::ostream& out) : out_(out) {}
+  explicit BinaryWriter(std::ostream& out) : out_(out) { buffer_.reserve(kFlushBytes + 64); }
+  ~BinaryWriter() { Flush(); }
+  BinaryWriter(const BinaryWriter&) = delete;
+  BinaryWriter& operator=(const BinaryWriter&) = delete;
+
   void WriteUnsigned(uint64_t value, int num_bytes) {
-    char bytes[8];
-    for (int i = 0; i < num_bytes; ++i) bytes[i] = static_cast<char>((value >> (8 * i)) & 0xff);
-    out_.write(bytes, num_bytes);
+    for (int i = 0; i < num_bytes; ++i)
+      buffer_.push_back(static_cast<char>((value >> (8 * i)) & 0xff));
+    if (buffer_.size() >= kFlushBytes) Flush();
   }
   void WriteUint8(uint8_t value) { WriteUnsigned(value, 1); }
   void WriteUint32(uint32_t value) { WriteUnsigned(value, 4); }
@@ -269,10 +282,21 @@ class BinaryWriter {
     std::memcpy(&bits, &value, sizeof(bits));
     WriteUnsigned(bits, 8);
   }
-  void WriteString(const std::string& value) { out_.write(value.c_str(), value.size() + 1); }
+  void WriteString(const std::string& value) {
+    buffer_.append(value.c_str(), value.size() + 1);
+    if (buffer_.size() >= kFlushBytes) Flush();
+  }
 
  private:
+  static constexpr size_t kFlushBytes = size_t{1} << 20;
+
+  void Flush() {
+    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+    buffer_.clear();
+  }
+
   std::ostream& out_;
+  std::string buffer_;
 };
 
 void ReadCamerasBinary(const std::string& path, Reconstruction* model) {

@@ -141,6 +141,30 @@ void AddTranslationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptio
                  "frames each window shares with the next (>= 2, below window_frames)")
       ->capture_default_str()
       ->check(AtLeast(2));
+  PairDirectionOptions& directions = o->pair_direction;
+  app.add_option("--PairDirection.max_num_matches", directions.max_num_matches,
+                 "a pair's direction from at most this many of its inliers, evenly spaced (0: all)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--PairDirection.min_ray_angle_deg", directions.min_ray_angle_deg,
+                 "matches whose rays meet at a smaller angle carry no direction")
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--PairDirection.num_reweighting_rounds", directions.num_reweighting_rounds,
+                 "Cauchy reweighting rounds against wrong matches")
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--PairDirection.residual_scale_deg", directions.residual_scale_deg,
+                 "Cauchy scale of a match's coplanarity residual")
+      ->capture_default_str()
+      ->check(Above(0));
+  app.add_option("--PairDirection.min_num_matches", directions.min_num_matches,
+                 "fewer usable matches: no direction")
+      ->capture_default_str()
+      ->check(AtLeast(2));
+  app.add_option("--PairDirection.min_cheirality_ratio", directions.min_cheirality_ratio,
+                 "share of matches in front of both cameras that settles the sign, in (0.5, 1]")
+      ->capture_default_str();
   app.add_option("--TranslationAveraging.max_admm_iterations", ta.max_admm_iterations)
       ->capture_default_str()
       ->check(AtLeast(0));
@@ -333,7 +357,17 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"max_pcg_iterations", ta.max_pcg_iterations},
         {"max_admm_iterations", ta.max_admm_iterations},
         {"admm_rho", ta.admm_rho},
-        {"pair_constraint_weight", ta.pair_constraint_weight}}},
+        {"pair_constraint_weight", ta.pair_constraint_weight},
+        {"window_min_num_images", o.translation_windows.min_num_images},
+        {"window_frames", o.translation_windows.window_frames},
+        {"window_overlap_frames", o.translation_windows.overlap_frames}}},
+      {"PairDirection",
+       {{"max_num_matches", o.pair_direction.max_num_matches},
+        {"min_ray_angle_deg", o.pair_direction.min_ray_angle_deg},
+        {"num_reweighting_rounds", o.pair_direction.num_reweighting_rounds},
+        {"residual_scale_deg", o.pair_direction.residual_scale_deg},
+        {"min_num_matches", o.pair_direction.min_num_matches},
+        {"min_cheirality_ratio", o.pair_direction.min_cheirality_ratio}}},
       {"Triangulation",
        {{"max_reprojection_error_px", o.structure.max_reprojection_error_px},
         {"min_triangulation_angle_deg", o.structure.min_triangulation_angle_deg}}},

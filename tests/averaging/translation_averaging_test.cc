@@ -289,6 +289,39 @@ TEST(PairDirections, RecoversBaselineWithRotationsKnown) {
   }
 }
 
+// The reweighting rounds (which stop once the direction settles) must still reject wrong
+// matches: one in twenty pointing anywhere moves the unweighted direction by degrees.
+TEST(PairDirections, ReweightingRejectsWrongMatches) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> n(0, 1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Eigen::Quaterniond r2(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitY()));
+  const Eigen::Vector3d c2(1, 0.2, 0.1);
+  std::vector<Eigen::Vector3d> f1, f2;
+  for (int k = 0; k < 300; ++k) {
+    const Eigen::Vector3d X(3 * u(rng), 2 * u(rng), 8 + 4 * u(rng));
+    const auto noisy = [&](const Eigen::Vector3d& f) {
+      return (f + 3e-4 * Eigen::Vector3d(n(rng), n(rng), 0)).normalized();
+    };
+    f1.push_back(noisy(X.normalized()));
+    if (k % 20 == 0) {  // a wrong match: some other point's ray
+      f2.push_back(noisy(Eigen::Vector3d(u(rng), u(rng), 3).normalized()));
+    } else {
+      f2.push_back(noisy((r2 * (X - c2)).normalized()));
+    }
+  }
+  const auto direction = EstimatePairDirection(Eigen::Quaterniond::Identity(), r2, f1, f2);
+  ASSERT_TRUE(direction.has_value());
+  EXPECT_LT(std::acos(std::min(1.0, direction->dot(c2.normalized()))) * 180 / M_PI, 0.2);
+
+  PairDirectionOptions unweighted;
+  unweighted.num_reweighting_rounds = 0;
+  const auto plain = EstimatePairDirection(Eigen::Quaterniond::Identity(), r2, f1, f2, unweighted);
+  if (plain) {  // the sign vote may fail too; when it does not, the direction is off
+    EXPECT_GT(std::acos(std::min(1.0, std::abs(plain->dot(c2.normalized())))) * 180 / M_PI, 1.0);
+  }
+}
+
 TEST(PairDirections, PureRotationHasNoDirection) {
   std::mt19937 rng(6);
   std::normal_distribution<double> n(0, 1);

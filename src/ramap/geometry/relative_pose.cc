@@ -18,6 +18,7 @@
 #include "ramap/geometry/rotation.h"
 #include "ramap/geometry/triangulation.h"
 #include "ramap/util/error.h"
+#include "ramap/util/even_subset.h"
 
 namespace ramap {
 namespace {
@@ -94,17 +95,6 @@ double GreatCircleSpread(const std::vector<Eigen::Vector3d>& f) {
 constexpr int kNumPreemptiveMatches = 200;
 constexpr int kNumFirstRoundMatches = 50;
 constexpr int kNumFirstRoundSurvivors = 3;
-
-// At most `max_count` of `indices`, evenly spaced (all of them when there are few enough).
-std::vector<int> EvenSubset(const std::vector<int>& indices, int max_count) {
-  if (static_cast<int>(indices.size()) <= max_count) return indices;
-  std::vector<int> subset;
-  subset.reserve(max_count);
-  for (int k = 0; k < max_count; ++k) {
-    subset.push_back(indices[static_cast<size_t>(k) * indices.size() / max_count]);
-  }
-  return subset;
-}
 
 // Number of `indices` triangulating in front of both cameras under x2 = R x1 + t.
 int CountInFront(const std::vector<Eigen::Vector3d>& f1, const std::vector<Eigen::Vector3d>& f2,

@@ -10,6 +10,7 @@
 #include "ramap/pipeline/mapper_options.h"
 #include "ramap/pipeline/mapper_summary.h"
 #include "ramap/util/error.h"
+#include "ramap/util/even_subset.h"
 #include "ramap/util/parallel.h"
 #include "ramap/util/timer.h"
 
@@ -51,9 +52,10 @@ std::vector<PairDirection> KeptPairDirections(
   std::vector<std::optional<Eigen::Vector3d>> found(kept.size());
   ParallelFor(kept.size(), context.options.num_threads, [&](size_t k) {
     const ImagePair& pair = *kept[k];
-    const std::vector<FeatureMatch> inlier_matches = InlierMatches(
-        pair,
-        context.database.two_view_geometries.at(ImagePairToPairId(pair.image_id1, pair.image_id2)));
+    const std::vector<FeatureMatch> inlier_matches =
+        EvenSubset(InlierMatches(pair, context.database.two_view_geometries.at(
+                                           ImagePairToPairId(pair.image_id1, pair.image_id2))),
+                   context.options.pair_direction.max_num_matches);
     std::vector<Eigen::Vector3d> f1, f2;
     f1.reserve(inlier_matches.size());
     f2.reserve(inlier_matches.size());

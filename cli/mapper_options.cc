@@ -141,6 +141,27 @@ void AddTranslationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptio
                  "frames each window shares with the next (>= 2, below window_frames)")
       ->capture_default_str()
       ->check(AtLeast(2));
+  WindowAlignmentOptions& alignment = windows.alignment;
+  app.add_option("--TranslationAveraging.window_max_num_iterations", alignment.max_num_iterations,
+                 "Ceres iterations placing the windows by their loops (0: the chain of shared "
+                 "frames alone)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--TranslationAveraging.window_direction_sigma_rad", alignment.direction_sigma_rad,
+                 "noise of a direction between windows; larger angles are weighed as their size")
+      ->capture_default_str()
+      ->check(Above(0));
+  app.add_option("--TranslationAveraging.window_huber_overlap_residuals",
+                 alignment.huber_overlap_residuals,
+                 "shared-frame residuals past this many times the chain's median are weighed as "
+                 "their size")
+      ->capture_default_str()
+      ->check(Above(0));
+  app.add_option("--TranslationAveraging.window_max_directions_per_pair",
+                 alignment.max_directions_per_window_pair,
+                 "directions used per pair of windows at most (0: all)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
   PairDirectionOptions& directions = o->pair_direction;
   app.add_option("--PairDirection.max_num_matches", directions.max_num_matches,
                  "a pair's direction from at most this many of its inliers, evenly spaced (0: all)")
@@ -360,7 +381,12 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"pair_constraint_weight", ta.pair_constraint_weight},
         {"window_min_num_images", o.translation_windows.min_num_images},
         {"window_frames", o.translation_windows.window_frames},
-        {"window_overlap_frames", o.translation_windows.overlap_frames}}},
+        {"window_overlap_frames", o.translation_windows.overlap_frames},
+        {"window_max_num_iterations", o.translation_windows.alignment.max_num_iterations},
+        {"window_direction_sigma_rad", o.translation_windows.alignment.direction_sigma_rad},
+        {"window_huber_overlap_residuals", o.translation_windows.alignment.huber_overlap_residuals},
+        {"window_max_directions_per_pair",
+         o.translation_windows.alignment.max_directions_per_window_pair}}},
       {"PairDirection",
        {{"max_num_matches", o.pair_direction.max_num_matches},
         {"min_ray_angle_deg", o.pair_direction.min_ray_angle_deg},

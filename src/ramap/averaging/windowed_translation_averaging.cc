@@ -239,6 +239,8 @@ void WindowedTranslationOptions::Check() const {
               alignment.direction_sigma_rad);
   CheckOption(alignment.huber_overlap_residuals > 0, s + "window_huber_overlap_residuals", "> 0",
               alignment.huber_overlap_residuals);
+  CheckOption(alignment.max_directions_per_window_pair >= 0, s + "window_max_directions_per_pair",
+              ">= 0", alignment.max_directions_per_window_pair);
 }
 
 TranslationAveragingResult AverageTranslationsInWindows(

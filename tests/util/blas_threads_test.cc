@@ -23,5 +23,16 @@ TEST(BlasThreads, LimitsOpenBlasWhenItIsTheBlas) {
   EXPECT_LE(get_threads(), 2);
 }
 
+TEST(BlasThreads, OneThreadForAScopeThenThePreviousLimit) {
+  if (BlasThreads() == 0) GTEST_SKIP() << "libblas.so.3 is not OpenBLAS here";
+  ASSERT_TRUE(LimitBlasThreads(2));
+  const int before = BlasThreads();  // 2, or 1 on a one-core machine
+  {
+    SingleBlasThread single;
+    EXPECT_EQ(BlasThreads(), 1);
+  }
+  EXPECT_EQ(BlasThreads(), before);
+}
+
 }  // namespace
 }  // namespace ramap

@@ -5,6 +5,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "ramap/util/blas_threads.h"
 #include "ramap/util/error.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/parallel.h"
@@ -134,6 +135,7 @@ void SolveNewWindows(const std::vector<FrameRange>& ranges, const WindowInputs& 
   }
   const size_t num_images = ranges.empty() ? 0 : ranges.back().second;
   std::vector<TranslationAveragingResult> results(missing.size());
+  const SingleBlasThread single_blas_thread;  // the windows are small and solved side by side
   ParallelFor(missing.size(), num_threads, [&](size_t k) {
     try {
       results[k] = SolveWindow(missing[k], inputs, pair_directions, tracks, options, num_images);

@@ -141,6 +141,10 @@ void AddTranslationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptio
                  "frames each window shares with the next (>= 2, below window_frames)")
       ->capture_default_str()
       ->check(AtLeast(2));
+  app.add_option("--TranslationAveraging.window_irls_cost_tolerance", windows.irls_cost_tolerance,
+                 "a window's IRLS stops when a step lowers its objective by less (0: off)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
   WindowAlignmentOptions& alignment = windows.alignment;
   app.add_option("--TranslationAveraging.window_max_num_iterations", alignment.max_num_iterations,
                  "Ceres iterations placing the windows by their loops (0: the chain of shared "
@@ -382,6 +386,7 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"window_min_num_images", o.translation_windows.min_num_images},
         {"window_frames", o.translation_windows.window_frames},
         {"window_overlap_frames", o.translation_windows.overlap_frames},
+        {"window_irls_cost_tolerance", o.translation_windows.irls_cost_tolerance},
         {"window_max_num_iterations", o.translation_windows.alignment.max_num_iterations},
         {"window_direction_sigma_rad", o.translation_windows.alignment.direction_sigma_rad},
         {"window_huber_overlap_residuals", o.translation_windows.alignment.huber_overlap_residuals},

@@ -241,6 +241,8 @@ void WindowedTranslationOptions::Check() const {
               alignment.direction_sigma_rad);
   CheckOption(alignment.huber_overlap_residuals > 0, s + "window_huber_overlap_residuals", "> 0",
               alignment.huber_overlap_residuals);
+  CheckOption(irls_cost_tolerance >= 0 && irls_cost_tolerance < 1, s + "window_irls_cost_tolerance",
+              "in [0, 1)", irls_cost_tolerance);
   CheckOption(alignment.max_directions_per_window_pair >= 0, s + "window_max_directions_per_pair",
               ">= 0", alignment.max_directions_per_window_pair);
 }
@@ -260,12 +262,14 @@ TranslationAveragingResult AverageTranslationsInWindows(
   // Windows that a standstill or a failed solve leaves untied to a neighbour are merged with it
   // (and a window of context on either side) and solved again, until every neighbour is tied (at
   // worst into one window: one system).
+  TranslationAveragingOptions window_options = options;
+  window_options.irls_cost_tolerance = windowed.irls_cost_tolerance;
   std::vector<FrameRange> ranges = WindowRanges(ordered.size(), windowed);
   std::map<FrameRange, TranslationAveragingResult> solved;
   WindowInputs inputs;
   do {
     inputs = SplitIntoWindows(ordered, ranges, rotations, pair_directions, tracks);
-    SolveNewWindows(ranges, inputs, pair_directions, tracks, options, num_threads, &solved);
+    SolveNewWindows(ranges, inputs, pair_directions, tracks, window_options, num_threads, &solved);
   } while (MergeUntiedWindows(solved, &ranges));
   TranslationAveragingResult result;
   std::vector<std::map<uint32_t, Eigen::Vector3d>> local;

@@ -128,6 +128,21 @@ void AddTranslationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptio
                  "iterations before refactorising (0: refactorise every step)")
       ->capture_default_str()
       ->check(AtLeast(0));
+  app.add_option("--TranslationAveraging.max_admm_iterations", ta.max_admm_iterations)
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--TranslationAveraging.admm_rho", ta.admm_rho)
+      ->capture_default_str()
+      ->check(Above(0));
+  app.add_option("--TranslationAveraging.pair_constraint_weight", ta.pair_constraint_weight)
+      ->capture_default_str()
+      ->check(Above(0));
+  app.add_option("--TranslationAveraging.admm_adaptive_rho", ta.admm_adaptive_rho)
+      ->capture_default_str();
+}
+
+// Translation averaging in windows (long sequences).
+void AddTranslationWindowOptions(CLI::App& app, MapperOptions* o) {
   WindowedTranslationOptions& windows = o->translation_windows;
   app.add_option("--TranslationAveraging.window_min_num_images", windows.min_num_images,
                  "sequences of at least this many images are solved in windows joined by their "
@@ -166,6 +181,10 @@ void AddTranslationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptio
                  "directions used per pair of windows at most (0: all)")
       ->capture_default_str()
       ->check(AtLeast(0));
+}
+
+// The pair directions that translation averaging takes (stage 4).
+void AddPairDirectionOptions(CLI::App& app, MapperOptions* o) {
   PairDirectionOptions& directions = o->pair_direction;
   app.add_option("--PairDirection.max_num_matches", directions.max_num_matches,
                  "a pair's direction from at most this many of its inliers, evenly spaced (0: all)")
@@ -189,17 +208,6 @@ void AddTranslationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptio
       ->check(AtLeast(2));
   app.add_option("--PairDirection.min_cheirality_ratio", directions.min_cheirality_ratio,
                  "share of matches in front of both cameras that settles the sign, in (0.5, 1]")
-      ->capture_default_str();
-  app.add_option("--TranslationAveraging.max_admm_iterations", ta.max_admm_iterations)
-      ->capture_default_str()
-      ->check(AtLeast(0));
-  app.add_option("--TranslationAveraging.admm_rho", ta.admm_rho)
-      ->capture_default_str()
-      ->check(Above(0));
-  app.add_option("--TranslationAveraging.pair_constraint_weight", ta.pair_constraint_weight)
-      ->capture_default_str()
-      ->check(Above(0));
-  app.add_option("--TranslationAveraging.admm_adaptive_rho", ta.admm_adaptive_rho)
       ->capture_default_str();
 }
 
@@ -276,6 +284,8 @@ void AddMapperOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
   AddRelativePoseOptions(app, o, text);
   AddRotationAveragingOptions(app, o, text);
   AddTranslationAveragingOptions(app, o, text);
+  AddTranslationWindowOptions(app, o);
+  AddPairDirectionOptions(app, o);
   AddTriangulationOptions(app, o);
   AddBundleAdjustmentOptions(app, o);
   AddCalibrationOptions(app, o);
@@ -337,9 +347,37 @@ void FinishMapperOptions(const MapperOptionText& text, MapperOptions* options) {
   }
 }
 
+namespace {
+
+// summary.json's options.TranslationAveraging: the one-system solver's and the windows'.
+nlohmann::json TranslationAveragingToJson(const MapperOptions& o) {
+  const TranslationAveragingOptions& ta = o.translation_averaging;
+  const WindowedTranslationOptions& windows = o.translation_windows;
+  return {{"min_triangulation_angle_deg", ta.min_triangulation_angle_deg},
+          {"max_num_tracks", ta.max_num_tracks},
+          {"min_tracks_per_image", ta.min_tracks_per_image},
+          {"solver", ta.solver == TranslationSolver::kIrls ? "irls" : "admm"},
+          {"max_irls_iterations", ta.max_irls_iterations},
+          {"irls_cost_tolerance", ta.irls_cost_tolerance},
+          {"irls_extrapolation", ta.irls_extrapolation},
+          {"max_pcg_iterations", ta.max_pcg_iterations},
+          {"max_admm_iterations", ta.max_admm_iterations},
+          {"admm_rho", ta.admm_rho},
+          {"pair_constraint_weight", ta.pair_constraint_weight},
+          {"window_min_num_images", windows.min_num_images},
+          {"window_frames", windows.window_frames},
+          {"window_overlap_frames", windows.overlap_frames},
+          {"window_irls_cost_tolerance", windows.irls_cost_tolerance},
+          {"window_max_num_iterations", windows.alignment.max_num_iterations},
+          {"window_direction_sigma_rad", windows.alignment.direction_sigma_rad},
+          {"window_huber_overlap_residuals", windows.alignment.huber_overlap_residuals},
+          {"window_max_directions_per_pair", windows.alignment.max_directions_per_window_pair}};
+}
+
+}  // namespace
+
 nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
   const RotationAveragingOptions& ra = o.rotation_averaging;
-  const TranslationAveragingOptions& ta = o.translation_averaging;
   return {
       {"RelativePose",
        {{"min_num_inliers", o.relative_pose.min_num_inliers},
@@ -371,27 +409,7 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"edge_weights", o.rotation_edge_weights == EdgeWeighting::kAuto ? "auto"
                          : o.rotation_edge_weights == EdgeWeighting::kOn ? "1"
                                                                          : "0"}}},
-      {"TranslationAveraging",
-       {{"min_triangulation_angle_deg", ta.min_triangulation_angle_deg},
-        {"max_num_tracks", ta.max_num_tracks},
-        {"min_tracks_per_image", ta.min_tracks_per_image},
-        {"solver", ta.solver == TranslationSolver::kIrls ? "irls" : "admm"},
-        {"max_irls_iterations", ta.max_irls_iterations},
-        {"irls_cost_tolerance", ta.irls_cost_tolerance},
-        {"irls_extrapolation", ta.irls_extrapolation},
-        {"max_pcg_iterations", ta.max_pcg_iterations},
-        {"max_admm_iterations", ta.max_admm_iterations},
-        {"admm_rho", ta.admm_rho},
-        {"pair_constraint_weight", ta.pair_constraint_weight},
-        {"window_min_num_images", o.translation_windows.min_num_images},
-        {"window_frames", o.translation_windows.window_frames},
-        {"window_overlap_frames", o.translation_windows.overlap_frames},
-        {"window_irls_cost_tolerance", o.translation_windows.irls_cost_tolerance},
-        {"window_max_num_iterations", o.translation_windows.alignment.max_num_iterations},
-        {"window_direction_sigma_rad", o.translation_windows.alignment.direction_sigma_rad},
-        {"window_huber_overlap_residuals", o.translation_windows.alignment.huber_overlap_residuals},
-        {"window_max_directions_per_pair",
-         o.translation_windows.alignment.max_directions_per_window_pair}}},
+      {"TranslationAveraging", TranslationAveragingToJson(o)},
       {"PairDirection",
        {{"max_num_matches", o.pair_direction.max_num_matches},
         {"min_ray_angle_deg", o.pair_direction.min_ray_angle_deg},

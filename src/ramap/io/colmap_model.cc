@@ -87,9 +87,8 @@ void CheckPoint(const Point3D& point, const std::string& source, const std::stri
   if (std::isnan(point.error)) throw InputError(source, label + ": error is NaN");
 }
 
-// Every cross reference of the model: cameras of images, 3D points of image points, images and
-// point2D indices of tracks, and that both sides agree.
-void CheckModel(const Reconstruction& model, const ModelFiles& files) {
+// Ids, values, and each image's camera.
+void CheckCamerasAndImages(const Reconstruction& model, const ModelFiles& files) {
   for (const auto& [camera_id, camera] : model.cameras) {
     const std::string label = "camera " + std::to_string(camera_id);
     if (camera.camera_id != camera_id) {
@@ -118,6 +117,10 @@ void CheckModel(const Reconstruction& model, const ModelFiles& files) {
       }
     }
   }
+}
+
+// Each 3D point's values, and that every track element names an image point that names it back.
+void CheckTracks(const Reconstruction& model, const ModelFiles& files) {
   for (const auto& [point3D_id, point] : model.points3D) {
     const std::string label = "3D point " + std::to_string(point3D_id);
     CheckPoint(point, files.points3D, label);
@@ -147,7 +150,10 @@ void CheckModel(const Reconstruction& model, const ModelFiles& files) {
       }
     }
   }
-  // Image points last, so that a broken track is reported as such rather than as its echo.
+}
+
+// Every image point naming a 3D point is listed in that point's track.
+void CheckImagePointReferences(const Reconstruction& model, const ModelFiles& files) {
   for (const auto& [image_id, image] : model.images) {
     const std::string label = ImageLabel(image);
     for (size_t idx = 0; idx < image.points2D.size(); ++idx) {
@@ -172,6 +178,15 @@ void CheckModel(const Reconstruction& model, const ModelFiles& files) {
       }
     }
   }
+}
+
+// Every cross reference of the model: cameras of images, 3D points of image points, images and
+// point2D indices of tracks, and that both sides agree.
+void CheckModel(const Reconstruction& model, const ModelFiles& files) {
+  CheckCamerasAndImages(model, files);
+  CheckTracks(model, files);
+  // Image points last, so that a broken track is reported as such rather than as its echo.
+  CheckImagePointReferences(model, files);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -76,11 +76,11 @@ std::vector<PairDirection> KeptPairDirections(
   return directions;
 }
 
-// The tracks' observations by rotated images, as bearings; tracks left with fewer than two are
-// dropped.
+// The tracks' observations by rotated images, as bearings, on `num_threads` threads; tracks left
+// with fewer than two are dropped.
 std::vector<TranslationTrack> TranslationTracks(
     const std::vector<Track>& tracks, const ImageBearings& bearings,
-    const std::map<uint32_t, Eigen::Quaterniond>& world_rotations) {
+    const std::map<uint32_t, Eigen::Quaterniond>& world_rotations, int num_threads) {
   // The rotated images' bearings, looked up once per image rather than twice per observation
   // (millions on a long drive).
   std::unordered_map<uint32_t, const std::vector<Eigen::Vector3d>*> rotated;
@@ -88,17 +88,20 @@ std::vector<TranslationTrack> TranslationTracks(
     (void)rotation;
     rotated[image_id] = &bearings.bearings.at(image_id);
   }
-  std::vector<TranslationTrack> translation_tracks;
-  translation_tracks.reserve(tracks.size());
-  TranslationTrack observations;
-  for (const Track& track : tracks) {
-    observations.clear();
-    for (const TrackElement& element : track) {
+  std::vector<TranslationTrack> converted(tracks.size());
+  ParallelFor(tracks.size(), num_threads, [&](size_t k) {
+    TranslationTrack& observations = converted[k];
+    observations.reserve(tracks[k].size());
+    for (const TrackElement& element : tracks[k]) {
       const auto found = rotated.find(element.image_id);
       if (found == rotated.end()) continue;
       observations.push_back({element.image_id, (*found->second)[element.point2D_idx]});
     }
-    if (observations.size() >= 2) translation_tracks.push_back(observations);
+  });
+  std::vector<TranslationTrack> translation_tracks;
+  translation_tracks.reserve(tracks.size());
+  for (TranslationTrack& observations : converted) {
+    if (observations.size() >= 2) translation_tracks.push_back(std::move(observations));
   }
   return translation_tracks;
 }
@@ -201,7 +204,8 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
   KeptEdges kept = SplitKeptEdges(context, graph, edge_status, world_rotations);
   result.directions = KeptPairDirections(context, kept.with_translation, world_rotations);
   result.tracks = BuildTracks(context.database.two_view_geometries, kept.pair_ids);
-  result.translation_tracks = TranslationTracks(result.tracks, context.bearings, world_rotations);
+  result.translation_tracks = TranslationTracks(result.tracks, context.bearings, world_rotations,
+                                                context.options.num_threads);
   const std::vector<PairDirection>& directions = result.directions;
   TranslationAveragingResult& positions = result.positions;
   std::string how;

@@ -50,8 +50,9 @@ std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& r
   // The direction minimises sum w (n . t)^2: the eigenvector of the smallest eigenvalue. Each
   // round's weights come from the last round's direction as the scatter is summed. The rounds
   // stop early once the direction moves by less than 1e-6 rad (|cos| within 5e-13 of 1): later
-  // rounds could only move it by as little, far below the matches' noise, and on the synthetic
-  // drives most pairs converge in two or three of the five rounds.
+  // rounds could only move it by as little, far below the matches' noise. Few pairs settle that
+  // early: at 4541 frames, with every inlier, pair directions took 1.47 s without the stop and
+  // 1.38 s with it.
   const double scale = std::sin(options.residual_scale_deg * kDegToRad);
   const auto weight = [scale](const Eigen::Vector3d& normal, const Eigen::Vector3d& direction) {
     const double r = normal.dot(direction) / scale;

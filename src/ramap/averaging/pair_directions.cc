@@ -36,7 +36,7 @@ std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& r
   normals.reserve(num_matches);
   rays1.reserve(num_matches);
   rays2.reserve(num_matches);
-  for (size_t k = 0; k < bearings1.size() && k < bearings2.size(); ++k) {
+  for (size_t k = 0; k < num_matches; ++k) {
     const Eigen::Vector3d d1 = (world_from_cam1 * bearings1[k]).normalized();
     const Eigen::Vector3d d2 = (world_from_cam2 * bearings2[k]).normalized();
     const Eigen::Vector3d n = d1.cross(d2);

@@ -40,7 +40,6 @@ struct WindowInputs {
   std::vector<std::vector<size_t>> directions;                    // per window: indices
   std::vector<std::vector<size_t>> tracks;                        // per window: indices
   std::vector<PairDirection> cross_directions;                    // of images in no common window
-  std::unordered_map<uint32_t, std::vector<int>> windows_of;      // image -> its windows
 };
 
 // The windows an image pair shares (each image is in one or two windows).
@@ -61,15 +60,16 @@ WindowInputs SplitIntoWindows(const std::vector<uint32_t>& ordered,
   inputs.rotations.resize(ranges.size());
   inputs.directions.resize(ranges.size());
   inputs.tracks.resize(ranges.size());
+  std::unordered_map<uint32_t, std::vector<int>> windows_of_image;  // image -> its windows
   for (size_t w = 0; w < ranges.size(); ++w) {
     for (size_t k = ranges[w].first; k < ranges[w].second; ++k) {
       inputs.rotations[w].emplace(ordered[k], rotations.at(ordered[k]));
-      inputs.windows_of[ordered[k]].push_back(static_cast<int>(w));
+      windows_of_image[ordered[k]].push_back(static_cast<int>(w));
     }
   }
   const auto windows_of = [&](uint32_t image_id) -> const std::vector<int>* {
-    const auto found = inputs.windows_of.find(image_id);
-    return found == inputs.windows_of.end() ? nullptr : &found->second;
+    const auto found = windows_of_image.find(image_id);
+    return found == windows_of_image.end() ? nullptr : &found->second;
   };
   for (size_t k = 0; k < pair_directions.size(); ++k) {
     const std::vector<int>* windows1 = windows_of(pair_directions[k].image_id1);

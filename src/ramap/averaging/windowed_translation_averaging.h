@@ -25,7 +25,10 @@ struct WindowedTranslationOptions {
   // 160 frames, so their results do not change. Measured (scripts/bench_scale.sh, averaging alone,
   // ATE / path, one system -> windows of 30 sharing 20): KITTI 00 at 1000 frames 0.29% -> 0.58%
   // (translation averaging 1.7 -> 1.0 s), 2000 frames 0.88% -> 0.28%, 4541 frames 0.03% -> 0.09%
-  // (12.3 -> 7.1 s); the KITTI 06 drive 0.20% -> 0.19% (2.4 -> 1.5 s).
+  // (12.3 -> 7.1 s); the KITTI 06 drive 0.20% -> 0.19% (2.4 -> 1.5 s). Those were the windows'
+  // first measurements; with the later pair-direction cap, one BLAS thread per window and
+  // irls_cost_tolerance below: 1000 frames 0.49%, 4541 frames 0.09% in 2.8 s (BENCHMARKS.md,
+  // "Scale").
   int min_num_images = 1000;
   // Frames per window (the paper's keyframe interval is 30).
   int window_frames = 30;

@@ -73,10 +73,15 @@ void PrintRotationSummary(const RecordRotations& averaged, const std::string& ou
             << "\n";
   if (certificate.computed) {
     std::cout << "  certificate: "
-              << (certificate.certified ? "certified globally optimal" : "not certified")
-              << " (max kept residual " << certificate.max_residual_deg << " deg, bound "
-              << certificate.bound_deg << " deg, lambda2 " << certificate.fiedler_value
-              << ", d_max " << certificate.max_degree << ")\n";
+              << (certificate.certified ? "certified globally optimal" : "not certified") << " (";
+    if (certificate.refinement_skipped) {
+      std::cout << "a triangle of kept edges forces a residual of at least "
+                << certificate.cycle_residual_lower_bound_deg << " deg, so no chordal refinement";
+    } else {
+      std::cout << "max kept residual " << certificate.max_residual_deg << " deg";
+    }
+    std::cout << ", bound " << certificate.bound_deg << " deg, lambda2 "
+              << certificate.fiedler_value << ", d_max " << certificate.max_degree << ")\n";
   }
 }
 

@@ -90,6 +90,10 @@ void AddRotationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptionTe
       ->capture_default_str()
       ->check(AtLeast(0));
   app.add_option("--RotationAveraging.certificate", ra.compute_certificate)->capture_default_str();
+  app.add_option("--RotationAveraging.certificate_cycle_check", ra.certificate_cycle_check,
+                 "skip the certificate's chordal refinement when a triangle of kept edges "
+                 "already proves it cannot pass")
+      ->capture_default_str();
   app.add_option("--RotationAveraging.edge_weights", text->edge_weights,
                  "auto|1|0: weight edges by their inlier counts (auto: when every camera's "
                  "focal length is known)")
@@ -406,6 +410,8 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"pruning", ra.pruning_mode == PruningThresholdMode::kFixedAngle ? "fixed" : "duality"},
         {"alpha_max_deg", ra.alpha_max_deg},
         {"max_pruning_rounds", ra.max_pruning_rounds},
+        {"certificate", ra.compute_certificate},
+        {"certificate_cycle_check", ra.certificate_cycle_check},
         {"edge_weights", o.rotation_edge_weights == EdgeWeighting::kAuto ? "auto"
                          : o.rotation_edge_weights == EdgeWeighting::kOn ? "1"
                                                                          : "0"}}},

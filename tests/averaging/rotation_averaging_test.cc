@@ -180,6 +180,35 @@ TEST(RotationAveraging, HighNoiseIsNotCertified) {
   EXPECT_GT(result.certificate.max_residual_deg, result.certificate.bound_deg);
 }
 
+// The triangle check may only skip refinements that could not have certified: on a graph that is
+// certified and on one that is not, the answer is the same with and without it, and only the
+// uncertifiable one skips its refinement.
+TEST(RotationAveraging, CycleCheckSkipsOnlyRefinementsThatCannotCertify) {
+  SyntheticRotationGraphOptions certifiable;
+  certifiable.num_nodes = 150;
+  certifiable.forward_neighbours = 12;
+  certifiable.num_loop_edges = 400;
+  certifiable.noise_deg = 0.2;
+  certifiable.seed = 11;
+  for (const SyntheticRotationGraph& synthetic :
+       {MakeSyntheticRotationGraph(certifiable), PathWithLoops(20.0, 0.0, 5)}) {
+    RotationAveragingOptions options;
+    options.max_pruning_rounds = 0;
+    const RotationCertificate checked = AverageRotations(synthetic.graph, options).certificate;
+    options.certificate_cycle_check = false;
+    const RotationCertificate refined = AverageRotations(synthetic.graph, options).certificate;
+    EXPECT_EQ(checked.certified, refined.certified);
+    EXPECT_EQ(checked.refinement_skipped, !refined.certified);
+    EXPECT_FALSE(refined.refinement_skipped);
+    if (checked.refinement_skipped) {
+      EXPECT_EQ(checked.iterations, 0);
+      EXPECT_GT(checked.cycle_residual_lower_bound_deg, checked.bound_deg);
+      // The bound holds for the chordal stationary point the refinement would have reached.
+      EXPECT_GE(refined.max_residual_deg, checked.cycle_residual_lower_bound_deg);
+    }
+  }
+}
+
 TEST(RotationAveraging, StrongDualityPruningModeUsesTheBound) {
   const SyntheticRotationGraph synthetic = PathWithLoops(2.0, 0.1, 21);
   RotationAveragingOptions options;

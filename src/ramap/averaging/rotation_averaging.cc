@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "ramap/geometry/rotation.h"
+#include "ramap/graph/cycle_consistency.h"
 #include "ramap/graph/fiedler.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/timer.h"
@@ -506,12 +507,21 @@ void ComputeCertificate(const RotationGraph& graph, const IndexedEdges& indexed,
                                          &certificate.max_degree) *
                           kRadToDeg;
   certificate.rotations = result->rotations;
-  const std::vector<double> unit_weights(graph.edges.size(), 1.0);
-  TangentIrls chordal(graph, indexed.a, indexed.b, KeptEdges(keep), result->estimated,
-                      unit_weights);
-  certificate.iterations =
-      chordal.Run(ChordalWeight, options.max_certificate_iterations,
-                  options.certificate_step_tolerance_deg * kDegToRad, &certificate.rotations);
+  if (options.certificate_cycle_check) {
+    certificate.cycle_residual_lower_bound_deg =
+        TriangleCycleResidualBound(graph, keep, result->estimated, certificate.bound_deg)
+            .residual_lower_bound_deg;
+    certificate.refinement_skipped =
+        certificate.cycle_residual_lower_bound_deg > certificate.bound_deg;
+  }
+  if (!certificate.refinement_skipped) {
+    const std::vector<double> unit_weights(graph.edges.size(), 1.0);
+    TangentIrls chordal(graph, indexed.a, indexed.b, KeptEdges(keep), result->estimated,
+                        unit_weights);
+    certificate.iterations =
+        chordal.Run(ChordalWeight, options.max_certificate_iterations,
+                    options.certificate_step_tolerance_deg * kDegToRad, &certificate.rotations);
+  }
   for (size_t e = 0; e < graph.edges.size(); ++e) {
     if (!keep[e]) continue;
     const int a = indexed.a[e];
@@ -522,8 +532,8 @@ void ComputeCertificate(const RotationGraph& graph, const IndexedEdges& indexed,
     certificate.max_robust_residual_deg =
         std::max(certificate.max_robust_residual_deg, result->edge_residuals_deg[e]);
   }
-  certificate.certified =
-      certificate.bound_deg > 0.0 && certificate.max_residual_deg <= certificate.bound_deg;
+  certificate.certified = !certificate.refinement_skipped && certificate.bound_deg > 0.0 &&
+                          certificate.max_residual_deg <= certificate.bound_deg;
 }
 
 }  // namespace

@@ -74,6 +74,7 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
           {"num_pruned_edges", c.num_pruned_edges},
           {"certified_globally_optimal", c.rotation_certified},
           {"certificate_bound_deg", c.certificate_bound_deg},
+          {"certificate_cycle_lower_bound_deg", c.certificate_cycle_lower_bound_deg},
           {"max_residual_deg", c.max_rotation_residual_deg}}},
         {"translation_averaging",
          {{"num_constraints", c.num_translation_constraints},

@@ -35,6 +35,7 @@ struct MapperComponentSummary {
   int num_pruned_edges = 0;
   bool rotation_certified = false;
   double certificate_bound_deg = 0.0;
+  double certificate_cycle_lower_bound_deg = 0.0;  // see RotationCertificate
   double max_rotation_residual_deg = 0.0;
   int num_translation_constraints = 0;
   int num_solver_iterations = 0;

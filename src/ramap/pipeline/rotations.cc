@@ -81,6 +81,8 @@ RotationStageResult AverageComponentRotations(
   component->num_pruned_edges = static_cast<int>(rotations.pruned_edges.size());
   component->rotation_certified = rotations.certificate.certified;
   component->certificate_bound_deg = rotations.certificate.bound_deg;
+  component->certificate_cycle_lower_bound_deg =
+      rotations.certificate.cycle_residual_lower_bound_deg;
   component->max_rotation_residual_deg = rotations.certificate.max_robust_residual_deg;
   context.log.Record(
       stage::kRotationAveraging, timer.ElapsedSeconds(),

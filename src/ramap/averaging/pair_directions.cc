@@ -28,20 +28,27 @@ std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& r
                                                      const std::vector<Eigen::Vector3d>& bearings1,
                                                      const std::vector<Eigen::Vector3d>& bearings2,
                                                      const PairDirectionOptions& options) {
+  // Everything is computed in camera 1's frame (one rotation per match instead of two; the
+  // coplanarity, the weights and the depths' signs do not depend on the frame) and the direction
+  // is turned into the world frame at the end. The rays are not normalised: a ray's length
+  // changes neither its normal's direction nor the sign of its depth; the ray-angle test scales
+  // by the lengths instead.
   const double min_sin = std::sin(options.min_ray_angle_deg * kDegToRad);
-  const Eigen::Quaterniond world_from_cam1 = rotation1.conjugate();
-  const Eigen::Quaterniond world_from_cam2 = rotation2.conjugate();
+  const double min_sin_squared = min_sin * min_sin;
+  const Eigen::Matrix3d cam1_from_cam2 = (rotation1 * rotation2.conjugate()).toRotationMatrix();
   std::vector<Eigen::Vector3d> normals, rays1, rays2;
   const size_t num_matches = std::min(bearings1.size(), bearings2.size());
   normals.reserve(num_matches);
   rays1.reserve(num_matches);
   rays2.reserve(num_matches);
   for (size_t k = 0; k < num_matches; ++k) {
-    const Eigen::Vector3d d1 = (world_from_cam1 * bearings1[k]).normalized();
-    const Eigen::Vector3d d2 = (world_from_cam2 * bearings2[k]).normalized();
+    const Eigen::Vector3d& d1 = bearings1[k];
+    const Eigen::Vector3d d2 = cam1_from_cam2 * bearings2[k];
     const Eigen::Vector3d n = d1.cross(d2);
-    if (!n.allFinite() || n.norm() < min_sin) continue;
-    normals.push_back(n.normalized());
+    const double n_squared = n.squaredNorm();
+    if (!(n_squared >= min_sin_squared * d1.squaredNorm() * d2.squaredNorm()) || n_squared == 0.0)
+      continue;  // also drops non-finite rays, for which the comparison is false
+    normals.push_back(n / std::sqrt(n_squared));
     rays1.push_back(d1);
     rays2.push_back(d2);
   }
@@ -84,8 +91,9 @@ std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& r
   }
   const int votes = votes_for + votes_against;
   if (votes < options.min_num_matches / 2) return std::nullopt;
-  if (votes_for >= options.min_cheirality_ratio * votes) return direction.normalized();
-  if (votes_against >= options.min_cheirality_ratio * votes) return -direction.normalized();
+  const Eigen::Vector3d world_direction = rotation1.conjugate() * direction.normalized();
+  if (votes_for >= options.min_cheirality_ratio * votes) return world_direction;
+  if (votes_against >= options.min_cheirality_ratio * votes) return -world_direction;
   return std::nullopt;
 }
 

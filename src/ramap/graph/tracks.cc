@@ -17,15 +17,12 @@ struct ObservationIndex {
   uint32_t total = 0;
 };
 
-template <typename UsePair>
-ObservationIndex IndexObservations(const std::map<uint64_t, TwoViewGeometry>& geometries,
-                                   const UsePair& use) {
+ObservationIndex IndexObservations(const std::vector<const TwoViewGeometry*>& pairs) {
   ObservationIndex index;
-  for (const auto& [pair_id, geometry] : geometries) {
-    if (!use(pair_id)) continue;
-    uint32_t& size1 = index.size[geometry.image_id1];
-    uint32_t& size2 = index.size[geometry.image_id2];
-    for (const FeatureMatch& match : geometry.inlier_matches) {
+  for (const TwoViewGeometry* geometry : pairs) {
+    uint32_t& size1 = index.size[geometry->image_id1];
+    uint32_t& size2 = index.size[geometry->image_id2];
+    for (const FeatureMatch& match : geometry->inlier_matches) {
       size1 = std::max(size1, match.point2D_idx1 + 1);
       size2 = std::max(size2, match.point2D_idx2 + 1);
     }
@@ -42,39 +39,68 @@ ObservationIndex IndexObservations(const std::map<uint64_t, TwoViewGeometry>& ge
   return index;
 }
 
+// The observations' sets after uniting every match, and which observations are matched.
+struct MatchedSets {
+  explicit MatchedSets(uint32_t size) : sets(size), matched(size, 0) {}
+  DisjointSets sets;
+  std::vector<uint8_t> matched;
+};
+
+// Every match of the pairs united.
+MatchedSets UniteMatches(const std::vector<const TwoViewGeometry*>& pairs,
+                         const ObservationIndex& index) {
+  MatchedSets united(index.total);
+  for (const TwoViewGeometry* geometry : pairs) {
+    const uint32_t offset1 = index.offset.at(geometry->image_id1);
+    const uint32_t offset2 = index.offset.at(geometry->image_id2);
+    for (const FeatureMatch& match : geometry->inlier_matches) {
+      united.matched[offset1 + match.point2D_idx1] = 1;
+      united.matched[offset2 + match.point2D_idx2] = 1;
+      united.sets.Union(offset1 + match.point2D_idx1, offset2 + match.point2D_idx2);
+    }
+  }
+  return united;
+}
+
+// One track per set of matched observations, in the order of their smallest observation; each
+// track's elements in increasing (image id, keypoint index).
+std::vector<Track> GatherTracks(const MatchedSets& united, const ObservationIndex& index) {
+  const std::vector<uint32_t> roots = united.sets.Roots();
+  // A set's root is its smallest element, so it is met before the set's other elements.
+  std::vector<int> track_of_root(index.total, -1);
+  std::vector<uint32_t> track_sizes;
+  for (uint32_t x = 0; x < index.total; ++x) {
+    if (!united.matched[x]) continue;
+    if (roots[x] == x) {
+      track_of_root[x] = static_cast<int>(track_sizes.size());
+      track_sizes.push_back(0);
+    }
+    ++track_sizes[track_of_root[roots[x]]];
+  }
+  std::vector<Track> tracks(track_sizes.size());
+  for (size_t t = 0; t < tracks.size(); ++t) tracks[t].reserve(track_sizes[t]);
+  for (const auto& [image_id, size] : index.size) {
+    const uint32_t offset = index.offset.at(image_id);
+    for (uint32_t point2D_idx = 0; point2D_idx < size; ++point2D_idx) {
+      if (!united.matched[offset + point2D_idx]) continue;
+      tracks[track_of_root[roots[offset + point2D_idx]]].push_back({image_id, point2D_idx});
+    }
+  }
+  return tracks;
+}
+
 }  // namespace
 
 std::vector<Track> BuildTracks(const std::map<uint64_t, TwoViewGeometry>& geometries,
                                const std::set<uint64_t>& use_pairs,
                                const TrackBuildOptions& options, TrackBuildSummary* summary) {
   const auto use = [&](uint64_t pair_id) { return use_pairs.empty() || use_pairs.count(pair_id); };
-  const ObservationIndex index = IndexObservations(geometries, use);
-  DisjointSets sets(index.total);
-  std::vector<bool> matched(index.total, false);
+  std::vector<const TwoViewGeometry*> pairs;
   for (const auto& [pair_id, geometry] : geometries) {
-    if (!use(pair_id)) continue;
-    const uint32_t offset1 = index.offset.at(geometry.image_id1);
-    const uint32_t offset2 = index.offset.at(geometry.image_id2);
-    for (const FeatureMatch& match : geometry.inlier_matches) {
-      matched[offset1 + match.point2D_idx1] = matched[offset2 + match.point2D_idx2] = true;
-      sets.Union(offset1 + match.point2D_idx1, offset2 + match.point2D_idx2);
-    }
+    if (use(pair_id)) pairs.push_back(&geometry);
   }
-  // Elements in increasing (image id, keypoint index): each track comes out sorted.
-  std::vector<Track> by_root;
-  std::vector<int> track_of_root(index.total, -1);
-  for (const auto& [image_id, size] : index.size) {
-    const uint32_t offset = index.offset.at(image_id);
-    for (uint32_t point2D_idx = 0; point2D_idx < size; ++point2D_idx) {
-      if (!matched[offset + point2D_idx]) continue;
-      int& track = track_of_root[sets.Find(offset + point2D_idx)];
-      if (track < 0) {
-        track = static_cast<int>(by_root.size());
-        by_root.emplace_back();
-      }
-      by_root[track].push_back({image_id, point2D_idx});
-    }
-  }
+  const ObservationIndex index = IndexObservations(pairs);
+  std::vector<Track> by_root = GatherTracks(UniteMatches(pairs, index), index);
 
   TrackBuildSummary counts;
   std::vector<Track> tracks;
@@ -91,7 +117,7 @@ std::vector<Track> BuildTracks(const std::map<uint64_t, TwoViewGeometry>& geomet
       tracks.push_back(std::move(track));
     }
   }
-  // Tracks were created in the order of their first element already.
+  // Tracks were gathered in the order of their first element already.
   counts.num_tracks = static_cast<int>(tracks.size());
   if (summary != nullptr) *summary = counts;
   return tracks;

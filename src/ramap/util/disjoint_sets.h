@@ -26,6 +26,16 @@ class DisjointSets {
     const uint32_t ra = Find(a), rb = Find(b);
     if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
   }
+  // The root of every element in one pass, without path chasing: a parent is never larger than
+  // its child (roots are the smallest index and path halving only moves links down), so an
+  // element's parent has its root already when the elements are taken in increasing order.
+  std::vector<uint32_t> Roots() const {
+    std::vector<uint32_t> roots(parent_.size());
+    for (size_t x = 0; x < parent_.size(); ++x) {
+      roots[x] = parent_[x] == x ? uint32_t(x) : roots[parent_[x]];
+    }
+    return roots;
+  }
 
  private:
   std::vector<uint32_t> parent_;

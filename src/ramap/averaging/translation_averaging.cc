@@ -13,6 +13,7 @@
 
 #include "ramap/averaging/block_normal_equations.h"
 #include "ramap/geometry/rotation.h"
+#include "ramap/geometry/triangulation.h"
 #include "ramap/util/error.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/timer.h"
@@ -28,9 +29,11 @@ uint64_t PairKey(uint32_t a, uint32_t b) {
 struct PointPrediction {
   uint32_t from = 0;
   uint32_t to = 0;
-  Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
-  double depth_ratio = 0.0;  // |X - c_from| / |c_to - c_from|
-  double ray_angle = 0.0;    // angle between the two rays, radians
+  Eigen::Vector3d baseline = Eigen::Vector3d::Zero();  // unit direction of c_to - c_from
+  Eigen::Vector3d ray_from = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d M = Eigen::Matrix3d::Zero();  // set by WithMatrix, for the chosen ones only
+  double depth_ratio = 0.0;                     // |X - c_from| / |c_to - c_from|
+  double ray_angle = 0.0;                       // angle between the two rays, radians
 };
 
 class DirectionTable {
@@ -65,18 +68,24 @@ std::optional<PointPrediction> PredictPoint(uint32_t from, uint32_t to,
   const double ray_angle = std::acos(std::clamp(ray_from.dot(ray_to), -1.0, 1.0));
   if (ray_angle < min_ray_angle) return std::nullopt;
   // depth_from * ray_from - depth_to * ray_to = baseline (unit length).
-  Eigen::Matrix<double, 3, 2> design;
-  design.col(0) = ray_from;
-  design.col(1) = -ray_to;
-  const Eigen::Vector2d depths = design.colPivHouseholderQr().solve(*baseline);
-  if (!(depths(0) > 0 && depths(1) > 0)) return std::nullopt;
+  const std::optional<Eigen::Vector2d> depths = TwoRayDepths(ray_from, ray_to, *baseline);
+  if (!depths || !((*depths)(0) > 0 && (*depths)(1) > 0)) return std::nullopt;
   PointPrediction prediction;
   prediction.from = from;
   prediction.to = to;
-  prediction.depth_ratio = depths(0);
+  prediction.baseline = *baseline;
+  prediction.ray_from = ray_from;
+  prediction.depth_ratio = (*depths)(0);
   prediction.ray_angle = ray_angle;
-  prediction.M =
-      depths(0) * Eigen::Quaterniond::FromTwoVectors(*baseline, ray_from).toRotationMatrix();
+  return prediction;
+}
+
+// The prediction with its matrix M, which turns the baseline into the point's offset from c_from
+// (a track compares n^2 predictions and keeps about n, so only those build it).
+PointPrediction WithMatrix(PointPrediction prediction) {
+  prediction.M = prediction.depth_ratio *
+                 Eigen::Quaterniond::FromTwoVectors(prediction.baseline, prediction.ray_from)
+                     .toRotationMatrix();
   return prediction;
 }
 
@@ -161,6 +170,7 @@ int AddTrackConstraints(const std::vector<uint32_t>& ids, const std::vector<Eige
     }
   }
   if (!reference) return 0;
+  const PointPrediction reference_point = WithMatrix(*reference);
   int added = 0;
   for (size_t k = 0; k < n; ++k) {
     if (k == ref_a) continue;
@@ -172,8 +182,8 @@ int AddTrackConstraints(const std::vector<uint32_t>& ids, const std::vector<Eige
     }
     if (!best) continue;
     Constraint constraint;
-    constraint.a = *reference;
-    constraint.b = *best;
+    constraint.a = reference_point;
+    constraint.b = WithMatrix(*best);
     // Residuals are point displacements; dividing by the depth ratio expresses them in baselines,
     // so that far points do not dominate.
     constraint.weight = 1.0 / std::max({1.0, reference->depth_ratio, best->depth_ratio});

@@ -1,5 +1,6 @@
 #include "ramap/pipeline/translations.h"
 
+#include <future>
 #include <map>
 #include <set>
 #include <unordered_map>
@@ -202,8 +203,14 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
   Timer timer;
   ComponentTranslations result;
   KeptEdges kept = SplitKeptEdges(context, graph, edge_status, world_rotations);
+  // The tracks do not depend on the directions: with more than one thread they are built on a
+  // thread of their own while the directions take the mapper's threads (4541 frames: 0.9 -> 0.7 s
+  // for both).
+  const auto policy = context.options.num_threads > 1 ? std::launch::async : std::launch::deferred;
+  std::future<std::vector<Track>> tracks = std::async(
+      policy, [&] { return BuildTracks(context.database.two_view_geometries, kept.pair_ids); });
   result.directions = KeptPairDirections(context, kept.with_translation, world_rotations);
-  result.tracks = BuildTracks(context.database.two_view_geometries, kept.pair_ids);
+  result.tracks = tracks.get();
   result.translation_tracks = TranslationTracks(result.tracks, context.bearings, world_rotations,
                                                 context.options.num_threads);
   const std::vector<PairDirection>& directions = result.directions;

@@ -213,6 +213,13 @@ void AddPairDirectionOptions(CLI::App& app, MapperOptions* o) {
   app.add_option("--PairDirection.min_cheirality_ratio", directions.min_cheirality_ratio,
                  "share of matches in front of both cameras that settles the sign, in (0.5, 1]")
       ->capture_default_str();
+  app.add_option("--PairDirection.min_agreeing_share", directions.min_agreeing_share,
+                 "below this share of matches agreeing with a pair's direction, restart from "
+                 "sampled two-match directions (0: never; try 0.5 with many wrong matches)")
+      ->capture_default_str();
+  app.add_option("--PairDirection.num_sampled_starts", directions.num_sampled_starts,
+                 "two-match directions the restart tries")
+      ->capture_default_str();
 }
 
 // Structure (stage 5).
@@ -422,7 +429,9 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"num_reweighting_rounds", o.pair_direction.num_reweighting_rounds},
         {"residual_scale_deg", o.pair_direction.residual_scale_deg},
         {"min_num_matches", o.pair_direction.min_num_matches},
-        {"min_cheirality_ratio", o.pair_direction.min_cheirality_ratio}}},
+        {"min_cheirality_ratio", o.pair_direction.min_cheirality_ratio},
+        {"min_agreeing_share", o.pair_direction.min_agreeing_share},
+        {"num_sampled_starts", o.pair_direction.num_sampled_starts}}},
       {"Triangulation",
        {{"max_reprojection_error_px", o.structure.max_reprojection_error_px},
         {"min_triangulation_angle_deg", o.structure.min_triangulation_angle_deg}}},

@@ -289,36 +289,75 @@ TEST(PairDirections, RecoversBaselineWithRotationsKnown) {
   }
 }
 
-// The reweighting rounds (which stop once the direction settles) must still reject wrong
-// matches: one in twenty pointing anywhere moves the unweighted direction by degrees.
-TEST(PairDirections, ReweightingRejectsWrongMatches) {
-  std::mt19937 rng(7);
+// A pair's matched bearings, one match in `wrong_every` replaced by some other point's ray.
+struct NoisyPair {
+  Eigen::Quaterniond r2 = Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitY()));
+  Eigen::Vector3d c2 = Eigen::Vector3d(1, 0.2, 0.1);
+  std::vector<Eigen::Vector3d> f1, f2;
+};
+
+NoisyPair PairWithWrongMatches(int wrong_every, uint32_t seed) {
+  std::mt19937 rng(seed);
   std::normal_distribution<double> n(0, 1);
   std::uniform_real_distribution<double> u(-1, 1);
-  const Eigen::Quaterniond r2(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitY()));
-  const Eigen::Vector3d c2(1, 0.2, 0.1);
-  std::vector<Eigen::Vector3d> f1, f2;
+  NoisyPair pair;
   for (int k = 0; k < 300; ++k) {
     const Eigen::Vector3d X(3 * u(rng), 2 * u(rng), 8 + 4 * u(rng));
     const auto noisy = [&](const Eigen::Vector3d& f) {
       return (f + 3e-4 * Eigen::Vector3d(n(rng), n(rng), 0)).normalized();
     };
-    f1.push_back(noisy(X.normalized()));
-    if (k % 20 == 0) {  // a wrong match: some other point's ray
-      f2.push_back(noisy(Eigen::Vector3d(u(rng), u(rng), 3).normalized()));
+    pair.f1.push_back(noisy(X.normalized()));
+    if (k % wrong_every == 0) {
+      pair.f2.push_back(noisy(Eigen::Vector3d(u(rng), u(rng), 3).normalized()));
     } else {
-      f2.push_back(noisy((r2 * (X - c2)).normalized()));
+      pair.f2.push_back(noisy((pair.r2 * (X - pair.c2)).normalized()));
     }
   }
-  const auto direction = EstimatePairDirection(Eigen::Quaterniond::Identity(), r2, f1, f2);
+  return pair;
+}
+
+double AngleToDeg(const Eigen::Vector3d& direction, const Eigen::Vector3d& truth) {
+  return std::acos(std::min(1.0, direction.dot(truth.normalized()))) * 180 / M_PI;
+}
+
+// The reweighting rounds (which stop once the direction settles) must still reject wrong
+// matches: one in twenty pointing anywhere moves the unweighted direction by degrees.
+TEST(PairDirections, ReweightingRejectsWrongMatches) {
+  const NoisyPair pair = PairWithWrongMatches(20, 7);
+  const auto direction =
+      EstimatePairDirection(Eigen::Quaterniond::Identity(), pair.r2, pair.f1, pair.f2);
   ASSERT_TRUE(direction.has_value());
-  EXPECT_LT(std::acos(std::min(1.0, direction->dot(c2.normalized()))) * 180 / M_PI, 0.2);
+  EXPECT_LT(AngleToDeg(*direction, pair.c2), 0.2);
 
   PairDirectionOptions unweighted;
   unweighted.num_reweighting_rounds = 0;
-  const auto plain = EstimatePairDirection(Eigen::Quaterniond::Identity(), r2, f1, f2, unweighted);
+  const auto plain =
+      EstimatePairDirection(Eigen::Quaterniond::Identity(), pair.r2, pair.f1, pair.f2, unweighted);
   if (plain) {  // the sign vote may fail too; when it does not, the direction is off
-    EXPECT_GT(std::acos(std::min(1.0, std::abs(plain->dot(c2.normalized())))) * 180 / M_PI, 1.0);
+    EXPECT_GT(std::acos(std::min(1.0, std::abs(plain->dot(pair.c2.normalized())))) * 180 / M_PI,
+              1.0);
+  }
+}
+
+// With one wrong match in ten or in three, the unweighted first round lands so far off that the
+// rounds alone (the default) find no direction or a wrong one; with the restart from sampled
+// starts turned on, it is found.
+TEST(PairDirections, SampledRestartSurvivesManyWrongMatches) {
+  for (const int wrong_every : {10, 3}) {
+    for (uint32_t seed = 1; seed <= 3; ++seed) {
+      const NoisyPair pair = PairWithWrongMatches(wrong_every, seed);
+      PairDirectionOptions restart;
+      restart.min_agreeing_share = 0.5;
+      const auto direction =
+          EstimatePairDirection(Eigen::Quaterniond::Identity(), pair.r2, pair.f1, pair.f2, restart);
+      ASSERT_TRUE(direction.has_value()) << "1 in " << wrong_every << ", seed " << seed;
+      EXPECT_LT(AngleToDeg(*direction, pair.c2), 0.2) << "1 in " << wrong_every;
+
+      const auto rounds_only =
+          EstimatePairDirection(Eigen::Quaterniond::Identity(), pair.r2, pair.f1, pair.f2);
+      EXPECT_TRUE(!rounds_only || AngleToDeg(*rounds_only, pair.c2) > 1.0)
+          << "1 in " << wrong_every << ", seed " << seed << ": the rounds alone found it";
+    }
   }
 }
 

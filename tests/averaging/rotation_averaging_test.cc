@@ -141,16 +141,20 @@ INSTANTIATE_TEST_SUITE_P(
                       NoiseCase{5.0, 0.0}, NoiseCase{5.0, 0.1}, NoiseCase{5.0, 0.3}),
     [](const ::testing::TestParamInfo<NoiseCase>& info) { return CaseName(info.param); });
 
-TEST(RotationAveraging, CertificateOnLowNoiseGraphMatchesChordalOptimum) {
-  // The bound grows with algebraic connectivity: a well connected graph (each camera linked to
-  // its 12 successors and 400 loop edges) at 0.2 deg noise.
+// The bound grows with algebraic connectivity: a well connected graph (each camera linked to its
+// 12 successors and 400 loop edges) at 0.2 deg noise is certified.
+SyntheticRotationGraph CertifiableGraph() {
   SyntheticRotationGraphOptions options;
   options.num_nodes = 150;
   options.forward_neighbours = 12;
   options.num_loop_edges = 400;
   options.noise_deg = 0.2;
   options.seed = 11;
-  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(options);
+  return MakeSyntheticRotationGraph(options);
+}
+
+TEST(RotationAveraging, CertificateOnLowNoiseGraphMatchesChordalOptimum) {
+  const SyntheticRotationGraph synthetic = CertifiableGraph();
   const RotationAveragingResult result = AverageRotations(synthetic.graph, {});
   const RotationCertificate& certificate = result.certificate;
   ASSERT_TRUE(certificate.computed);
@@ -184,14 +188,8 @@ TEST(RotationAveraging, HighNoiseIsNotCertified) {
 // certified and on one that is not, the answer is the same with and without it, and only the
 // uncertifiable one skips its refinement.
 TEST(RotationAveraging, CycleCheckSkipsOnlyRefinementsThatCannotCertify) {
-  SyntheticRotationGraphOptions certifiable;
-  certifiable.num_nodes = 150;
-  certifiable.forward_neighbours = 12;
-  certifiable.num_loop_edges = 400;
-  certifiable.noise_deg = 0.2;
-  certifiable.seed = 11;
   for (const SyntheticRotationGraph& synthetic :
-       {MakeSyntheticRotationGraph(certifiable), PathWithLoops(20.0, 0.0, 5)}) {
+       {CertifiableGraph(), PathWithLoops(20.0, 0.0, 5)}) {
     RotationAveragingOptions options;
     options.max_pruning_rounds = 0;
     const RotationCertificate checked = AverageRotations(synthetic.graph, options).certificate;

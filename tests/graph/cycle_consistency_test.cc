@@ -52,21 +52,30 @@ TEST(TriangleCycleBound, ReadsTheCycleAngleOfATriangle) {
       0u);
 }
 
-// Random rotations on a noisy graph with outliers, and the true rotations: each leaves some edge
-// with a residual at least the bound, which must also be positive (the noise closes no triangle).
-TEST(TriangleCycleBound, NoAssignmentHasASmallerLargestResidual) {
+// 60 nodes along a path, each linked to its next 5, 2 deg noise.
+SyntheticRotationGraph NoisyPath(int num_loop_edges, double outlier_fraction, uint32_t seed) {
   SyntheticRotationGraphOptions options;
   options.num_nodes = 60;
   options.forward_neighbours = 5;
-  options.num_loop_edges = 20;
+  options.num_loop_edges = num_loop_edges;
   options.noise_deg = 2.0;
-  options.outlier_fraction = 0.05;
-  options.seed = 7;
-  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(options);
-  const std::vector<bool> keep(synthetic.graph.edges.size(), true);
-  const std::vector<bool> active(synthetic.graph.node_ids.size(), true);
-  const TriangleCycleBound bound =
-      TriangleCycleResidualBound(synthetic.graph, keep, active, kNoStop);
+  options.outlier_fraction = outlier_fraction;
+  options.seed = seed;
+  return MakeSyntheticRotationGraph(options);
+}
+
+// The bound over the whole graph, every edge kept and every node active, stopping above
+// `stop_above_deg`.
+TriangleCycleBound WholeGraphBound(const RotationGraph& graph, double stop_above_deg) {
+  return TriangleCycleResidualBound(graph, std::vector<bool>(graph.edges.size(), true),
+                                    std::vector<bool>(graph.node_ids.size(), true), stop_above_deg);
+}
+
+// The true rotations and averaged ones on a noisy graph with outliers: each leaves some edge
+// with a residual at least the bound, which must also be positive (the noise closes no triangle).
+TEST(TriangleCycleBound, NoAssignmentHasASmallerLargestResidual) {
+  const SyntheticRotationGraph synthetic = NoisyPath(20, 0.05, 7);
+  const TriangleCycleBound bound = WholeGraphBound(synthetic.graph, kNoStop);
   EXPECT_GT(bound.triangles_checked, 100u);
   EXPECT_GT(bound.residual_lower_bound_deg, 0.5);
 
@@ -84,16 +93,9 @@ TEST(TriangleCycleBound, NoAssignmentHasASmallerLargestResidual) {
 }
 
 TEST(TriangleCycleBound, StopsAtTheFirstTriangleAboveTheThreshold) {
-  SyntheticRotationGraphOptions options;
-  options.num_nodes = 60;
-  options.forward_neighbours = 5;
-  options.noise_deg = 2.0;
-  options.seed = 3;
-  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(options);
-  const std::vector<bool> keep(synthetic.graph.edges.size(), true);
-  const std::vector<bool> active(synthetic.graph.node_ids.size(), true);
-  const TriangleCycleBound all = TriangleCycleResidualBound(synthetic.graph, keep, active, kNoStop);
-  const TriangleCycleBound stopped = TriangleCycleResidualBound(synthetic.graph, keep, active, 0.0);
+  const SyntheticRotationGraph synthetic = NoisyPath(0, 0.0, 3);
+  const TriangleCycleBound all = WholeGraphBound(synthetic.graph, kNoStop);
+  const TriangleCycleBound stopped = WholeGraphBound(synthetic.graph, 0.0);
   EXPECT_EQ(stopped.triangles_checked, 1u);
   EXPECT_LT(stopped.triangles_checked, all.triangles_checked);
   EXPECT_LE(stopped.residual_lower_bound_deg, all.residual_lower_bound_deg);

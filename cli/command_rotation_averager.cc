@@ -75,8 +75,8 @@ void PrintRotationSummary(const RecordRotations& averaged, const std::string& ou
     std::cout << "  certificate: "
               << (certificate.certified ? "certified globally optimal" : "not certified") << " (";
     if (certificate.refinement_skipped) {
-      std::cout << "a triangle of kept edges forces a residual of at least "
-                << certificate.cycle_residual_lower_bound_deg << " deg, so no chordal refinement";
+      std::cout << "chordal refinement skipped: a triangle of kept edges forces a residual of "
+                << certificate.cycle_residual_lower_bound_deg << " deg or more";
     } else {
       std::cout << "max kept residual " << certificate.max_residual_deg << " deg";
     }

@@ -1,34 +1,16 @@
 #include "ramap/graph/rotation_graph.h"
 
 #include <algorithm>
-#include <numeric>
 #include <queue>
 #include <stdexcept>
 #include <string>
+
+#include "ramap/util/disjoint_sets.h"
 
 namespace ramap {
 namespace {
 
 bool Kept(const std::vector<bool>& keep, size_t e) { return keep.empty() || keep[e]; }
-
-struct DisjointSets {
-  explicit DisjointSets(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int Find(int x) {
-    while (parent[x] != x) {
-      parent[x] = parent[parent[x]];
-      x = parent[x];
-    }
-    return x;
-  }
-  bool Union(int a, int b) {
-    a = Find(a);
-    b = Find(b);
-    if (a == b) return false;
-    parent[a] = b;
-    return true;
-  }
-  std::vector<int> parent;
-};
 
 }  // namespace
 
@@ -62,9 +44,10 @@ std::vector<int> ConnectedComponents(const RotationGraph& graph, const std::vect
   for (int k = 0; k < n; ++k) ++size[sets.Find(k)];
   std::vector<int> roots;
   for (int k = 0; k < n; ++k) {
-    if (sets.Find(k) == k) roots.push_back(k);
+    if (sets.Find(k) == static_cast<uint32_t>(k)) roots.push_back(k);
   }
-  // Largest first; ties by first node so the labelling is deterministic.
+  // Largest first; ties by first node (a set's root is its smallest node position) so the
+  // labelling is deterministic.
   std::stable_sort(roots.begin(), roots.end(), [&](int a, int b) { return size[a] > size[b]; });
   std::vector<int> label_of_root(n, -1);
   for (size_t r = 0; r < roots.size(); ++r) label_of_root[roots[r]] = static_cast<int>(r);
@@ -93,7 +76,7 @@ std::vector<size_t> MaximumSpanningTree(const RotationGraph& graph, const std::v
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
     return graph.edges[a].weight > graph.edges[b].weight;
   });
-  DisjointSets sets(static_cast<int>(graph.node_ids.size()));
+  DisjointSets sets(graph.node_ids.size());
   std::vector<size_t> tree;
   for (size_t e : order) {
     if (sets.Union(index.at(graph.edges[e].i), index.at(graph.edges[e].j))) tree.push_back(e);

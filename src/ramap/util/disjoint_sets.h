@@ -22,9 +22,12 @@ class DisjointSets {
     }
     return x;
   }
-  void Union(uint32_t a, uint32_t b) {
+  // Returns whether a and b were in different sets.
+  bool Union(uint32_t a, uint32_t b) {
     const uint32_t ra = Find(a), rb = Find(b);
-    if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+    if (ra == rb) return false;
+    parent_[std::max(ra, rb)] = std::min(ra, rb);
+    return true;
   }
   // The root of every element in one pass, without path chasing: a parent is never larger than
   // its child (roots are the smallest index and path halving only moves links down), so an

@@ -41,10 +41,15 @@ TEST(RotationGraph, ComponentsAreLabelledLargestFirst) {
   const RotationGraph graph = TwoComponents();
   const std::vector<int> labels = ConnectedComponents(graph);
   EXPECT_EQ(labels, (std::vector<int>{0, 0, 0, 1, 1, 2}));
-  // Without the pair's edge, 40 and 50 fall apart into components of one.
+  // Without the pair's edge, 40 and 50 fall apart into components of one, labelled by their first
+  // node after the triangle: 40, 50, 60.
   const std::vector<int> kept = ConnectedComponents(graph, {true, true, true, false});
-  EXPECT_EQ(kept[0], 0);
-  EXPECT_NE(kept[3], kept[4]);
+  EXPECT_EQ(kept, (std::vector<int>{0, 0, 0, 1, 2, 3}));
+  // Equal sizes, interleaved: {1, 4} holds the first node, so it is component 0.
+  RotationGraph pairs;
+  pairs.node_ids = {1, 2, 3, 4};
+  pairs.edges = {{1, 4, AboutZ(1), 1.0}, {2, 3, AboutZ(1), 1.0}};
+  EXPECT_EQ(ConnectedComponents(pairs), (std::vector<int>{0, 1, 1, 0}));
   EXPECT_EQ(NodeDegrees(graph), (std::vector<int>{2, 2, 2, 1, 1, 0}));
   EXPECT_EQ(NodeDegrees(graph, {false, true, true, true}), (std::vector<int>{1, 1, 2, 1, 1, 0}));
 }

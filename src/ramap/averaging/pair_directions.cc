@@ -156,8 +156,9 @@ std::optional<Eigen::Vector3d> EstimatePairDirection(const Eigen::Quaterniond& r
       ReweightedDirection(pair.normals, std::nullopt, scale, options.num_reweighting_rounds);
   // Enough wrong matches drag the unweighted first round so far that the rounds cannot come back
   // (at 10% of random matches it lands 68-87 deg off); then the rounds restart from a sampled
-  // start, and the direction more matches agree with stands.
-  const int agreeing = NumAgreeing(pair.normals, direction, scale);
+  // start, and the direction more matches agree with stands. Off by default, and then not counted.
+  const int agreeing =
+      options.min_agreeing_share > 0.0 ? NumAgreeing(pair.normals, direction, scale) : 0;
   if (agreeing < options.min_agreeing_share * pair.normals.size()) {
     if (const auto start = SampledStart(pair.normals, scale, options.num_sampled_starts)) {
       const Eigen::Vector3d restarted =

@@ -47,6 +47,8 @@ std::optional<Reconstruction> ReconstructComponent(const MapperContext& context,
   const MapperOptions& options = context.options;
   MapperComponentSummary component;
 
+  // The tracks, meanwhile, on the other core.
+  EarlyTracks early_tracks = StartComponentTracks(context, graph);
   // 3. Rotation averaging: keyframe windows first for sequences, the whole graph for collections.
   std::map<uint32_t, Eigen::Quaterniond> rotations;
   const RotationStageResult averaged =
@@ -54,7 +56,7 @@ std::optional<Reconstruction> ReconstructComponent(const MapperContext& context,
 
   // 4. Translation averaging: pair directions with the averaged rotations, then feature tracks.
   std::optional<ComponentTranslations> translations = AverageComponentTranslations(
-      context, graph, averaged.rotations.edge_status, rotations, &component);
+      context, graph, averaged.rotations.edge_status, rotations, &early_tracks, &component);
   if (!translations) return std::nullopt;
   // With position priors: georegistration, and translation averaging again with them.
   PriorAlignment georegistration;

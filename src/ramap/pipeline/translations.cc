@@ -77,18 +77,16 @@ std::vector<PairDirection> KeptPairDirections(
   return directions;
 }
 
-// The tracks' observations by rotated images, as bearings, on `num_threads` threads; tracks left
-// with fewer than two are dropped.
-std::vector<TranslationTrack> TranslationTracks(
-    const std::vector<Track>& tracks, const ImageBearings& bearings,
-    const std::map<uint32_t, Eigen::Quaterniond>& world_rotations, int num_threads) {
-  // The rotated images' bearings, looked up once per image rather than twice per observation
-  // (millions on a long drive).
+// The tracks' observations by the images of `image_ids`, as bearings, on `num_threads` threads;
+// tracks left with fewer than two are dropped.
+std::vector<TranslationTrack> TranslationTracks(const std::vector<Track>& tracks,
+                                                const ImageBearings& bearings,
+                                                const std::set<uint32_t>& image_ids,
+                                                int num_threads) {
+  // The images' bearings, looked up once per image rather than twice per observation (millions on
+  // a long drive).
   std::unordered_map<uint32_t, const std::vector<Eigen::Vector3d>*> rotated;
-  for (const auto& [image_id, rotation] : world_rotations) {
-    (void)rotation;
-    rotated[image_id] = &bearings.bearings.at(image_id);
-  }
+  for (const uint32_t image_id : image_ids) rotated[image_id] = &bearings.bearings.at(image_id);
   std::vector<TranslationTrack> converted(tracks.size());
   ParallelFor(tracks.size(), num_threads, [&](size_t k) {
     TranslationTrack& observations = converted[k];
@@ -105,6 +103,34 @@ std::vector<TranslationTrack> TranslationTracks(
     if (observations.size() >= 2) translation_tracks.push_back(std::move(observations));
   }
   return translation_tracks;
+}
+
+// The images of `world_rotations`.
+std::set<uint32_t> RotatedImages(const std::map<uint32_t, Eigen::Quaterniond>& world_rotations) {
+  std::set<uint32_t> image_ids;
+  for (const auto& [image_id, rotation] : world_rotations) {
+    (void)rotation;
+    image_ids.insert(image_ids.end(), image_id);
+  }
+  return image_ids;
+}
+
+// Whether the early tracks were built over exactly the `kept` edges and the `rotated` images.
+bool EarlyTracksFit(const EarlyTracks& early, const KeptEdges& kept,
+                    const std::set<uint32_t>& rotated) {
+  return early.built.valid() && early.pair_ids == kept.pair_ids && early.image_ids == rotated;
+}
+
+// The tracks of the `kept` edges (without bearings), on a thread of their own while the pair
+// directions are estimated (4541 frames: the two together 0.95-1.03 -> 0.82-0.94 s); the early
+// tracks, which do not fit, are dropped first.
+std::future<TracksWithBearings> TracksOfKeptEdges(const MapperContext& context,
+                                                  const KeptEdges& kept, EarlyTracks* early) {
+  early->built = {};  // their memory freed (an async build is waited for)
+  const auto policy = context.options.num_threads > 1 ? std::launch::async : std::launch::deferred;
+  return std::async(policy, [&context, &kept] {
+    return TracksWithBearings{BuildTracks(context.database.two_view_geometries, kept.pair_ids), {}};
+  });
 }
 
 // Images that only pure rotations link to the rest (the car waiting at a light, a panorama turned
@@ -195,24 +221,46 @@ TranslationAveragingResult SolvePositions(const MapperContext& context,
 
 }  // namespace
 
+EarlyTracks StartComponentTracks(const MapperContext& context, const RotationGraph& graph) {
+  EarlyTracks early;
+  for (const RelativeRotationEdge& edge : graph.edges) {
+    const ImagePair& pair = context.pairs[edge.pair_index];
+    early.pair_ids.insert(ImagePairToPairId(pair.image_id1, pair.image_id2));
+  }
+  early.image_ids.insert(graph.node_ids.begin(), graph.node_ids.end());
+  const auto policy = context.options.num_threads > 1 ? std::launch::async : std::launch::deferred;
+  // The sets are copied: `early` moves when returned. One thread for the bearings: rotation
+  // averaging holds the other.
+  early.built =
+      std::async(policy, [&context, pair_ids = early.pair_ids, image_ids = early.image_ids] {
+        TracksWithBearings built;
+        built.tracks = BuildTracks(context.database.two_view_geometries, pair_ids);
+        built.translation_tracks = TranslationTracks(built.tracks, context.bearings, image_ids, 1);
+        return built;
+      });
+  return early;
+}
+
 std::optional<ComponentTranslations> AverageComponentTranslations(
     const MapperContext& context, const RotationGraph& graph,
     const std::vector<EdgeStatus>& edge_status,
-    const std::map<uint32_t, Eigen::Quaterniond>& world_rotations,
+    const std::map<uint32_t, Eigen::Quaterniond>& world_rotations, EarlyTracks* early,
     MapperComponentSummary* component) {
   Timer timer;
   ComponentTranslations result;
   KeptEdges kept = SplitKeptEdges(context, graph, edge_status, world_rotations);
-  // The tracks do not depend on the directions: with more than one thread they are built on a
-  // thread of their own while the directions take the mapper's threads (4541 frames: the two
-  // together 0.95-1.03 -> 0.82-0.94 s).
-  const auto policy = context.options.num_threads > 1 ? std::launch::async : std::launch::deferred;
-  std::future<std::vector<Track>> tracks = std::async(
-      policy, [&] { return BuildTracks(context.database.two_view_geometries, kept.pair_ids); });
+  const std::set<uint32_t> rotated = RotatedImages(world_rotations);
+  const bool early_fits = EarlyTracksFit(*early, kept, rotated);
+  std::future<TracksWithBearings> tracks =
+      early_fits ? std::move(early->built) : TracksOfKeptEdges(context, kept, early);
   result.directions = KeptPairDirections(context, kept.with_translation, world_rotations);
-  result.tracks = tracks.get();
-  result.translation_tracks = TranslationTracks(result.tracks, context.bearings, world_rotations,
-                                                context.options.num_threads);
+  TracksWithBearings built = tracks.get();
+  if (!early_fits) {
+    built.translation_tracks =
+        TranslationTracks(built.tracks, context.bearings, rotated, context.options.num_threads);
+  }
+  result.tracks = std::move(built.tracks);
+  result.translation_tracks = std::move(built.translation_tracks);
   const std::vector<PairDirection>& directions = result.directions;
   TranslationAveragingResult& positions = result.positions;
   std::string how;

@@ -1,6 +1,5 @@
 #include "ramap/averaging/translation_averaging.h"
 
-#include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
@@ -12,6 +11,7 @@
 #include <unordered_map>
 
 #include "ramap/averaging/block_normal_equations.h"
+#include "ramap/averaging/shifted_cholesky.h"
 #include "ramap/geometry/rotation.h"
 #include "ramap/geometry/triangulation.h"
 #include "ramap/util/error.h"
@@ -254,36 +254,9 @@ Eigen::VectorXd SoftThreshold(const Eigen::VectorXd& v, double kappa) {
   return (v.array() - kappa).max(0.0) - (-v.array() - kappa).max(0.0);
 }
 
-using SparseCholesky = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>;
-
-// Factorises matrix + shift I (its pattern analysed already) with a tiny shift of 1e-10, which
-// keeps a weakly constrained camera defined without moving the solution. When that fails (a
-// camera constrained only along a line, IRLS weights spanning many orders of magnitude: measured
-// on kitti07_first160 from ORB with a focal length guessed 2x too long, which lost its whole
-// model), the shift grows from 1e-10 of the largest diagonal entry until the factorisation
-// succeeds. Not relative from the start: exact position priors weigh ~1e8 and a relative shift
-// would pull every camera by millimetres.
-constexpr double kRidgeShift = 1e-10;
-
 // Conjugate-gradient iterations before their convergence rate forecasts whether the rest reach
 // the tolerance (PositionSolver::SolveWithLastFactor).
 constexpr int kPcgIterationsBeforeForecast = 3;
-
-// Returns the shift that was factorised.
-double FactorizeWithRidge(const Eigen::SparseMatrix<double>& matrix, SparseCholesky* solver) {
-  // The retries below answer CHOLMOD's "not positive definite" warnings: not for the user's eyes.
-  solver->cholmod().print = 0;
-  solver->setShift(kRidgeShift);
-  solver->factorize(matrix);
-  if (solver->info() == Eigen::Success) return kRidgeShift;
-  const double scale = std::max(1.0, matrix.diagonal().cwiseAbs().maxCoeff());
-  for (const double relative_shift : {1e-10, 1e-8, 1e-6, 1e-4}) {
-    solver->setShift(relative_shift * scale);
-    solver->factorize(matrix);
-    if (solver->info() == Eigen::Success) return relative_shift * scale;
-  }
-  throw StageFailure("translation averaging: factorisation failed");
-}
 
 Eigen::VectorXd ProjectScales(Eigen::VectorXd v, const StackedSystem& system) {
   v.segment(system.num_position_cols, system.num_pair_scales) =
@@ -305,9 +278,8 @@ Eigen::VectorXd SolveByAdmm(const StackedSystem& system, Eigen::VectorXd x,
   // ADMM on min ||z||_1 + [scales >= 1](x) s.t. z = B y, x = y (scaled form; Boyd et al. 2011).
   // The y-update's matrix B^T B + I does not depend on rho, so it is factored once.
   const Eigen::SparseMatrix<double> admm_matrix = normal + ridge;
-  SparseCholesky admm_step;
-  admm_step.analyzePattern(admm_matrix);
-  FactorizeWithRidge(admm_matrix, &admm_step);
+  ShiftedCholesky admm_step(admm_matrix);
+  admm_step.Factorize(admm_matrix);
   Eigen::VectorXd y = x;
   Eigen::VectorXd z = B * y;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(num_rows);
@@ -320,7 +292,7 @@ Eigen::VectorXd SolveByAdmm(const StackedSystem& system, Eigen::VectorXd x,
   double previous_cost = std::numeric_limits<double>::infinity();
   int iteration = 0;
   for (; iteration < options.max_admm_iterations; ++iteration) {
-    y = admm_step.solve(B.transpose() * (z - u) + (x - w));
+    y = admm_step.Solve(B.transpose() * (z - u) + (x - w));
     const Eigen::VectorXd By = B * y;
     const Eigen::VectorXd By_relaxed =
         options.admm_relaxation * By + (1.0 - options.admm_relaxation) * z;
@@ -460,9 +432,8 @@ class PositionSolver {
   PositionSolver(const StackedSystem& system, const TranslationAveragingOptions& options)
       : equations_(system.B, ExtraColumns(system)),
         max_pcg_iterations_(options.max_pcg_iterations),
-        pcg_tolerance_(options.pcg_tolerance) {
-    factorization_.analyzePattern(equations_.pattern());
-  }
+        pcg_tolerance_(options.pcg_tolerance),
+        factorization_(equations_.pattern()) {}
 
   // v = (positions, scales, constants) minimising sum_b w_b |B_b v|^2 with the held scales at
   // their values and the free ones at their rows' minimisers.
@@ -470,8 +441,8 @@ class PositionSolver {
                         const std::vector<double>& held_values) {
     equations_.Assemble(block_weights, held, held_values, &normal_, &rhs_);
     if (!SolveWithLastFactor()) {
-      shift_ = FactorizeWithRidge(normal_, &factorization_);
-      last_solution_ = factorization_.solve(rhs_);
+      shift_ = factorization_.Factorize(normal_);
+      last_solution_ = factorization_.Solve(rhs_);
       ++num_factorizations_;
     }
     return equations_.Expand(last_solution_, held, held_values);
@@ -493,15 +464,15 @@ class PositionSolver {
   bool SolveWithLastFactor() {
     if (num_factorizations_ == 0 || max_pcg_iterations_ == 0) return false;
     const auto normal = normal_.selfadjointView<Eigen::Lower>();
-    // The same shift as the last factorisation's (FactorizeWithRidge), so that a step solves the
-    // system a refactorisation would have.
+    // The same shift as the last factorisation's (ShiftedCholesky::Factorize), so that a step
+    // solves the system a refactorisation would have.
     const auto apply = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
       return normal * v + shift_ * v;
     };
     Eigen::VectorXd u = last_solution_;
     Eigen::VectorXd residual = rhs_ - apply(u);
     const double target = pcg_tolerance_ * rhs_.norm();
-    Eigen::VectorXd preconditioned = factorization_.solve(residual);
+    Eigen::VectorXd preconditioned = factorization_.Solve(residual);
     Eigen::VectorXd direction = preconditioned;
     double product = residual.dot(preconditioned);
     const double initial = residual.norm();
@@ -521,7 +492,7 @@ class PositionSolver {
       const double step = product / direction.dot(applied);
       u += step * direction;
       residual -= step * applied;
-      preconditioned = factorization_.solve(residual);
+      preconditioned = factorization_.Solve(residual);
       const double next_product = residual.dot(preconditioned);
       direction = preconditioned + (next_product / product) * direction;
       product = next_product;
@@ -532,14 +503,14 @@ class PositionSolver {
   }
 
   BlockNormalEquations equations_;
-  SparseCholesky factorization_;
   Eigen::SparseMatrix<double> normal_;
   Eigen::VectorXd rhs_;
   Eigen::VectorXd last_solution_;  // of the reduced equations
-  double shift_ = kRidgeShift;     // of the last factorisation
+  double shift_ = 0;               // of the last factorisation
   int num_factorizations_ = 0;
   int max_pcg_iterations_ = 0;
   double pcg_tolerance_ = 0;
+  ShiftedCholesky factorization_;  // after equations_, whose pattern it analyses
 };
 
 // The same problem by iteratively reweighted least squares: each 3-row block (a track constraint

@@ -64,10 +64,12 @@ PairRays CoplanarityNormals(const Eigen::Matrix3d& cam1_from_cam2,
   return pair;
 }
 
-// Cauchy weight of a coplanarity residual n . t at scale `scale` (the sine of residual_scale_deg).
-double CauchyWeight(const Eigen::Vector3d& normal, const Eigen::Vector3d& direction, double scale) {
-  const double r = normal.dot(direction) / scale;
-  return 1.0 / (1.0 + r * r);
+// Cauchy weight of a coplanarity residual n . t at a scale (the sine of residual_scale_deg) whose
+// inverse square is given: one division per weight instead of two, in the rounds' inner loop.
+double CauchyWeight(const Eigen::Vector3d& normal, const Eigen::Vector3d& direction,
+                    double inverse_scale_squared) {
+  const double residual = normal.dot(direction);
+  return 1.0 / (1.0 + residual * residual * inverse_scale_squared);
 }
 
 // The direction minimises sum w (n . t)^2: the eigenvector of the smallest eigenvalue. Each round's
@@ -78,14 +80,20 @@ double CauchyWeight(const Eigen::Vector3d& normal, const Eigen::Vector3d& direct
 Eigen::Vector3d ReweightedDirection(const std::vector<Eigen::Vector3d>& normals,
                                     const std::optional<Eigen::Vector3d>& start, double scale,
                                     int num_reweighting_rounds) {
+  const double inverse_scale_squared = 1.0 / (scale * scale);
   Eigen::Vector3d direction = start.value_or(Eigen::Vector3d::Zero());
   const int first_round = start ? 1 : 0;
   for (int round = first_round; round <= num_reweighting_rounds + first_round; ++round) {
-    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-    for (const Eigen::Vector3d& normal : normals) {
-      const double w = round == 0 ? 1.0 : CauchyWeight(normal, direction, scale);
-      scatter.noalias() += (w * normal) * normal.transpose();
+    // The scatter's lower triangle, the only one the eigensolver reads.
+    double xx = 0, yx = 0, zx = 0, yy = 0, zy = 0, zz = 0;
+    for (const Eigen::Vector3d& n : normals) {
+      const double w = round == 0 ? 1.0 : CauchyWeight(n, direction, inverse_scale_squared);
+      const double wx = w * n.x(), wy = w * n.y(), wz = w * n.z();
+      xx += wx * n.x(), yx += wy * n.x(), zx += wz * n.x();
+      yy += wy * n.y(), zy += wz * n.y(), zz += wz * n.z();
     }
+    Eigen::Matrix3d scatter;
+    scatter << xx, 0, 0, yx, yy, 0, zx, zy, zz;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
     const Eigen::Vector3d previous = direction;
     direction = solver.eigenvectors().col(0);
@@ -127,7 +135,8 @@ int CheiralSign(const PairRays& pair, const Eigen::Vector3d& direction, double s
                 const PairDirectionOptions& options) {
   int votes_for = 0, votes_against = 0;
   for (size_t k = 0; k < pair.rays1.size(); ++k) {
-    if (CauchyWeight(pair.normals[k], direction, scale) < 0.5) continue;  // wrong matches abstain
+    // Wrong matches (residual beyond the Cauchy scale) abstain.
+    if (std::abs(pair.normals[k].dot(direction)) > scale) continue;
     const std::optional<Eigen::Vector2d> depths =
         TwoRayDepths(pair.rays1[k], pair.rays2[k], direction);
     if (!depths) continue;  // parallel rays: no depth

@@ -265,6 +265,35 @@ TEST(TranslationAveraging, UnconnectedCameraIsReportedNotPositioned) {
   EXPECT_EQ(result.unconstrained_images[0], 99u);
 }
 
+// Two lines that share no point: `first` cameras (ids 1...) and `second` (ids 101...), 1000 m
+// apart.
+Scene TwoLines(int first, int second, std::mt19937& rng) {
+  Scene scene = ForwardLine(first, 300, rng);
+  const Scene other = ForwardLine(second, 300, rng);
+  const Eigen::Vector3d offset(1000, 0, 0);
+  for (const auto& [id, rotation] : other.rotations) {
+    scene.rotations[id + 100] = rotation;
+    scene.centers[id + 100] = other.centers.at(id) + offset;
+  }
+  for (const Eigen::Vector3d& point : other.points) scene.points.push_back(point + offset);
+  return scene;
+}
+
+// Only the largest connected set is solved; of two as large, the one with the smaller ids.
+TEST(TranslationAveraging, TheLargestConnectedSetIsSolvedTiesByTheSmallerFirstImage) {
+  for (const auto& [first, second] : {std::pair{8, 10}, std::pair{10, 8}, std::pair{9, 9}}) {
+    std::mt19937 rng(6);
+    const auto [scene, tracks, directions] = ObserveScene(TwoLines(first, second, rng), 0.0, &rng);
+    const TranslationAveragingResult result =
+        AverageTranslations(scene.rotations, directions, tracks);
+    const bool second_solved = second > first;
+    EXPECT_EQ(result.centers.size(), static_cast<size_t>(second_solved ? second : first));
+    EXPECT_EQ(result.unconstrained_images.size(),
+              static_cast<size_t>(second_solved ? first : second));
+    EXPECT_EQ(result.gauge_image_id, second_solved ? 101u : 1u) << first << " " << second;
+  }
+}
+
 TEST(TranslationAveraging, NoConstraintsIsAnError) {
   std::map<uint32_t, Eigen::Quaterniond> rotations = {{1, Eigen::Quaterniond::Identity()},
                                                       {2, Eigen::Quaterniond::Identity()}};

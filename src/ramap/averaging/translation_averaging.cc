@@ -14,6 +14,7 @@
 #include "ramap/averaging/shifted_cholesky.h"
 #include "ramap/geometry/rotation.h"
 #include "ramap/geometry/triangulation.h"
+#include "ramap/util/disjoint_sets.h"
 #include "ramap/util/error.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/timer.h"
@@ -94,25 +95,6 @@ struct Constraint {
   PointPrediction a;
   PointPrediction b;
   double weight = 1.0;
-};
-
-class UnionFind {
- public:
-  uint32_t Find(uint32_t x) {
-    auto it = parent_.find(x);
-    if (it == parent_.end()) {
-      parent_[x] = x;
-      return x;
-    }
-    if (it->second == x) return x;
-    const uint32_t root = Find(it->second);
-    parent_[x] = root;
-    return root;
-  }
-  void Union(uint32_t a, uint32_t b) { parent_[Find(a)] = Find(b); }
-
- private:
-  std::unordered_map<uint32_t, uint32_t> parent_;
 };
 
 // The cameras of a track that constraints will use, with their world-frame rays: of a long track,
@@ -647,34 +629,42 @@ std::vector<PairRow> UsablePairRows(const std::map<uint32_t, Eigen::Quaterniond>
 }
 
 // The largest set of images that the constraints and pairs connect, increasing (the first is the
-// gauge camera); the other rotated images go to `unconstrained`.
+// gauge camera; of two as large, the one with the smaller first image); the other rotated images
+// go to `unconstrained`.
 std::vector<uint32_t> LargestConnectedImages(
     const std::map<uint32_t, Eigen::Quaterniond>& rotations,
     const std::vector<Constraint>& constraints, const std::vector<PairRow>& pairs,
     std::vector<uint32_t>* unconstrained) {
-  UnionFind components;
-  std::set<uint32_t> constrained;
-  for (const Constraint& c : constraints) {
-    for (const uint32_t id : {c.a.to, c.b.from, c.b.to}) components.Union(c.a.from, id);
-    constrained.insert({c.a.from, c.a.to, c.b.from, c.b.to});
-  }
-  for (const PairRow& pair : pairs) {
-    components.Union(pair.i, pair.j);
-    constrained.insert({pair.i, pair.j});
-  }
-  std::map<uint32_t, int> component_size;
-  for (const uint32_t image_id : constrained) ++component_size[components.Find(image_id)];
-  const uint32_t root =
-      std::max_element(component_size.begin(), component_size.end(),
-                       [](const auto& x, const auto& y) { return x.second < y.second; })
-          ->first;
-  std::vector<uint32_t> solved;
+  // Images by their position in `rotations`, in increasing id order.
+  std::vector<uint32_t> ids;
+  std::unordered_map<uint32_t, uint32_t> index;
   for (const auto& [image_id, rotation] : rotations) {
     (void)rotation;
-    if (constrained.count(image_id) && components.Find(image_id) == root) {
-      solved.push_back(image_id);
+    index[image_id] = static_cast<uint32_t>(ids.size());
+    ids.push_back(image_id);
+  }
+  DisjointSets components(ids.size());
+  std::vector<bool> constrained(ids.size(), false);
+  const auto link = [&](uint32_t image_id1, uint32_t image_id2) {
+    const uint32_t a = index.at(image_id1), b = index.at(image_id2);
+    components.Union(a, b);
+    constrained[a] = constrained[b] = true;
+  };
+  for (const Constraint& c : constraints) {
+    for (const uint32_t id : {c.a.to, c.b.from, c.b.to}) link(c.a.from, id);
+  }
+  for (const PairRow& pair : pairs) link(pair.i, pair.j);
+  const std::vector<uint32_t> roots = components.Roots();
+  std::vector<int> component_size(ids.size(), 0);
+  for (size_t k = 0; k < ids.size(); ++k) component_size[roots[k]] += constrained[k];
+  const uint32_t largest = static_cast<uint32_t>(
+      std::max_element(component_size.begin(), component_size.end()) - component_size.begin());
+  std::vector<uint32_t> solved;
+  for (size_t k = 0; k < ids.size(); ++k) {
+    if (constrained[k] && roots[k] == largest) {
+      solved.push_back(ids[k]);
     } else {
-      unconstrained->push_back(image_id);
+      unconstrained->push_back(ids[k]);
     }
   }
   return solved;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <limits>
 #include <random>
 
 #include "ramap/util/error.h"
@@ -43,6 +44,19 @@ TEST_P(ShiftedCholeskyTest, SolvesADefiniteSystemWithTheFirstShift) {
   const Eigen::SparseMatrix<double> doubled = 2.0 * matrix;
   cholesky.Factorize(doubled);
   EXPECT_LT((cholesky.Solve(rhs) - 0.5 * truth).norm(), 1e-6);
+  // The lower triangle alone, as translation averaging's reduced normal equations hold it.
+  const Eigen::SparseMatrix<double> lower = matrix.triangularView<Eigen::Lower>();
+  ShiftedCholesky from_lower(lower, Dense(GetParam()));
+  from_lower.Factorize(lower);
+  EXPECT_LT((from_lower.Solve(rhs) - truth).norm(), 1e-6);
+}
+
+// A NaN entry is a failed factorisation, not a NaN solution.
+TEST_P(ShiftedCholeskyTest, ANaNEntryIsAFailure) {
+  Eigen::SparseMatrix<double> matrix = BandedDefinite(10);
+  matrix.coeffRef(4, 4) = std::numeric_limits<double>::quiet_NaN();
+  ShiftedCholesky cholesky(matrix, Dense(GetParam()));
+  EXPECT_THROW(cholesky.Factorize(matrix), StageFailure);
 }
 
 // The normal equations of a free camera's gauge: singular, made definite by the first shift.

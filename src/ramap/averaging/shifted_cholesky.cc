@@ -1,6 +1,7 @@
 #include "ramap/averaging/shifted_cholesky.h"
 
 #include <algorithm>
+#include <cmath>
 #include <initializer_list>
 
 #include "ramap/util/error.h"
@@ -37,10 +38,18 @@ bool ShiftedCholesky::TryFactorize(const Eigen::SparseMatrix<double>& matrix, do
   }
   dense_matrix_.diagonal().array() += shift;
   dense_.compute(dense_matrix_);
-  return dense_.info() == Eigen::Success;
+  // LLT rejects a pivot only when it is <= 0: a NaN one passes, and would spread into the solution.
+  return dense_.info() == Eigen::Success && dense_.matrixLLT().diagonal().allFinite();
 }
 
 double ShiftedCholesky::Factorize(const Eigen::SparseMatrix<double>& matrix) {
+  // No shift makes a matrix with a NaN or an infinity factorisable.
+  for (int c = 0; c < matrix.outerSize(); ++c) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(matrix, c); it; ++it) {
+      if (!std::isfinite(it.value()))
+        throw StageFailure("translation averaging: non-finite normal equations");
+    }
+  }
   if (TryFactorize(matrix, kFirstShift)) return kFirstShift;
   const double scale = std::max(1.0, matrix.diagonal().cwiseAbs().maxCoeff());
   for (const double relative_shift : {1e-10, 1e-8, 1e-6, 1e-4}) {

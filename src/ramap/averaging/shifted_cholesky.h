@@ -35,7 +35,7 @@ class ShiftedCholesky {
   // model), the shift grows from 1e-10 of the largest diagonal entry until the factorisation
   // succeeds. Not relative from the start: exact position priors weigh ~1e8 and a relative shift
   // would pull every camera by millimetres. Returns the shift; throws StageFailure when no shift
-  // works.
+  // works or an entry is not finite.
   double Factorize(const Eigen::SparseMatrix<double>& matrix);
 
   // (matrix + shift I)^-1 rhs with the last factorisation.

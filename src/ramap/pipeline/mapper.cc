@@ -47,7 +47,7 @@ std::optional<Reconstruction> ReconstructComponent(const MapperContext& context,
   const MapperOptions& options = context.options;
   MapperComponentSummary component;
 
-  // The tracks, meanwhile, on the other core.
+  // The tracks, meanwhile, on a thread of their own (with more than one mapper thread).
   EarlyTracks early_tracks = StartComponentTracks(context, graph);
   // 3. Rotation averaging: keyframe windows first for sequences, the whole graph for collections.
   std::map<uint32_t, Eigen::Quaterniond> rotations;

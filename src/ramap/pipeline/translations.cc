@@ -261,6 +261,7 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
   }
   result.tracks = std::move(built.tracks);
   result.translation_tracks = std::move(built.translation_tracks);
+  result.tracks_built_early = early_fits;
   const std::vector<PairDirection>& directions = result.directions;
   TranslationAveragingResult& positions = result.positions;
   std::string how;

@@ -30,6 +30,7 @@ struct ComponentTranslations {
   TranslationAveragingResult positions;
   // Kept pure-rotation edges, both ways: they place the images nothing else positions.
   std::multimap<uint32_t, uint32_t> pure_rotation_neighbours;
+  bool tracks_built_early = false;  // the EarlyTracks fitted what rotation averaging kept
 };
 
 // Feature tracks and their observations' bearings.
@@ -39,11 +40,11 @@ struct TracksWithBearings {
 };
 
 // The tracks of a whole component, built before its rotations are averaged: rotation averaging
-// runs on one thread, and leaves the other core to them. They are the tracks translation
-// averaging needs when rotation averaging keeps every edge and rotates every image, the common
-// case (4541-frame drive: translation averaging 2.43-2.78 -> 1.87-2.25 s, alternated with the
-// binary before; the tracks and their bearings take 1.0-1.3 s of that thread); otherwise
-// translation averaging builds them again over what it kept.
+// runs mostly on one thread (1.06x faster with a second), and leaves the other core to them. They
+// are the tracks translation averaging needs when rotation averaging keeps every edge and rotates
+// every image, the common case (4541-frame drive: translation averaging 2.43-2.78 -> 1.87-2.25 s,
+// alternated with the binary before; the tracks and their bearings take 1.0-1.3 s of that thread);
+// otherwise translation averaging builds them again over what it kept.
 struct EarlyTracks {
   std::set<uint64_t> pair_ids;   // the edges they are built over
   std::set<uint32_t> image_ids;  // the images whose bearings they hold

@@ -59,6 +59,15 @@ class TranslationStage : public ::testing::TestWithParam<int> {
                          priors_};
   }
 
+  // Stage 4 as the mapper runs it: the early tracks started over the whole graph, then
+  // translation averaging of what `status` keeps.
+  std::optional<ComponentTranslations> Translate(const std::vector<EdgeStatus>& status) {
+    const MapperContext context = Context();
+    EarlyTracks early = StartComponentTracks(context, graph_);
+    MapperComponentSummary component;
+    return AverageComponentTranslations(context, graph_, status, rotations_, &early, &component);
+  }
+
   // The tracks of the graph's edges that `status` keeps.
   std::vector<Track> TracksOfKept(const std::vector<EdgeStatus>& status) const {
     std::set<uint64_t> pair_ids;
@@ -84,12 +93,8 @@ class TranslationStage : public ::testing::TestWithParam<int> {
 };
 
 TEST_P(TranslationStage, EarlyTracksServeWhenEveryEdgeIsKept) {
-  const MapperContext context = Context();
   const std::vector<EdgeStatus> status(graph_.edges.size(), EdgeStatus::kKept);
-  EarlyTracks early = StartComponentTracks(context, graph_);
-  MapperComponentSummary component;
-  const std::optional<ComponentTranslations> translations =
-      AverageComponentTranslations(context, graph_, status, rotations_, &early, &component);
+  const std::optional<ComponentTranslations> translations = Translate(status);
   ASSERT_TRUE(translations);
   EXPECT_TRUE(translations->tracks_built_early);
   EXPECT_TRUE(SameTracks(translations->tracks, TracksOfKept(status)));
@@ -99,7 +104,6 @@ TEST_P(TranslationStage, EarlyTracksServeWhenEveryEdgeIsKept) {
 // The last frame cut off, as rotation averaging leaves a frame whose edges it pruned: its
 // matches must not join the tracks.
 TEST_P(TranslationStage, TracksAreBuiltAgainOverTheKeptEdgesWhenEdgesArePruned) {
-  const MapperContext context = Context();
   const uint32_t last = order_.back();
   std::vector<EdgeStatus> status(graph_.edges.size(), EdgeStatus::kKept);
   for (size_t e = 0; e < graph_.edges.size(); ++e) {
@@ -112,10 +116,7 @@ TEST_P(TranslationStage, TracksAreBuiltAgainOverTheKeptEdgesWhenEdgesArePruned) 
   const std::vector<EdgeStatus> all_kept(graph_.edges.size(), EdgeStatus::kKept);
   ASSERT_FALSE(SameTracks(kept_tracks, TracksOfKept(all_kept)));
 
-  EarlyTracks early = StartComponentTracks(context, graph_);
-  MapperComponentSummary component;
-  const std::optional<ComponentTranslations> translations =
-      AverageComponentTranslations(context, graph_, status, rotations_, &early, &component);
+  const std::optional<ComponentTranslations> translations = Translate(status);
   ASSERT_TRUE(translations);
   EXPECT_FALSE(translations->tracks_built_early);
   EXPECT_TRUE(SameTracks(translations->tracks, kept_tracks));

@@ -115,6 +115,12 @@ std::set<uint32_t> RotatedImages(const std::map<uint32_t, Eigen::Quaterniond>& w
   return image_ids;
 }
 
+// Tracks are built on a thread of their own with more than one mapper thread, otherwise when first
+// asked for.
+std::launch TracksLaunch(const MapperContext& context) {
+  return context.options.num_threads > 1 ? std::launch::async : std::launch::deferred;
+}
+
 // Whether the early tracks were built over exactly the `kept` edges and the `rotated` images.
 bool EarlyTracksFit(const EarlyTracks& early, const KeptEdges& kept,
                     const std::set<uint32_t>& rotated) {
@@ -127,8 +133,7 @@ bool EarlyTracksFit(const EarlyTracks& early, const KeptEdges& kept,
 std::future<TracksWithBearings> TracksOfKeptEdges(const MapperContext& context,
                                                   const KeptEdges& kept, EarlyTracks* early) {
   early->built = {};  // their memory freed (an async build is waited for)
-  const auto policy = context.options.num_threads > 1 ? std::launch::async : std::launch::deferred;
-  return std::async(policy, [&context, &kept] {
+  return std::async(TracksLaunch(context), [&context, &kept] {
     return TracksWithBearings{BuildTracks(context.database.two_view_geometries, kept.pair_ids), {}};
   });
 }
@@ -228,11 +233,10 @@ EarlyTracks StartComponentTracks(const MapperContext& context, const RotationGra
     early.pair_ids.insert(ImagePairToPairId(pair.image_id1, pair.image_id2));
   }
   early.image_ids.insert(graph.node_ids.begin(), graph.node_ids.end());
-  const auto policy = context.options.num_threads > 1 ? std::launch::async : std::launch::deferred;
   // The sets are copied: `early` moves when returned. One thread for the bearings: rotation
   // averaging holds the other.
-  early.built =
-      std::async(policy, [&context, pair_ids = early.pair_ids, image_ids = early.image_ids] {
+  early.built = std::async(
+      TracksLaunch(context), [&context, pair_ids = early.pair_ids, image_ids = early.image_ids] {
         TracksWithBearings built;
         built.tracks = BuildTracks(context.database.two_view_geometries, pair_ids);
         built.translation_tracks = TranslationTracks(built.tracks, context.bearings, image_ids, 1);

@@ -74,6 +74,11 @@ void AddRotationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptionTe
   app.add_option("--RotationAveraging.max_irls_iterations", ra.max_irls_iterations)
       ->capture_default_str()
       ->check(AtLeast(0));
+  app.add_option("--RotationAveraging.max_pcg_iterations", ra.max_pcg_iterations,
+                 "IRLS steps reuse the last factorisation for up to this many conjugate-gradient "
+                 "iterations before refactorising (0: refactorise every step)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--RotationAveraging.loss", text->loss, "geman_mcclure|l1_half")
       ->capture_default_str();
   app.add_option("--RotationAveraging.sigma_deg", ra.sigma_deg)
@@ -412,6 +417,7 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
       {"RotationAveraging",
        {{"max_l1_iterations", ra.max_l1_iterations},
         {"max_irls_iterations", ra.max_irls_iterations},
+        {"max_pcg_iterations", ra.max_pcg_iterations},
         {"loss", ra.loss == RobustLoss::kGemanMcClure ? "geman_mcclure" : "l1_half"},
         {"sigma_deg", ra.sigma_deg},
         {"pruning", ra.pruning_mode == PruningThresholdMode::kFixedAngle ? "fixed" : "duality"},

@@ -244,6 +244,33 @@ TEST(RotationAveraging, WindowsThenGlobalMatchesGlobal) {
   EXPECT_NEAR(windowed_median, global_median, 0.1 * global_median);
 }
 
+// IRLS steps solved by conjugate gradients on an earlier factor reach the rotations that
+// refactorising at every step reaches, with fewer factorisations.
+TEST(RotationAveraging, ConjugateGradientStepsMatchRefactorising) {
+  const SyntheticRotationGraph synthetic = PathWithLoops(2.0, 0.1, 21);
+  RotationAveragingOptions refactorise;
+  refactorise.max_pcg_iterations = 0;
+  refactorise.compute_certificate = false;
+  RotationAveragingOptions pcg = refactorise;
+  pcg.max_pcg_iterations = 40;
+  const RotationAveragingResult direct = AverageRotations(synthetic.graph, refactorise);
+  const RotationAveragingResult iterated = AverageRotations(synthetic.graph, pcg);
+  ASSERT_EQ(direct.estimated, iterated.estimated);
+  ASSERT_EQ(direct.edge_status, iterated.edge_status);
+  double max_difference_deg = 0.0;
+  for (size_t k = 0; k < direct.rotations.size(); ++k) {
+    max_difference_deg =
+        std::max(max_difference_deg,
+                 direct.rotations[k].angularDistance(iterated.rotations[k]) * 180 / M_PI);
+  }
+  EXPECT_LT(max_difference_deg, 1e-4);
+  EXPECT_LT(iterated.factorizations, direct.factorizations);
+  EXPECT_GE(direct.factorizations, direct.l1_iterations + direct.irls_iterations);
+  std::cout << "factorisations: " << direct.factorizations << " refactorising, "
+            << iterated.factorizations << " with conjugate gradients; max difference "
+            << max_difference_deg << " deg\n";
+}
+
 // Weak edges (a twentieth of the others' inlier counts) that are a few degrees off, under the
 // robust loss's scale so that IRLS alone keeps them at full weight, as weak far-apart pairs come
 // out on real drives: weighting by the counts keeps them from bending the sequence.

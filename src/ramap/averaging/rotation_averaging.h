@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "ramap/averaging/preconditioned_cg.h"
 #include "ramap/graph/keyframes.h"
 #include "ramap/graph/rotation_graph.h"
 
@@ -57,6 +58,12 @@ struct RotationAveragingOptions {
   int max_irls_iterations = 100;
   // IRLS stops when the RMS node update falls below this (degrees).
   double irls_step_tolerance_deg = 1e-6;
+  // Each reweighted step first solves its tangent-space system by conjugate gradients,
+  // preconditioned by the last factorisation and started from the last step, for at most this
+  // many iterations (averaging/preconditioned_cg.h), and refactorises only when they do not reach
+  // a residual of pcg_tolerance times the right-hand side's. 0: refactorise at every step.
+  int max_pcg_iterations = 40;
+  double pcg_tolerance = 1e-8;
   RobustLoss loss = RobustLoss::kGemanMcClure;
   // Scale of the robust loss (degrees); Chatterjee & Govindu (TPAMI 2018) use 5 deg.
   double sigma_deg = 5.0;
@@ -141,6 +148,7 @@ struct RotationAveragingResult {
   std::vector<PrunedEdge> pruned_edges;       // in pruning order
   int l1_iterations = 0;
   int irls_iterations = 0;  // over all IRLS runs
+  int factorizations = 0;   // CHOLMOD factorisations of L1 and all IRLS runs (not the certificate)
   int pruning_rounds = 0;   // rounds that removed an edge or re-initialised a node
   std::vector<uint32_t> reinitialized_nodes;  // suspect nodes re-initialised during pruning
   RotationCertificate certificate;

@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "ramap/averaging/block_normal_equations.h"
+#include "ramap/averaging/preconditioned_cg.h"
 #include "ramap/averaging/shifted_cholesky.h"
 #include "ramap/geometry/rotation.h"
 #include "ramap/geometry/triangulation.h"
@@ -236,10 +237,6 @@ Eigen::VectorXd SoftThreshold(const Eigen::VectorXd& v, double kappa) {
   return (v.array() - kappa).max(0.0) - (-v.array() - kappa).max(0.0);
 }
 
-// Conjugate-gradient iterations before their convergence rate forecasts whether the rest reach
-// the tolerance (PositionSolver::SolveWithLastFactor).
-constexpr int kPcgIterationsBeforeForecast = 3;
-
 Eigen::VectorXd ProjectScales(Eigen::VectorXd v, const StackedSystem& system) {
   v.segment(system.num_position_cols, system.num_pair_scales) =
       v.segment(system.num_position_cols, system.num_pair_scales).cwiseMax(system.scale_bound);
@@ -413,8 +410,7 @@ class PositionSolver {
  public:
   PositionSolver(const StackedSystem& system, const TranslationAveragingOptions& options)
       : equations_(system.B, ExtraColumns(system)),
-        max_pcg_iterations_(options.max_pcg_iterations),
-        pcg_tolerance_(options.pcg_tolerance),
+        pcg_{options.max_pcg_iterations, options.pcg_tolerance},
         factorization_(equations_.pattern()) {}
 
   // v = (positions, scales, constants) minimising sum_b w_b |B_b v|^2 with the held scales at
@@ -444,43 +440,19 @@ class PositionSolver {
   // becomes the result. False, last_solution_ unchanged, when there is no factor yet or the
   // residual does not reach the tolerance in time.
   bool SolveWithLastFactor() {
-    if (num_factorizations_ == 0 || max_pcg_iterations_ == 0) return false;
+    if (num_factorizations_ == 0) return false;
     const auto normal = normal_.selfadjointView<Eigen::Lower>();
     // The same shift as the last factorisation's (ShiftedCholesky::Factorize), so that a step
     // solves the system a refactorisation would have.
-    const auto apply = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+    const auto apply = [&](const Eigen::MatrixXd& v) -> Eigen::MatrixXd {
       return normal * v + shift_ * v;
     };
-    Eigen::VectorXd u = last_solution_;
-    Eigen::VectorXd residual = rhs_ - apply(u);
-    const double target = pcg_tolerance_ * rhs_.norm();
-    Eigen::VectorXd preconditioned = factorization_.Solve(residual);
-    Eigen::VectorXd direction = preconditioned;
-    double product = residual.dot(preconditioned);
-    const double initial = residual.norm();
-    for (int iteration = 0; iteration < max_pcg_iterations_; ++iteration) {
-      const double norm = residual.norm();
-      if (norm <= target) break;
-      // A step whose reweighting moved the equations far converges slowly from the first
-      // iterations on: stop as soon as the mean rate so far would not reach the target in time.
-      if (iteration >= kPcgIterationsBeforeForecast) {
-        const double rate = std::pow(norm / initial, 1.0 / iteration);
-        if (!(rate < 1) ||
-            iteration + std::log(target / norm) / std::log(rate) > max_pcg_iterations_) {
-          break;
-        }
-      }
-      const Eigen::VectorXd applied = apply(direction);
-      const double step = product / direction.dot(applied);
-      u += step * direction;
-      residual -= step * applied;
-      preconditioned = factorization_.Solve(residual);
-      const double next_product = residual.dot(preconditioned);
-      direction = preconditioned + (next_product / product) * direction;
-      product = next_product;
-    }
-    if (!(residual.norm() <= target) || !u.allFinite()) return false;
-    last_solution_ = std::move(u);
+    const auto precondition = [&](const Eigen::MatrixXd& r) -> Eigen::MatrixXd {
+      return factorization_.Solve(r.col(0));
+    };
+    Eigen::MatrixXd solution = last_solution_;
+    if (!SolveByPreconditionedCg(apply, precondition, rhs_, pcg_, &solution)) return false;
+    last_solution_ = solution.col(0);
     return true;
   }
 
@@ -490,8 +462,7 @@ class PositionSolver {
   Eigen::VectorXd last_solution_;  // of the reduced equations
   double shift_ = 0;               // of the last factorisation
   int num_factorizations_ = 0;
-  int max_pcg_iterations_ = 0;
-  double pcg_tolerance_ = 0;
+  PreconditionedCgOptions pcg_;
   ShiftedCholesky factorization_;  // after equations_, whose pattern it analyses
 };
 

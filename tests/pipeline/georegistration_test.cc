@@ -140,7 +140,7 @@ TEST(Georegistration, TranslationAveragingWithExactPriorsLandsOnThem) {
     if (id % 3 == 0) priors.push_back({id, center, Eigen::Matrix3d::Identity() / 0.5});
   }
   const TranslationAveragingResult result =
-      AverageTranslations(rotations, directions, {}, TranslationAveragingOptions(), priors);
+      AverageTranslations(rotations, directions, {}, {}, TranslationAveragingOptions(), priors);
   EXPECT_EQ(result.num_priors_used, 20);
   ASSERT_EQ(result.centers.size(), 60u);
   for (const auto& [id, center] : result.centers)

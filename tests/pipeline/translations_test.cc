@@ -120,8 +120,8 @@ TEST_P(TranslationStage, TracksAreBuiltAgainOverTheKeptEdgesWhenEdgesArePruned) 
   ASSERT_TRUE(translations);
   EXPECT_FALSE(translations->tracks_built_early);
   EXPECT_TRUE(SameTracks(translations->tracks, kept_tracks));
-  for (const TranslationTrack& track : translations->translation_tracks) {
-    for (const TrackObservation& observation : track) EXPECT_NE(observation.image_id, last);
+  for (const Track& track : translations->tracks) {
+    for (const TrackElement& element : track) EXPECT_NE(element.image_id, last);
   }
   EXPECT_EQ(translations->positions.centers.size(), 19u);
 }

@@ -98,28 +98,56 @@ struct Constraint {
   double weight = 1.0;
 };
 
+// What a track's observation needs of its camera: the rotation and the keypoints' bearings.
+struct CameraRays {
+  const Eigen::Quaterniond* rotation = nullptr;
+  const std::vector<Eigen::Vector3d>* bearings = nullptr;
+};
+
+// The cameras of `rotations` that have bearings, looked up once per camera rather than twice per
+// observation.
+std::unordered_map<uint32_t, CameraRays> RotatedCameraRays(
+    const std::map<uint32_t, Eigen::Quaterniond>& rotations, const KeypointBearings& bearings) {
+  std::unordered_map<uint32_t, CameraRays> cameras;
+  cameras.reserve(rotations.size());
+  for (const auto& [image_id, rotation] : rotations) {
+    const auto found = bearings.find(image_id);
+    if (found != bearings.end()) cameras[image_id] = {&rotation, &found->second};
+  }
+  return cameras;
+}
+
 // The cameras of a track that constraints will use, with their world-frame rays: of a long track,
 // those with the fewest constraints so far, so that every camera gets its share and none is left
 // out by the cap.
-void SelectTrackRays(const TranslationTrack& track,
-                     const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+void SelectTrackRays(const Track& track, const std::unordered_map<uint32_t, CameraRays>& cameras,
                      const TranslationAveragingOptions& options,
                      std::unordered_map<uint32_t, int>* usage, std::vector<uint32_t>* ids,
                      std::vector<Eigen::Vector3d>* rays) {
-  std::vector<const TrackObservation*> usable;
-  for (const TrackObservation& observation : track) {
-    if (rotations.count(observation.image_id) && observation.bearing.allFinite()) {
-      usable.push_back(&observation);
-    }
+  struct Usable {
+    int uses;  // the camera's constraints so far
+    const TrackElement* element;
+    const CameraRays* camera;
+  };
+  std::vector<Usable> usable;
+  usable.reserve(track.size());
+  for (const TrackElement& element : track) {
+    const auto camera = cameras.find(element.image_id);
+    if (camera == cameras.end() || element.point2D_idx >= camera->second.bearings->size()) continue;
+    usable.push_back({(*usage)[element.image_id], &element, &camera->second});
   }
-  std::stable_sort(usable.begin(), usable.end(), [&](const auto* x, const auto* y) {
-    return (*usage)[x->image_id] < (*usage)[y->image_id];
-  });
-  for (const TrackObservation* observation : usable) {
-    if (std::find(ids->begin(), ids->end(), observation->image_id) != ids->end()) continue;
-    ids->push_back(observation->image_id);
-    rays->push_back(
-        (rotations.at(observation->image_id).conjugate() * observation->bearing).normalized());
+  std::stable_sort(usable.begin(), usable.end(),
+                   [](const Usable& x, const Usable& y) { return x.uses < y.uses; });
+  // The bearings are read only for the cameras taken: they are scattered over every image's
+  // keypoints, and a long track's others would each cost a cache miss.
+  for (const Usable& observation : usable) {
+    const uint32_t image_id = observation.element->image_id;
+    if (std::find(ids->begin(), ids->end(), image_id) != ids->end()) continue;
+    const Eigen::Vector3d& bearing =
+        (*observation.camera->bearings)[observation.element->point2D_idx];
+    if (!bearing.allFinite()) continue;
+    ids->push_back(image_id);
+    rays->push_back((observation.camera->rotation->conjugate() * bearing).normalized());
     if (static_cast<int>(ids->size()) >= options.max_observations_per_track) break;
   }
 }
@@ -179,11 +207,14 @@ int AddTrackConstraints(const std::vector<uint32_t>& ids, const std::vector<Eige
 
 std::vector<Constraint> BuildConstraints(const std::map<uint32_t, Eigen::Quaterniond>& rotations,
                                          const DirectionTable& directions,
-                                         const std::vector<TranslationTrack>& tracks,
+                                         const std::vector<Track>& tracks,
+                                         const KeypointBearings& bearings,
                                          const TranslationAveragingOptions& options,
                                          int* num_tracks_used) {
+  const std::unordered_map<uint32_t, CameraRays> cameras = RotatedCameraRays(rotations, bearings);
   const double min_angle = options.min_triangulation_angle_deg * kDegToRad;
-  // Longer tracks first: they carry more constraints per point.
+  // Longer tracks first (counting every observation, usable or not): they carry more constraints
+  // per point.
   std::vector<size_t> order(tracks.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
@@ -195,10 +226,11 @@ std::vector<Constraint> BuildConstraints(const std::map<uint32_t, Eigen::Quatern
   // Past max_num_tracks, a track is still used while one of its cameras has fewer than
   // min_tracks_per_image tracks: a global cap alone gives the longest tracks, which cluster (slow
   // stretches, revisits) and leave the rest of a long drive without any.
-  const auto wanted = [&](const TranslationTrack& track) {
+  const auto wanted = [&](const Track& track) {
     if (*num_tracks_used < options.max_num_tracks) return true;
-    return std::any_of(track.begin(), track.end(), [&](const TrackObservation& observation) {
-      const auto found = tracks_of.find(observation.image_id);
+    return std::any_of(track.begin(), track.end(), [&](const TrackElement& element) {
+      if (!cameras.count(element.image_id)) return false;
+      const auto found = tracks_of.find(element.image_id);
       return found == tracks_of.end() || found->second < options.min_tracks_per_image;
     });
   };
@@ -210,7 +242,7 @@ std::vector<Constraint> BuildConstraints(const std::map<uint32_t, Eigen::Quatern
     if (quota && !wanted(tracks[track_index])) continue;
     std::vector<uint32_t> ids;
     std::vector<Eigen::Vector3d> rays;
-    SelectTrackRays(tracks[track_index], rotations, options, &usage, &ids, &rays);
+    SelectTrackRays(tracks[track_index], cameras, options, &usage, &ids, &rays);
     if (ids.size() < 2) continue;
     if (AddTrackConstraints(ids, rays, directions, min_angle, &usage, &constraints) == 0) continue;
     ++*num_tracks_used;
@@ -749,14 +781,15 @@ Eigen::VectorXd LeastSquaresStart(const StackedSystem& system, const std::vector
 
 TranslationAveragingResult AverageTranslations(
     const std::map<uint32_t, Eigen::Quaterniond>& rotations,
-    const std::vector<PairDirection>& pair_directions, const std::vector<TranslationTrack>& tracks,
-    const TranslationAveragingOptions& options, const std::vector<CenterPrior>& priors) {
+    const std::vector<PairDirection>& pair_directions, const std::vector<Track>& tracks,
+    const KeypointBearings& bearings, const TranslationAveragingOptions& options,
+    const std::vector<CenterPrior>& priors) {
   options.Check();
   Timer timer;
   TranslationAveragingResult result;
   const DirectionTable directions(pair_directions);
   std::vector<Constraint> constraints =
-      BuildConstraints(rotations, directions, tracks, options, &result.num_tracks_used);
+      BuildConstraints(rotations, directions, tracks, bearings, options, &result.num_tracks_used);
   std::vector<PairRow> pairs = UsablePairRows(rotations, pair_directions);
   if (pairs.empty()) {
     throw StageFailure("translation averaging: no pair direction (every pair is a pure rotation?)");

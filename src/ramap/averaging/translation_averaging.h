@@ -35,14 +35,10 @@
 #include <string>
 #include <vector>
 
+#include "ramap/graph/tracks.h"
+#include "ramap/scene/features.h"
+
 namespace ramap {
-
-struct TrackObservation {
-  uint32_t image_id = 0;
-  Eigen::Vector3d bearing = Eigen::Vector3d::UnitZ();  // unit, camera frame
-};
-
-using TranslationTrack = std::vector<TrackObservation>;
 
 // World-frame unit direction of c2 - c1 for an image pair.
 struct PairDirection {
@@ -179,12 +175,15 @@ struct TranslationAveragingResult {
   double seconds = 0.0;
 };
 
-// Positions for the cameras of `rotations` (cam_from_world). Cameras linked by no constraint are
-// listed in `unconstrained_images`. `priors` of cameras that get positioned are used (see above).
-// Throws StageFailure (util/error.h) when fewer than two cameras can be positioned.
+// Positions for the cameras of `rotations` (cam_from_world), from the pair directions and the
+// feature tracks, whose keypoints' rays are looked up in `bearings` (a track's observations by
+// images without a rotation are not used). Cameras linked by no constraint are listed in
+// `unconstrained_images`. `priors` of cameras that get positioned are used (see above). Throws
+// StageFailure (util/error.h) when fewer than two cameras can be positioned.
 TranslationAveragingResult AverageTranslations(
     const std::map<uint32_t, Eigen::Quaterniond>& rotations,
-    const std::vector<PairDirection>& pair_directions, const std::vector<TranslationTrack>& tracks,
+    const std::vector<PairDirection>& pair_directions, const std::vector<Track>& tracks,
+    const KeypointBearings& bearings,
     const TranslationAveragingOptions& options = TranslationAveragingOptions(),
     const std::vector<CenterPrior>& priors = {});
 

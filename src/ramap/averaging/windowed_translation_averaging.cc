@@ -55,7 +55,7 @@ WindowInputs SplitIntoWindows(const std::vector<uint32_t>& ordered,
                               const std::vector<FrameRange>& ranges,
                               const std::map<uint32_t, Eigen::Quaterniond>& rotations,
                               const std::vector<PairDirection>& pair_directions,
-                              const std::vector<TranslationTrack>& tracks) {
+                              const std::vector<Track>& tracks) {
   WindowInputs inputs;
   inputs.rotations.resize(ranges.size());
   inputs.directions.resize(ranges.size());
@@ -82,8 +82,8 @@ WindowInputs SplitIntoWindows(const std::vector<uint32_t>& ordered,
   std::vector<int> touched;
   for (size_t t = 0; t < tracks.size(); ++t) {
     touched.clear();
-    for (const TrackObservation& observation : tracks[t]) {
-      if (const std::vector<int>* in = windows_of(observation.image_id)) {
+    for (const TrackElement& element : tracks[t]) {
+      if (const std::vector<int>* in = windows_of(element.image_id)) {
         touched.insert(touched.end(), in->begin(), in->end());
       }
     }
@@ -98,20 +98,21 @@ WindowInputs SplitIntoWindows(const std::vector<uint32_t>& ordered,
 // share of the track cap as large as its share of the images (the per-image quota stays).
 TranslationAveragingResult SolveWindow(size_t w, const WindowInputs& inputs,
                                        const std::vector<PairDirection>& pair_directions,
-                                       const std::vector<TranslationTrack>& tracks,
+                                       const std::vector<Track>& tracks,
+                                       const KeypointBearings& bearings,
                                        const TranslationAveragingOptions& options,
                                        size_t num_images) {
   const std::map<uint32_t, Eigen::Quaterniond>& rotations = inputs.rotations[w];
   std::vector<PairDirection> directions;
   directions.reserve(inputs.directions[w].size());
   for (const size_t k : inputs.directions[w]) directions.push_back(pair_directions[k]);
-  std::vector<TranslationTrack> parts;
+  std::vector<Track> parts;
   parts.reserve(inputs.tracks[w].size());
-  TranslationTrack part;
+  Track part;
   for (const size_t t : inputs.tracks[w]) {
     part.clear();
-    for (const TrackObservation& observation : tracks[t]) {
-      if (rotations.count(observation.image_id)) part.push_back(observation);
+    for (const TrackElement& element : tracks[t]) {
+      if (rotations.count(element.image_id)) part.push_back(element);
     }
     if (part.size() >= 2) parts.push_back(part);
   }
@@ -119,14 +120,14 @@ TranslationAveragingResult SolveWindow(size_t w, const WindowInputs& inputs,
   local.max_num_tracks = std::max<int>(
       1, static_cast<int>(std::lround(static_cast<double>(options.max_num_tracks) *
                                       rotations.size() / std::max<size_t>(1, num_images))));
-  return AverageTranslations(rotations, directions, parts, local);
+  return AverageTranslations(rotations, directions, parts, bearings, local);
 }
 
 // Solves the windows of `ranges` that `solved` does not hold yet, on `num_threads` threads. A
 // window whose solve fails gets no centres.
 void SolveNewWindows(const std::vector<FrameRange>& ranges, const WindowInputs& inputs,
                      const std::vector<PairDirection>& pair_directions,
-                     const std::vector<TranslationTrack>& tracks,
+                     const std::vector<Track>& tracks, const KeypointBearings& bearings,
                      const TranslationAveragingOptions& options, int num_threads,
                      std::map<FrameRange, TranslationAveragingResult>* solved) {
   std::vector<size_t> missing;
@@ -138,7 +139,8 @@ void SolveNewWindows(const std::vector<FrameRange>& ranges, const WindowInputs& 
   const SingleBlasThread single_blas_thread;  // the windows are small and solved side by side
   ParallelFor(missing.size(), num_threads, [&](size_t k) {
     try {
-      results[k] = SolveWindow(missing[k], inputs, pair_directions, tracks, options, num_images);
+      results[k] =
+          SolveWindow(missing[k], inputs, pair_directions, tracks, bearings, options, num_images);
     } catch (const StageFailure&) {
       results[k] = TranslationAveragingResult();  // no centres: merged with its neighbours
     }
@@ -249,9 +251,9 @@ void WindowedTranslationOptions::Check() const {
 
 TranslationAveragingResult AverageTranslationsInWindows(
     const std::vector<uint32_t>& order, const std::map<uint32_t, Eigen::Quaterniond>& rotations,
-    const std::vector<PairDirection>& pair_directions, const std::vector<TranslationTrack>& tracks,
-    const TranslationAveragingOptions& options, const WindowedTranslationOptions& windowed,
-    int num_threads) {
+    const std::vector<PairDirection>& pair_directions, const std::vector<Track>& tracks,
+    const KeypointBearings& bearings, const TranslationAveragingOptions& options,
+    const WindowedTranslationOptions& windowed, int num_threads) {
   options.Check();
   windowed.Check();
   Timer timer;
@@ -269,7 +271,8 @@ TranslationAveragingResult AverageTranslationsInWindows(
   WindowInputs inputs;
   do {
     inputs = SplitIntoWindows(ordered, ranges, rotations, pair_directions, tracks);
-    SolveNewWindows(ranges, inputs, pair_directions, tracks, window_options, num_threads, &solved);
+    SolveNewWindows(ranges, inputs, pair_directions, tracks, bearings, window_options, num_threads,
+                    &solved);
   } while (MergeUntiedWindows(solved, &ranges));
   TranslationAveragingResult result;
   std::vector<std::map<uint32_t, Eigen::Vector3d>> local;

@@ -58,8 +58,8 @@ struct WindowedTranslationOptions {
 // the windows cannot be joined (window_alignment.h), so that the caller can solve in one system.
 TranslationAveragingResult AverageTranslationsInWindows(
     const std::vector<uint32_t>& order, const std::map<uint32_t, Eigen::Quaterniond>& rotations,
-    const std::vector<PairDirection>& pair_directions, const std::vector<TranslationTrack>& tracks,
-    const TranslationAveragingOptions& options, const WindowedTranslationOptions& windowed,
-    int num_threads);
+    const std::vector<PairDirection>& pair_directions, const std::vector<Track>& tracks,
+    const KeypointBearings& bearings, const TranslationAveragingOptions& options,
+    const WindowedTranslationOptions& windowed, int num_threads);
 
 }  // namespace ramap

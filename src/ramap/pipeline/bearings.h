@@ -12,8 +12,7 @@
 namespace ramap {
 
 struct ImageBearings {
-  // image id -> bearing per keypoint (camera frame, unit).
-  std::map<uint32_t, std::vector<Eigen::Vector3d>> bearings;
+  KeypointBearings bearings;
   // camera id -> mean focal length in pixels (turns pixel thresholds into angles).
   std::map<uint32_t, double> focal_lengths_px;
 };

@@ -30,8 +30,7 @@ struct TrackRays {
 };
 
 TrackRays RaysOfTrack(const Track& track, const FeatureDatabase& database,
-                      const std::map<uint32_t, Rigid3d>& poses,
-                      const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
+                      const std::map<uint32_t, Rigid3d>& poses, const KeypointBearings& bearings,
                       const std::map<uint32_t, double>& focal_lengths_px,
                       const Reconstruction& reconstruction) {
   TrackRays result;
@@ -62,7 +61,7 @@ struct TriangulatedTrack {
 
 TriangulatedTrack TriangulateTrack(const Track& track, const FeatureDatabase& database,
                                    const std::map<uint32_t, Rigid3d>& poses,
-                                   const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
+                                   const KeypointBearings& bearings,
                                    const std::map<uint32_t, double>& focal_lengths_px,
                                    const Reconstruction& reconstruction,
                                    const StructureOptions& options) {
@@ -97,7 +96,7 @@ TriangulatedTrack TriangulateTrack(const Track& track, const FeatureDatabase& da
 Reconstruction BuildReconstruction(const FeatureDatabase& database,
                                    const std::map<uint32_t, Rigid3d>& poses,
                                    const std::vector<Track>& tracks,
-                                   const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
+                                   const KeypointBearings& bearings,
                                    const std::map<uint32_t, double>& focal_lengths_px,
                                    const StructureOptions& options, StructureSummary* summary,
                                    int num_threads) {

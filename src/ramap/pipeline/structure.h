@@ -43,7 +43,7 @@ struct StructureSummary {
 Reconstruction BuildReconstruction(const FeatureDatabase& database,
                                    const std::map<uint32_t, Rigid3d>& poses,
                                    const std::vector<Track>& tracks,
-                                   const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
+                                   const KeypointBearings& bearings,
                                    const std::map<uint32_t, double>& focal_lengths_px,
                                    const StructureOptions& options = StructureOptions(),
                                    StructureSummary* summary = nullptr, int num_threads = 1);

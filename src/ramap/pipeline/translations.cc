@@ -3,7 +3,6 @@
 #include <future>
 #include <map>
 #include <set>
-#include <unordered_map>
 #include <utility>
 
 #include "ramap/averaging/windowed_translation_averaging.h"
@@ -77,64 +76,25 @@ std::vector<PairDirection> KeptPairDirections(
   return directions;
 }
 
-// The tracks' observations by the images of `image_ids`, as bearings, on `num_threads` threads;
-// tracks left with fewer than two are dropped.
-std::vector<TranslationTrack> TranslationTracks(const std::vector<Track>& tracks,
-                                                const ImageBearings& bearings,
-                                                const std::set<uint32_t>& image_ids,
-                                                int num_threads) {
-  // The images' bearings, looked up once per image rather than twice per observation (millions on
-  // a long drive).
-  std::unordered_map<uint32_t, const std::vector<Eigen::Vector3d>*> rotated;
-  for (const uint32_t image_id : image_ids) rotated[image_id] = &bearings.bearings.at(image_id);
-  std::vector<TranslationTrack> converted(tracks.size());
-  ParallelFor(tracks.size(), num_threads, [&](size_t k) {
-    TranslationTrack& observations = converted[k];
-    observations.reserve(tracks[k].size());
-    for (const TrackElement& element : tracks[k]) {
-      const auto found = rotated.find(element.image_id);
-      if (found == rotated.end()) continue;
-      observations.push_back({element.image_id, (*found->second)[element.point2D_idx]});
-    }
-  });
-  std::vector<TranslationTrack> translation_tracks;
-  translation_tracks.reserve(tracks.size());
-  for (TranslationTrack& observations : converted) {
-    if (observations.size() >= 2) translation_tracks.push_back(std::move(observations));
-  }
-  return translation_tracks;
-}
-
-// The images of `world_rotations`.
-std::set<uint32_t> RotatedImages(const std::map<uint32_t, Eigen::Quaterniond>& world_rotations) {
-  std::set<uint32_t> image_ids;
-  for (const auto& [image_id, rotation] : world_rotations) {
-    (void)rotation;
-    image_ids.insert(image_ids.end(), image_id);
-  }
-  return image_ids;
-}
-
 // Tracks are built on a thread of their own with more than one mapper thread, otherwise when first
 // asked for.
 std::launch TracksLaunch(const MapperContext& context) {
   return context.options.num_threads > 1 ? std::launch::async : std::launch::deferred;
 }
 
-// Whether the early tracks were built over exactly the `kept` edges and the `rotated` images.
-bool EarlyTracksFit(const EarlyTracks& early, const KeptEdges& kept,
-                    const std::set<uint32_t>& rotated) {
-  return early.built.valid() && early.pair_ids == kept.pair_ids && early.image_ids == rotated;
+// Whether the early tracks were built over exactly the `kept` edges.
+bool EarlyTracksFit(const EarlyTracks& early, const KeptEdges& kept) {
+  return early.built.valid() && early.pair_ids == kept.pair_ids;
 }
 
-// The tracks of the `kept` edges (without bearings), on a thread of their own while the pair
-// directions are estimated (4541 frames: the two together 0.95-1.03 -> 0.82-0.94 s); the early
-// tracks, which do not fit, are dropped first.
-std::future<TracksWithBearings> TracksOfKeptEdges(const MapperContext& context,
+// The tracks of the `kept` edges, on a thread of their own while the pair directions are
+// estimated (4541 frames: the two together 0.95-1.03 -> 0.82-0.94 s); the early tracks, which do
+// not fit, are dropped first.
+std::future<std::vector<Track>> TracksOfKeptEdges(const MapperContext& context,
                                                   const KeptEdges& kept, EarlyTracks* early) {
   early->built = {};  // their memory freed (an async build is waited for)
   return std::async(TracksLaunch(context), [&context, &kept] {
-    return TracksWithBearings{BuildTracks(context.database.two_view_geometries, kept.pair_ids), {}};
+    return BuildTracks(context.database.two_view_geometries, kept.pair_ids);
   });
 }
 
@@ -187,9 +147,9 @@ PriorAlignment RefitWithPriors(const MapperContext& context,
   PriorAlignment alignment = AlignCentersToPriors(positions->centers, context.priors, options);
   if (!alignment.summary.georegistered || !options.use_in_translation_averaging) return alignment;
   try {
-    TranslationAveragingResult constrained =
-        AverageTranslations(rotations, translations->directions, translations->translation_tracks,
-                            context.options.translation_averaging, PriorsInModelFrame(alignment));
+    TranslationAveragingResult constrained = AverageTranslations(
+        rotations, translations->directions, translations->tracks, context.bearings.bearings,
+        context.options.translation_averaging, PriorsInModelFrame(alignment));
     PriorAlignment refit = AlignCentersToPriors(constrained.centers, context.priors, options);
     if (!refit.summary.georegistered) return alignment;
     refit.summary.used_in_translation_averaging = true;
@@ -212,7 +172,7 @@ TranslationAveragingResult SolvePositions(const MapperContext& context,
       rotations.size() >= static_cast<size_t>(windowed.min_num_images)) {
     try {
       TranslationAveragingResult positions = AverageTranslationsInWindows(
-          context.order, rotations, inputs.directions, inputs.translation_tracks,
+          context.order, rotations, inputs.directions, inputs.tracks, context.bearings.bearings,
           context.options.translation_averaging, windowed, context.options.num_threads);
       *how = ", in " + std::to_string(positions.num_windows) + " windows";
       return positions;
@@ -220,7 +180,7 @@ TranslationAveragingResult SolvePositions(const MapperContext& context,
       *how = ", in one system (" + std::string(error.what()) + ")";
     }
   }
-  return AverageTranslations(rotations, inputs.directions, inputs.translation_tracks,
+  return AverageTranslations(rotations, inputs.directions, inputs.tracks, context.bearings.bearings,
                              context.options.translation_averaging);
 }
 
@@ -232,16 +192,10 @@ EarlyTracks StartComponentTracks(const MapperContext& context, const RotationGra
     const ImagePair& pair = context.pairs[edge.pair_index];
     early.pair_ids.insert(ImagePairToPairId(pair.image_id1, pair.image_id2));
   }
-  early.image_ids.insert(graph.node_ids.begin(), graph.node_ids.end());
-  // The sets are copied: `early` moves when returned. One thread for the bearings: rotation
-  // averaging holds the other.
-  early.built = std::async(
-      TracksLaunch(context), [&context, pair_ids = early.pair_ids, image_ids = early.image_ids] {
-        TracksWithBearings built;
-        built.tracks = BuildTracks(context.database.two_view_geometries, pair_ids);
-        built.translation_tracks = TranslationTracks(built.tracks, context.bearings, image_ids, 1);
-        return built;
-      });
+  // The set is copied: `early` moves when returned.
+  early.built = std::async(TracksLaunch(context), [&context, pair_ids = early.pair_ids] {
+    return BuildTracks(context.database.two_view_geometries, pair_ids);
+  });
   return early;
 }
 
@@ -253,18 +207,11 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
   Timer timer;
   ComponentTranslations result;
   KeptEdges kept = SplitKeptEdges(context, graph, edge_status, world_rotations);
-  const std::set<uint32_t> rotated = RotatedImages(world_rotations);
-  const bool early_fits = EarlyTracksFit(*early, kept, rotated);
-  std::future<TracksWithBearings> tracks =
+  const bool early_fits = EarlyTracksFit(*early, kept);
+  std::future<std::vector<Track>> tracks =
       early_fits ? std::move(early->built) : TracksOfKeptEdges(context, kept, early);
   result.directions = KeptPairDirections(context, kept.with_translation, world_rotations);
-  TracksWithBearings built = tracks.get();
-  if (!early_fits) {
-    built.translation_tracks =
-        TranslationTracks(built.tracks, context.bearings, rotated, context.options.num_threads);
-  }
-  result.tracks = std::move(built.tracks);
-  result.translation_tracks = std::move(built.translation_tracks);
+  result.tracks = tracks.get();
   result.tracks_built_early = early_fits;
   const std::vector<PairDirection>& directions = result.directions;
   TranslationAveragingResult& positions = result.positions;

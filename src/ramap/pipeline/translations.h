@@ -26,33 +26,24 @@ namespace ramap {
 struct ComponentTranslations {
   std::vector<PairDirection> directions;
   std::vector<Track> tracks;  // feature tracks over the kept pairs (triangulated later)
-  std::vector<TranslationTrack> translation_tracks;  // their observations by rotated images
   TranslationAveragingResult positions;
   // Kept pure-rotation edges, both ways: they place the images nothing else positions.
   std::multimap<uint32_t, uint32_t> pure_rotation_neighbours;
   bool tracks_built_early = false;  // the EarlyTracks fitted what rotation averaging kept
 };
 
-// Feature tracks and their observations' bearings.
-struct TracksWithBearings {
-  std::vector<Track> tracks;
-  std::vector<TranslationTrack> translation_tracks;  // observations by `image_ids` (EarlyTracks)
-};
-
 // The tracks of a whole component, built before its rotations are averaged: rotation averaging
 // runs mostly on one thread (1.06x faster with a second), and leaves the other core to them. They
-// are the tracks translation averaging needs when rotation averaging keeps every edge and rotates
-// every image, the common case (4541-frame drive: translation averaging 2.43-2.78 -> 1.87-2.25 s,
-// alternated with the binary before; the tracks and their bearings take 1.0-1.3 s of that thread);
-// otherwise translation averaging builds them again over what it kept.
+// are the tracks translation averaging needs when rotation averaging keeps every edge, the common
+// case (4541-frame drive: translation averaging 2.43-2.78 -> 1.87-2.25 s, alternated with the
+// binary before); otherwise translation averaging builds them again over the edges it kept.
 struct EarlyTracks {
-  std::set<uint64_t> pair_ids;   // the edges they are built over
-  std::set<uint32_t> image_ids;  // the images whose bearings they hold
-  std::future<TracksWithBearings> built;
+  std::set<uint64_t> pair_ids;  // the edges they are built over
+  std::future<std::vector<Track>> built;
 };
 
-// Starts building the tracks of every edge and image of `graph`: on a thread of its own with more
-// than one mapper thread, otherwise when first asked for.
+// Starts building the tracks of every edge of `graph`: on a thread of its own with more than one
+// mapper thread, otherwise when first asked for.
 EarlyTracks StartComponentTracks(const MapperContext& context, const RotationGraph& graph);
 
 // The pair directions and tracks of the edges with edge_status kKept (the `early` ones when they

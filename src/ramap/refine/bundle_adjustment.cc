@@ -131,10 +131,10 @@ struct Observation {
 };
 
 // Every track element with a usable bearing (in front of the camera, not grazing).
-std::vector<Observation> UsableObservations(
-    const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
-    const std::map<uint32_t, double>& focal_lengths_px, const Reconstruction& reconstruction,
-    const BundleAdjustmentOptions& options) {
+std::vector<Observation> UsableObservations(const KeypointBearings& bearings,
+                                            const std::map<uint32_t, double>& focal_lengths_px,
+                                            const Reconstruction& reconstruction,
+                                            const BundleAdjustmentOptions& options) {
   const double min_bearing_z = options.min_bearing_z;
   std::vector<Observation> observations;
   for (const auto& [point3D_id, point] : reconstruction.points3D) {
@@ -399,10 +399,11 @@ Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
   return subset;
 }
 
-BundleAdjustmentSummary BundleAdjust(
-    const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
-    const std::map<uint32_t, double>& focal_lengths_px, Reconstruction* reconstruction,
-    const BundleAdjustmentOptions& options, const std::map<uint32_t, PositionPrior>& priors) {
+BundleAdjustmentSummary BundleAdjust(const KeypointBearings& bearings,
+                                     const std::map<uint32_t, double>& focal_lengths_px,
+                                     Reconstruction* reconstruction,
+                                     const BundleAdjustmentOptions& options,
+                                     const std::map<uint32_t, PositionPrior>& priors) {
   options.Check();
   Timer timer;
   BundleAdjustmentSummary summary;

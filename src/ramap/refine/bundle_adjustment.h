@@ -19,6 +19,7 @@
 #include <map>
 #include <vector>
 
+#include "ramap/scene/features.h"
 #include "ramap/scene/position_prior.h"
 #include "ramap/scene/reconstruction.h"
 
@@ -90,8 +91,8 @@ bool RefinesIntrinsics(const BundleAdjustmentOptions& options, CameraModel model
 // The first registered image's pose is held fixed (gauge), unless `priors` (keyed by image id, in
 // the reconstruction's frame) cover three or more registered images.
 BundleAdjustmentSummary BundleAdjust(
-    const std::map<uint32_t, std::vector<Eigen::Vector3d>>& bearings,
-    const std::map<uint32_t, double>& focal_lengths_px, Reconstruction* reconstruction,
+    const KeypointBearings& bearings, const std::map<uint32_t, double>& focal_lengths_px,
+    Reconstruction* reconstruction,
     const BundleAdjustmentOptions& options = BundleAdjustmentOptions(),
     const std::map<uint32_t, PositionPrior>& priors = {});
 

@@ -87,6 +87,9 @@ struct TwoViewGeometry {
 TwoViewGeometry InvertTwoViewGeometry(const TwoViewGeometry& geometry);
 
 // Everything a COLMAP database holds, keyed by id (pairs by pair_id, smaller image id first).
+// image id -> the unit bearing (camera frame) of each of its keypoints, by keypoint index.
+using KeypointBearings = std::map<uint32_t, std::vector<Eigen::Vector3d>>;
+
 struct FeatureDatabase {
   std::map<uint32_t, Camera> cameras;
   std::map<uint32_t, Image> images;  // points2D empty; keypoints are below

@@ -68,6 +68,32 @@ TEST(MapperCommand, ColmapToolsOpenRefineAndCompareTheModel) {
   ASSERT_EQ(comparer.exit_code, 0) << comparer.output;
 }
 
+// summary.json says where rotation averaging's time went, phase by phase, and how many
+// factorisations it took.
+TEST(MapperCommand, SummaryReportsRotationAveragingPhases) {
+  test::TempDir dir;
+  Synthesize(dir);
+  const test::CommandResult mapper =
+      test::RunCommand(Ramap() + "mapper --database_path '" + (dir / "scene/database.db") +
+                       "' --output_path '" + (dir / "sparse") + "' --Mapper.refine 0");
+  ASSERT_EQ(mapper.exit_code, 0) << mapper.output;
+  std::ifstream summary_file(dir / "sparse/summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(summary_file);
+  const nlohmann::json& rotations = summary["components"][0]["rotation_averaging"];
+  EXPECT_GE(rotations["num_factorizations"].get<int>(), 1);
+  const nlohmann::json& seconds = rotations["seconds"];
+  double parts = 0;
+  for (const char* phase : {"windows", "init", "l1", "irls", "pruning", "certificate"}) {
+    ASSERT_TRUE(seconds.contains(phase)) << phase;
+    EXPECT_GE(seconds[phase].get<double>(), 0.0) << phase;
+    parts += seconds[phase].get<double>();
+  }
+  EXPECT_GT(seconds["l1"].get<double>(), 0.0);
+  EXPECT_LE(parts, seconds["total"].get<double>() * 1.001 + 1e-6);
+  EXPECT_LE(seconds["total"].get<double>(),
+            summary["stage_seconds"]["rotation averaging"].get<double>() * 1.001 + 1e-6);
+}
+
 TEST(MapperCommand, TextOutputOnRequest) {
   test::TempDir dir;
   Synthesize(dir);

@@ -148,8 +148,10 @@ struct RotationAveragingResult {
   std::vector<PrunedEdge> pruned_edges;       // in pruning order
   int l1_iterations = 0;
   int irls_iterations = 0;  // over all IRLS runs
-  int factorizations = 0;   // CHOLMOD factorisations of L1 and all IRLS runs (not the certificate)
-  int pruning_rounds = 0;   // rounds that removed an edge or re-initialised a node
+  // CHOLMOD factorisations of the whole graph's L1 and IRLS runs (not the windows' own solves,
+  // nor the certificate's).
+  int factorizations = 0;
+  int pruning_rounds = 0;  // rounds that removed an edge or re-initialised a node
   std::vector<uint32_t> reinitialized_nodes;  // suspect nodes re-initialised during pruning
   RotationCertificate certificate;
   RotationAveragingTimings timings;

@@ -37,6 +37,14 @@ nlohmann::json CamerasToJson(const std::vector<CameraIntrinsicsSummary>& summari
   return cameras;
 }
 
+// Rotation averaging's phases, in seconds (RotationAveragingTimings).
+nlohmann::json RotationSecondsJson(const RotationAveragingTimings& seconds) {
+  return {{"windows", seconds.windows}, {"init", seconds.init},
+          {"l1", seconds.l1},           {"irls", seconds.irls},
+          {"pruning", seconds.pruning}, {"certificate", seconds.certificate},
+          {"total", seconds.total}};
+}
+
 }  // namespace
 
 // The frame and scale the models are written in, as summary.json states them.
@@ -75,7 +83,9 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
           {"certified_globally_optimal", c.rotation_certified},
           {"certificate_bound_deg", c.certificate_bound_deg},
           {"certificate_cycle_lower_bound_deg", c.certificate_cycle_lower_bound_deg},
-          {"max_residual_deg", c.max_rotation_residual_deg}}},
+          {"max_residual_deg", c.max_rotation_residual_deg},
+          {"num_factorizations", c.num_rotation_factorizations},
+          {"seconds", RotationSecondsJson(c.rotation_seconds)}}},
         {"translation_averaging",
          {{"num_constraints", c.num_translation_constraints},
           {"num_solver_iterations", c.num_solver_iterations},

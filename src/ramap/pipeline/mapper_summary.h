@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "ramap/averaging/rotation_averaging.h"
 #include "ramap/pipeline/georegistration.h"
 #include "ramap/pipeline/view_graph_calibration.h"
 #include "ramap/refine/bundle_adjustment.h"
@@ -37,6 +38,8 @@ struct MapperComponentSummary {
   double certificate_bound_deg = 0.0;
   double certificate_cycle_lower_bound_deg = 0.0;  // see RotationCertificate
   double max_rotation_residual_deg = 0.0;
+  int num_rotation_factorizations = 0;  // RotationAveragingResult::factorizations
+  RotationAveragingTimings rotation_seconds;
   int num_translation_constraints = 0;
   int num_solver_iterations = 0;
   int num_factorizations = 0;

@@ -84,6 +84,8 @@ RotationStageResult AverageComponentRotations(
   component->certificate_cycle_lower_bound_deg =
       rotations.certificate.cycle_residual_lower_bound_deg;
   component->max_rotation_residual_deg = rotations.certificate.max_robust_residual_deg;
+  component->num_rotation_factorizations = rotations.factorizations;
+  component->rotation_seconds = rotations.timings;
   context.log.Record(
       stage::kRotationAveraging, timer.ElapsedSeconds(),
       std::to_string(world_rotations->size()) + " rotations, " +

@@ -58,10 +58,12 @@ struct RotationAveragingOptions {
   int max_irls_iterations = 100;
   // IRLS stops when the RMS node update falls below this (degrees).
   double irls_step_tolerance_deg = 1e-6;
-  // Each reweighted step first solves its tangent-space system by conjugate gradients,
+  // Each IRLS step (not L1's) first solves its tangent-space system by conjugate gradients,
   // preconditioned by the last factorisation and started from the last step, for at most this
-  // many iterations (averaging/preconditioned_cg.h), and refactorises only when they do not reach
-  // a residual of pcg_tolerance times the right-hand side's. 0: refactorise at every step.
+  // many iterations (averaging/preconditioned_cg.h) and at most as many as cost a factorisation's
+  // flops, and refactorises when they do not reach a residual of pcg_tolerance times the
+  // right-hand side's. Graphs whose factor is cheap (fewer than 10 iterations' worth: most view
+  // graphs without long loops) always refactorise. 0: refactorise at every step.
   int max_pcg_iterations = 40;
   double pcg_tolerance = 1e-8;
   RobustLoss loss = RobustLoss::kGemanMcClure;

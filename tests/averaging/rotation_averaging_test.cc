@@ -15,15 +15,22 @@
 namespace ramap {
 namespace {
 
-SyntheticRotationGraph PathWithLoops(double noise_deg, double outlier_fraction, uint32_t seed) {
+// A sequence of `num_nodes` cameras, each linked to its next `forward_neighbours`, with
+// `num_loop_edges` random loops.
+SyntheticRotationGraph Sequence(int num_nodes, int forward_neighbours, int num_loop_edges,
+                                double noise_deg, double outlier_fraction, uint32_t seed) {
   SyntheticRotationGraphOptions options;
-  options.num_nodes = 200;
-  options.forward_neighbours = 8;
-  options.num_loop_edges = 30;
+  options.num_nodes = num_nodes;
+  options.forward_neighbours = forward_neighbours;
+  options.num_loop_edges = num_loop_edges;
   options.noise_deg = noise_deg;
   options.outlier_fraction = outlier_fraction;
   options.seed = seed;
   return MakeSyntheticRotationGraph(options);
+}
+
+SyntheticRotationGraph PathWithLoops(double noise_deg, double outlier_fraction, uint32_t seed) {
+  return Sequence(200, 8, 30, noise_deg, outlier_fraction, seed);
 }
 
 double TrueEdgeErrorDeg(const SyntheticRotationGraph& synthetic, size_t e) {
@@ -222,14 +229,7 @@ TEST(RotationAveraging, StrongDualityPruningModeUsesTheBound) {
 }
 
 TEST(RotationAveraging, WindowsThenGlobalMatchesGlobal) {
-  SyntheticRotationGraphOptions options;
-  options.num_nodes = 150;
-  options.forward_neighbours = 6;
-  options.num_loop_edges = 30;
-  options.noise_deg = 2.0;
-  options.outlier_fraction = 0.1;
-  options.seed = 9;
-  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(options);
+  const SyntheticRotationGraph synthetic = Sequence(150, 6, 30, 2.0, 0.1, 9);
   KeyframeOptions keyframe_options;
   keyframe_options.keyframe_interval = 30;
   const Keyframes keyframes = SelectKeyframes(synthetic.graph.node_ids, keyframe_options);
@@ -248,14 +248,7 @@ TEST(RotationAveraging, WindowsThenGlobalMatchesGlobal) {
 // refactorising at every step reaches, with fewer factorisations. Many random loops make the
 // factor costly (fill), as a long drive's loops do: only then are conjugate gradients tried.
 TEST(RotationAveraging, ConjugateGradientStepsMatchRefactorising) {
-  SyntheticRotationGraphOptions graph_options;
-  graph_options.num_nodes = 400;
-  graph_options.forward_neighbours = 8;
-  graph_options.num_loop_edges = 4000;
-  graph_options.noise_deg = 2.0;
-  graph_options.outlier_fraction = 0.1;
-  graph_options.seed = 21;
-  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(graph_options);
+  const SyntheticRotationGraph synthetic = Sequence(400, 8, 4000, 2.0, 0.1, 21);
   RotationAveragingOptions refactorise;
   refactorise.max_pcg_iterations = 0;
   refactorise.compute_certificate = false;

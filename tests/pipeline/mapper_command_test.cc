@@ -24,6 +24,12 @@ void Synthesize(const test::TempDir& dir) {
   ASSERT_EQ(result.exit_code, 0) << result.output;
 }
 
+// `ramap mapper` on the synthesized scene's database into dir/sparse, with `options`.
+test::CommandResult MapScene(const test::TempDir& dir, const std::string& options) {
+  return test::RunCommand(Ramap() + "mapper --database_path '" + (dir / "scene/database.db") +
+                          "' --output_path '" + (dir / "sparse") + "' " + options);
+}
+
 TEST(MapperCommand, ColmapToolsOpenRefineAndCompareTheModel) {
   RAMAP_REQUIRE_COLMAP();
   test::TempDir dir;
@@ -73,9 +79,7 @@ TEST(MapperCommand, ColmapToolsOpenRefineAndCompareTheModel) {
 TEST(MapperCommand, SummaryReportsRotationAveragingPhases) {
   test::TempDir dir;
   Synthesize(dir);
-  const test::CommandResult mapper =
-      test::RunCommand(Ramap() + "mapper --database_path '" + (dir / "scene/database.db") +
-                       "' --output_path '" + (dir / "sparse") + "' --Mapper.refine 0");
+  const test::CommandResult mapper = MapScene(dir, "--Mapper.refine 0");
   ASSERT_EQ(mapper.exit_code, 0) << mapper.output;
   std::ifstream summary_file(dir / "sparse/summary.json");
   const nlohmann::json summary = nlohmann::json::parse(summary_file);
@@ -97,9 +101,7 @@ TEST(MapperCommand, SummaryReportsRotationAveragingPhases) {
 TEST(MapperCommand, TextOutputOnRequest) {
   test::TempDir dir;
   Synthesize(dir);
-  const test::CommandResult mapper =
-      test::RunCommand(Ramap() + "mapper --database_path '" + (dir / "scene/database.db") +
-                       "' --output_path '" + (dir / "sparse") + "' --output_type TXT");
+  const test::CommandResult mapper = MapScene(dir, "--output_type TXT");
   ASSERT_EQ(mapper.exit_code, 0) << mapper.output;
   EXPECT_TRUE(fs::exists(dir / "sparse/0/images.txt"));
   EXPECT_FALSE(fs::exists(dir / "sparse/0/images.bin"));

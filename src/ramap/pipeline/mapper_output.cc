@@ -45,6 +45,59 @@ nlohmann::json RotationSecondsJson(const RotationAveragingTimings& seconds) {
           {"total", seconds.total}};
 }
 
+// One component: its model, how its rotations and positions were averaged, its bundle
+// adjustment and georegistration when run.
+nlohmann::json ComponentToJson(const MapperComponentSummary& c) {
+  nlohmann::json component = {
+      {"num_images", c.num_images},
+      {"num_points", c.num_points},
+      {"num_observations", c.num_observations},
+      {"mean_reprojection_error_px", c.mean_reprojection_error_px},
+      {"rotation_averaging",
+       {{"num_edges", c.num_rotation_edges},
+        {"num_pruned_edges", c.num_pruned_edges},
+        {"certified_globally_optimal", c.rotation_certified},
+        {"certificate_bound_deg", c.certificate_bound_deg},
+        {"certificate_cycle_lower_bound_deg", c.certificate_cycle_lower_bound_deg},
+        {"max_residual_deg", c.max_rotation_residual_deg},
+        {"num_factorizations", c.num_rotation_factorizations},
+        {"seconds", RotationSecondsJson(c.rotation_seconds)}}},
+      {"translation_averaging",
+       {{"num_constraints", c.num_translation_constraints},
+        {"num_solver_iterations", c.num_solver_iterations},
+        {"num_factorizations", c.num_factorizations},
+        {"num_windows", c.num_translation_windows}}},
+  };
+  if (c.bundle_adjustment.num_observations > 0) {
+    const BundleAdjustmentSummary& ba = c.bundle_adjustment;
+    component["bundle_adjustment"] = {{"initial_rmse_px", ba.initial_rmse_px},
+                                      {"final_rmse_px", ba.final_rmse_px},
+                                      {"num_iterations", ba.num_iterations},
+                                      {"num_filtered_observations", ba.num_filtered_observations},
+                                      {"converged", ba.converged},
+                                      {"seconds", ba.seconds}};
+  }
+  const GeoregistrationSummary& geo = c.georegistration;
+  if (geo.num_priors > 0 || !geo.problem.empty()) {
+    nlohmann::json outliers = nlohmann::json::array();
+    for (const PriorOutlier& o : geo.outliers) {
+      outliers.push_back({{"image_id", o.image_id}, {"error_m", o.error_m}});
+    }
+    component["georegistration"] = {
+        {"georegistered", geo.georegistered},
+        {"problem", geo.problem},
+        {"num_priors", geo.num_priors},
+        {"num_inliers", geo.num_inliers},
+        {"rmse_m", geo.rmse_m},
+        {"threshold_m", geo.threshold_m},
+        {"metres_per_model_unit", geo.scale},
+        {"used_in_translation_averaging", geo.used_in_translation_averaging},
+        {"used_in_bundle_adjustment", geo.used_in_bundle_adjustment},
+        {"outliers", outliers}};
+  }
+  return component;
+}
+
 }  // namespace
 
 // The frame and scale the models are written in, as summary.json states them.
@@ -70,57 +123,8 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
   json["gauge"] = kGauge;
   for (const MapperStageTiming& timing : summary.timings)
     json["stage_seconds"][timing.stage] = timing.seconds;
-  for (size_t k = 0; k < summary.components.size(); ++k) {
-    const MapperComponentSummary& c = summary.components[k];
-    nlohmann::json component = {
-        {"num_images", c.num_images},
-        {"num_points", c.num_points},
-        {"num_observations", c.num_observations},
-        {"mean_reprojection_error_px", c.mean_reprojection_error_px},
-        {"rotation_averaging",
-         {{"num_edges", c.num_rotation_edges},
-          {"num_pruned_edges", c.num_pruned_edges},
-          {"certified_globally_optimal", c.rotation_certified},
-          {"certificate_bound_deg", c.certificate_bound_deg},
-          {"certificate_cycle_lower_bound_deg", c.certificate_cycle_lower_bound_deg},
-          {"max_residual_deg", c.max_rotation_residual_deg},
-          {"num_factorizations", c.num_rotation_factorizations},
-          {"seconds", RotationSecondsJson(c.rotation_seconds)}}},
-        {"translation_averaging",
-         {{"num_constraints", c.num_translation_constraints},
-          {"num_solver_iterations", c.num_solver_iterations},
-          {"num_factorizations", c.num_factorizations},
-          {"num_windows", c.num_translation_windows}}},
-    };
-    if (c.bundle_adjustment.num_observations > 0) {
-      const BundleAdjustmentSummary& ba = c.bundle_adjustment;
-      component["bundle_adjustment"] = {{"initial_rmse_px", ba.initial_rmse_px},
-                                        {"final_rmse_px", ba.final_rmse_px},
-                                        {"num_iterations", ba.num_iterations},
-                                        {"num_filtered_observations", ba.num_filtered_observations},
-                                        {"converged", ba.converged},
-                                        {"seconds", ba.seconds}};
-    }
-    const GeoregistrationSummary& geo = c.georegistration;
-    if (geo.num_priors > 0 || !geo.problem.empty()) {
-      nlohmann::json outliers = nlohmann::json::array();
-      for (const PriorOutlier& o : geo.outliers) {
-        outliers.push_back({{"image_id", o.image_id}, {"error_m", o.error_m}});
-      }
-      component["georegistration"] = {
-          {"georegistered", geo.georegistered},
-          {"problem", geo.problem},
-          {"num_priors", geo.num_priors},
-          {"num_inliers", geo.num_inliers},
-          {"rmse_m", geo.rmse_m},
-          {"threshold_m", geo.threshold_m},
-          {"metres_per_model_unit", geo.scale},
-          {"used_in_translation_averaging", geo.used_in_translation_averaging},
-          {"used_in_bundle_adjustment", geo.used_in_bundle_adjustment},
-          {"outliers", outliers}};
-    }
-    json["components"].push_back(component);
-  }
+  for (const MapperComponentSummary& component : summary.components)
+    json["components"].push_back(ComponentToJson(component));
   json["cameras"] = CamerasToJson(summary.cameras);
   json["dropped_images"] = nlohmann::json::array();
   for (const DroppedItem& item : summary.dropped_images) {

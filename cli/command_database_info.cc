@@ -8,19 +8,21 @@
 
 #include "options.h"
 #include "ramap/io/colmap_database.h"
+#include "ramap/io/colmap_database_schema.h"
+#include "ramap/io/database_rigs_priors.h"
 
 namespace ramap::cli {
 namespace {
 
 // COLMAP's names of TwoViewGeometry::ConfigurationType, by value.
-constexpr std::array<const char*, 9> kConfigNames = {
-    "UNDEFINED", "DEGENERATE",          "CALIBRATED", "UNCALIBRATED", "PLANAR",
-    "PANORAMIC", "PLANAR_OR_PANORAMIC", "WATERMARK",  "MULTIPLE"};
+constexpr std::array<const char*, 10> kConfigNames = {
+    "UNDEFINED",           "DEGENERATE", "CALIBRATED", "UNCALIBRATED", "PLANAR", "PANORAMIC",
+    "PLANAR_OR_PANORAMIC", "WATERMARK",  "MULTIPLE",   "CALIBRATED_RIG"};
 
 }  // namespace
 
 int RunDatabaseInfo(int argc, char** argv) {
-  CLI::App app("Counts what a COLMAP 3.8 database holds, checking it on the way.",
+  CLI::App app("Counts what a COLMAP database (3.8 to 4.x) holds, checking it on the way.",
                "ramap database_info");
   std::string database_path;
   app.add_option("--database_path", database_path, "COLMAP database (SQLite)")->required();
@@ -31,8 +33,13 @@ int RunDatabaseInfo(int argc, char** argv) {
   const FeatureDatabase database = ReadColmapDatabase(database_path, options);
 
   const DatabaseCounts c = CountDatabase(database);
+  const RigSummary rigs = SummarizeRigs(database);
   std::cout << "Database: " << database_path << "\n"
+            << "  schema:                  " << DatabaseGenerationLabel(database.generation)
+            << "\n"
             << "  cameras:                 " << database.cameras.size() << "\n"
+            << "  rigs, frames:            " << rigs.num_rigs << ", " << rigs.num_frames << " ("
+            << rigs.num_multi_camera_frames << " with images of several cameras)\n"
             << "  images:                  " << database.images.size() << "\n"
             << "  keypoints:               " << c.num_keypoints << " in "
             << database.keypoints.size() << " images\n"
@@ -46,7 +53,7 @@ int RunDatabaseInfo(int argc, char** argv) {
     std::cout << "    " << kConfigNames.at(static_cast<int>(config)) << ": " << count << "\n";
   }
   std::cout << "  position priors:         " << c.num_position_priors
-            << " images (prior_tx/ty/tz; GPS from EXIF as latitude, longitude, altitude)\n"
+            << " images (GPS from EXIF as latitude, longitude, altitude)\n"
             << "  rotation priors:         " << c.num_rotation_priors << " images\n"
             << "  descriptor ratios:       " << c.num_pairs_with_ratios
             << " verified pairs (ramap's ramap_match_confidence table)\n";

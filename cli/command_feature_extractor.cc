@@ -47,7 +47,7 @@ int RunFeatureExtractor(int argc, char** argv) {
   FinishFeatureOptions(&options);
   CheckNewDatabasePath("--database_path", database_path, {image_path, image_list});
   const FeatureDatabase database = ExtractAndReport(image_path, image_list, options);
-  WriteColmapDatabase(database, database_path);
+  WriteColmapDatabase(database, database_path, options.generation);
   std::cout << "Wrote " << database_path << "\n";
   return 0;
 }

@@ -6,6 +6,8 @@
 #include "options.h"
 #include "pose_prior_options.h"
 #include "ramap/io/colmap_database.h"
+#include "ramap/io/colmap_database_schema.h"
+#include "ramap/io/database_rigs_priors.h"
 #include "ramap/io/point_colors.h"
 #include "ramap/pipeline/mapper.h"
 #include "ramap/pipeline/mapper_output.h"
@@ -44,10 +46,18 @@ int RunMapper(int argc, char** argv) {
   std::ostream* progress = log_level > 0 ? &std::cout : nullptr;
   Timer read_timer;
   const FeatureDatabase database = ReadColmapDatabase(database_path, MapperDatabaseReadOptions());
+  const RigSummary rigs = SummarizeRigs(database);
   if (progress) {
     PrintStageLine(*progress, "reading the database", read_timer.ElapsedSeconds(),
                    std::to_string(database.images.size()) + " images, " +
-                       std::to_string(database.two_view_geometries.size()) + " verified pairs");
+                       std::to_string(database.two_view_geometries.size()) + " verified pairs, " +
+                       DatabaseGenerationLabel(database.generation));
+  }
+  if (rigs.num_multi_camera_frames > 0) {
+    std::cerr << "ramap mapper: note: " << rigs.num_multi_camera_frames << " of "
+              << rigs.num_frames << " frames hold images of up to " << rigs.max_cameras_per_frame
+              << " cameras of one rig; the rig constraints are not used yet: each image is "
+                 "averaged on its own\n";
   }
   CheckImageNamesFit(database, format, database_path, "--output_type " + output_type);
   const LocalizedPriors priors = LoadPosePriors(prior_text, database, "ramap mapper", std::cerr);
@@ -61,6 +71,12 @@ int RunMapper(int argc, char** argv) {
       {"command", "mapper"},
       {"database_path", database_path},
       {"image_path", image_path},
+      {"database",
+       {{"generation", DatabaseGenerationLabel(database.generation)},
+        {"num_rigs", rigs.num_rigs},
+        {"num_frames", rigs.num_frames},
+        {"num_multi_camera_frames", rigs.num_multi_camera_frames},
+        {"rig_constraints_used", false}}},
       {"options", MapperOptionsToJson(options)},
       {"pose_priors", PosePriorOptionsToJson(prior_text, options.georegistration)}};
   Timer write_timer;

@@ -1,7 +1,9 @@
 // `ramap model_aligner`: georegisters any COLMAP model (ramap's or COLMAP's) to position priors,
 // like `colmap model_aligner --ref_is_gps 1 --alignment_type enu`, robustly: a similarity fitted
 // by RANSAC over camera centres, the outlier fixes listed. Writes the model in the priors' metric
-// frame, with geo_origin.txt and cameras.geojson when the priors are geodetic.
+// frame, with geo_origin.txt and cameras.geojson when the priors are geodetic. With COLMAP's
+// --alignment_type plane, sets the model upright on its principal plane instead (3DGS's
+// convert.py). COLMAP's option names are read too, and the output may be the input folder.
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -12,6 +14,7 @@
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/geo_export.h"
 #include "ramap/pipeline/georegistration.h"
+#include "ramap/pipeline/plane_alignment.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
@@ -25,28 +28,90 @@ void WriteAligned(const Reconstruction& model, const std::optional<GeodeticPoint
   if (origin) WriteGeoreference(model, *origin, folder);
 }
 
+// COLMAP's own options of model_aligner, read into ramap's.
+struct ColmapAlignerOptions {
+  std::string alignment_type = "enu";  // plane | enu | custom (ecef is not written by ramap)
+  std::string ref_images_path;         // NAME X Y Z per line: ramap's prior file
+  int ref_is_gps = 1;
+  double alignment_max_error = 0;  // m; 0: ramap's default
+  int robust_alignment = 1;        // ramap's alignment is always robust
+};
+
+void AddColmapAlignerOptions(CLI::App& app, ColmapAlignerOptions* o) {
+  app.add_option("--alignment_type", o->alignment_type,
+                 "plane (upright on the points' principal plane) | enu | custom")
+      ->capture_default_str();
+  app.add_option("--ref_images_path", o->ref_images_path,
+                 "as COLMAP's: NAME X Y Z per line (read as --PosePrior.path)");
+  app.add_option("--ref_is_gps", o->ref_is_gps, "1: the reference is latitude, longitude, altitude")
+      ->capture_default_str();
+  app.add_option("--alignment_max_error", o->alignment_max_error,
+                 "as --PosePrior.max_alignment_error_m (ignored by plane)")
+      ->check(AtLeast(0));
+  app.add_option("--robust_alignment", o->robust_alignment, "accepted: ramap is always robust");
+  app.add_option("--robust_alignment_max_error", o->alignment_max_error,
+                 "as --alignment_max_error")
+      ->check(AtLeast(0));
+}
+
+// COLMAP's model_aligner --alignment_type plane.
+int AlignToPlane(Reconstruction model, const std::string& input_path,
+                 const std::string& output_path, ModelFormat format) {
+  const Sim3d new_from_old = PrincipalPlaneAlignment(model, input_path);
+  TransformReconstruction(new_from_old, &model);
+  WriteColmapModel(model, output_path, format);
+  std::cout << "ramap model_aligner: " << model.images.size() << " images and "
+            << model.points3D.size()
+            << " points set upright on their principal plane (z = 0, +Z towards the cameras) -> "
+            << output_path << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int RunModelAligner(int argc, char** argv) {
-  CLI::App app("Georegister a COLMAP model to position priors (GPS): robust similarity, ENU frame",
-               "ramap model_aligner");
+  CLI::App app(
+      "Georegister a COLMAP model to position priors (GPS): robust similarity, ENU frame; or set "
+      "it upright on its principal plane (--alignment_type plane)",
+      "ramap model_aligner");
   std::string input_path, output_path, database_path, output_type = "BIN";
   app.add_option("--input_path", input_path, "COLMAP model folder (.bin or .txt)")->required();
-  app.add_option("--output_path", output_path, "folder for the georegistered model")->required();
+  app.add_option("--output_path", output_path, "folder for the aligned model (may be the input)")
+      ->required();
   app.add_option("--database_path", database_path,
-                 "COLMAP database whose prior_tx/ty/tz are the priors (without --PosePrior.path)");
+                 "COLMAP database whose position priors are used (without --PosePrior.path)");
   app.add_option("--output_type", output_type, "BIN or TXT")->capture_default_str();
   PosePriorOptionText prior_text;
   GeoregistrationOptions georegistration;
   AddPosePriorOptions(app, &prior_text, &georegistration, /*with_uses=*/false);
+  ColmapAlignerOptions colmap;
+  AddColmapAlignerOptions(app, &colmap);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   const ModelFormat format = ModelFormatFromName(output_type, "--output_type");
-  if (prior_text.path.empty() && database_path.empty()) {
-    throw InputError("ramap model_aligner", "give --PosePrior.path or --database_path");
+  if (colmap.alignment_type != "plane" && colmap.alignment_type != "enu" &&
+      colmap.alignment_type != "custom") {
+    throw InputError("--alignment_type", "'" + colmap.alignment_type +
+                                             "': ramap aligns to plane, enu or custom (ECEF "
+                                             "models are not written; use enu)");
   }
-  CheckFolderOutput("--output_path", output_path, {input_path, database_path, prior_text.path});
+  if (!colmap.ref_images_path.empty()) {
+    prior_text.path = colmap.ref_images_path;
+    if (!app.count("--PosePrior.type")) prior_text.type = colmap.ref_is_gps ? "wgs84" : "xyz";
+  }
+  if (colmap.alignment_max_error > 0) {
+    georegistration.max_alignment_error_m = colmap.alignment_max_error;
+  }
+  const bool plane = colmap.alignment_type == "plane";
+  if (!plane && prior_text.path.empty() && database_path.empty()) {
+    throw InputError("ramap model_aligner",
+                     "give --PosePrior.path (or --ref_images_path) or --database_path, or "
+                     "--alignment_type plane");
+  }
+  CheckModelOutputMayReplaceInput("--output_path", output_path, input_path,
+                                  {database_path, prior_text.path});
 
   Reconstruction model = ReadColmapModel(input_path);
+  if (plane) return AlignToPlane(std::move(model), input_path, output_path, format);
   // The priors are matched to the model's images by name.
   const FeatureDatabase images = prior_text.path.empty()
                                      ? ModelImagesWithDatabasePriors(model, database_path)

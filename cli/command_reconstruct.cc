@@ -53,7 +53,7 @@ int RunReconstruct(int argc, char** argv) {
   FeatureDatabase database = ExtractAndReport(image_path, image_list, features);
   MatchAndReport(&database, &features);
   std::filesystem::create_directories(output_path);
-  WriteColmapDatabase(database, database_path);
+  WriteColmapDatabase(database, database_path, features.generation);
   // EXIF GPS went into the database's prior positions (as COLMAP's ImageReader does).
   const LocalizedPriors priors =
       LoadPosePriors(prior_text, database, "ramap reconstruct", std::cerr);

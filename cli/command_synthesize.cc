@@ -9,6 +9,7 @@
 
 #include "options.h"
 #include "ramap/io/colmap_database.h"
+#include "ramap/io/colmap_database_schema.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/synthetic/synthetic_scene.h"
@@ -22,11 +23,12 @@ namespace ramap::cli {
 namespace {
 
 // The database, the ground-truth model and its TUM trajectory in `output_path`.
-void WriteScene(const SyntheticScene& scene, const std::string& output_path, ModelFormat format) {
+void WriteScene(const SyntheticScene& scene, const std::string& output_path, ModelFormat format,
+                DatabaseGeneration generation) {
   std::error_code error;
   std::filesystem::create_directories(output_path, error);
   if (error) throw InputError(output_path, "cannot create the folder: " + error.message());
-  WriteColmapDatabase(scene.database, output_path + "/database.db");
+  WriteColmapDatabase(scene.database, output_path + "/database.db", generation);
   WriteColmapModel(scene.ground_truth, output_path + "/ground_truth", format);
   WriteTumTrajectory(scene.ground_truth, output_path + "/ground_truth.txt");
 }
@@ -59,7 +61,13 @@ int RunSynthesize(int argc, char** argv) {
   app.add_option("--output_type", output_type, "ground-truth model format")
       ->check(CLI::IsMember({"BIN", "TXT"}))
       ->capture_default_str();
+  std::string generation_name = "3.8";
+  app.add_option("--Database.generation", generation_name,
+                 "schema of the database: 3.8 (every COLMAP reads it) | 3.10 | 4 (3.12-4.x)")
+      ->capture_default_str();
   if (const auto exit_code = ParseOptions(app, argc, argv)) return *exit_code;
+  const DatabaseGeneration generation =
+      DatabaseGenerationFromName(generation_name, "--Database.generation");
   FinishSceneOptions(text, app.count("--Synthetic.num_images") > 0, &options);
   CheckFolderOutput("--output_path", output_path, {text.trajectory_path});
   CheckNewDatabasePath("--output_path", output_path + "/database.db", {text.trajectory_path});
@@ -68,7 +76,8 @@ int RunSynthesize(int argc, char** argv) {
   // Removed again if writing fails or is interrupted.
   CreatedOutput created(output_path);
   CreatedOutput created_database(output_path + "/database.db");
-  WriteScene(scene, output_path, output_type == "TXT" ? ModelFormat::kText : ModelFormat::kBinary);
+  WriteScene(scene, output_path, output_type == "TXT" ? ModelFormat::kText : ModelFormat::kBinary,
+             generation);
   created_database.Keep();
   created.Keep();
   PrintScene(scene, output_path, std::cout);

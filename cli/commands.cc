@@ -1,13 +1,18 @@
 #include "commands.h"
 
+#include <string>
+
 namespace ramap::cli {
 
 // One function per subcommand, each in its own command_<name>.cc.
 int RunCompare(int argc, char** argv);
 int RunDatabaseInfo(int argc, char** argv);
+int RunDatabaseConverter(int argc, char** argv);
 int RunEvaluate(int argc, char** argv);
 int RunFeatureExtractor(int argc, char** argv);
 int RunMatcher(int argc, char** argv);
+int RunBundleAdjuster(int argc, char** argv);
+int RunImageUndistorter(int argc, char** argv);
 int RunReconstruct(int argc, char** argv);
 int RunMapper(int argc, char** argv);
 int RunModelAligner(int argc, char** argv);
@@ -16,12 +21,26 @@ int RunRelativePoses(int argc, char** argv);
 int RunRotationAverager(int argc, char** argv);
 int RunSynthesize(int argc, char** argv);
 
+// COLMAP's exhaustive_matcher and sequential_matcher: ramap's matcher in that mode.
+int RunMatcherInMode(const char* mode, int argc, char** argv) {
+  std::vector<char*> args(argv, argv + argc);
+  char option[] = "--Matching.mode";
+  std::string value = mode;
+  args.insert(args.begin() + 1, {option, value.data()});
+  args.push_back(nullptr);
+  return RunMatcher(argc + 2, args.data());
+}
+
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {
       {"reconstruct", "images to a COLMAP model: features, matching, mapper", RunReconstruct},
       {"feature_extractor", "ORB or SIFT features of images into a COLMAP database",
        RunFeatureExtractor},
       {"matcher", "matches and verified geometries (sequential or exhaustive)", RunMatcher},
+      {"exhaustive_matcher", "as COLMAP's: matcher --Matching.mode exhaustive",
+       [](int argc, char** argv) { return RunMatcherInMode("exhaustive", argc, argv); }},
+      {"sequential_matcher", "as COLMAP's: matcher --Matching.mode sequential",
+       [](int argc, char** argv) { return RunMatcherInMode("sequential", argc, argv); }},
       {"mapper", "camera poses and points from a COLMAP database by motion averaging", RunMapper},
       {"relative_poses", "relative pose of every verified pair (grid 6-point, Kneip)",
        RunRelativePoses},
@@ -31,9 +50,15 @@ const std::vector<Command>& AllCommands() {
       {"compare", "COLMAP's BA mapper vs ramap on one database: accuracy, time, figures",
        RunCompare},
       {"database_info", "counts and checks what a COLMAP database holds", RunDatabaseInfo},
+      {"database_converter", "a COLMAP database rewritten as another generation (3.8, 3.10, 4)",
+       RunDatabaseConverter},
       {"model_aligner", "georegister a COLMAP model to GPS / position priors (ENU, GeoJSON)",
        RunModelAligner},
       {"model_converter", "convert a COLMAP sparse model between BIN and TXT", RunModelConverter},
+      {"bundle_adjuster", "bundle adjustment of a COLMAP model (poses, points, intrinsics)",
+       RunBundleAdjuster},
+      {"image_undistorter", "undistorted images and PINHOLE model (COLMAP's layout, for 3DGS)",
+       RunImageUndistorter},
       {"synthesize", "a synthetic scene with exact ground truth (database, model, TUM)",
        RunSynthesize},
   };

@@ -1,6 +1,7 @@
 #include "feature_options.h"
 
 #include "options.h"
+#include "ramap/io/colmap_database_schema.h"
 
 namespace ramap::cli {
 
@@ -26,6 +27,9 @@ void AddExtractionOptions(CLI::App& app, FeatureOptions* o) {
   app.add_option("--FeatureExtraction.num_threads", o->reader.num_threads)
       ->capture_default_str()
       ->check(AtLeast(1, 256));
+  app.add_option("--Database.generation", o->generation_name,
+                 "schema of the new database: 3.8 (every COLMAP reads it) | 3.10 | 4 (3.12-4.x)")
+      ->capture_default_str();
 }
 
 void AddMatchingOptions(CLI::App& app, FeatureOptions* o) {
@@ -66,6 +70,7 @@ void AddMatchingOptions(CLI::App& app, FeatureOptions* o) {
 void FinishFeatureOptions(FeatureOptions* o) {
   o->extraction.type = FeatureTypeFromName(o->type);
   o->matching.mode = MatchingModeFromName(o->mode);
+  o->generation = DatabaseGenerationFromName(o->generation_name, "--Database.generation");
   o->reader.Check();
   o->extraction.Check();
   o->matching.Check();

@@ -7,6 +7,7 @@
 
 #include "ramap/features/feature_matching.h"
 #include "ramap/features/image_reader.h"
+#include "ramap/scene/features.h"
 
 namespace ramap::cli {
 
@@ -16,6 +17,9 @@ struct FeatureOptions {
   FeatureMatchingOptions matching;
   std::string type = FeatureTypeName(FeatureExtractionOptions().type);
   std::string mode = MatchingModeName(FeatureMatchingOptions().mode);
+  // The generation of the database written (3.8: read by every COLMAP, 4.x upgrades it).
+  std::string generation_name = "3.8";
+  DatabaseGeneration generation = DatabaseGeneration::kColmap38;
 };
 
 void AddExtractionOptions(CLI::App& app, FeatureOptions* options);

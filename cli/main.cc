@@ -5,7 +5,10 @@
 #include <cstring>
 #include <exception>
 #include <iostream>
+#include <string>
+#include <vector>
 
+#include "colmap_compat.h"
 #include "commands.h"
 #include "ramap/util/error.h"
 #include "ramap/util/staged_output.h"
@@ -20,6 +23,10 @@ void PrintUsage(std::ostream& out) {
     out << "  " << command.name << std::string(22 - std::min<size_t>(20, command.name.size()), ' ')
         << command.summary << "\n";
   }
+  // nerfstudio reads the version of the `colmap` it runs from the help line that starts with
+  // "COLMAP"; this one tells it which command lines to send.
+  out << "\nCOLMAP 3.8 and 4.x command lines are accepted: tools that run `colmap` (nerfstudio, "
+         "3DGS's convert.py) can run ramap instead.\n";
 }
 
 }  // namespace
@@ -39,8 +46,14 @@ int main(int argc, char** argv) {
   for (const ramap::cli::Command& command : ramap::cli::AllCommands()) {
     if (command.name != name) continue;
     try {
-      // The command sees itself as argv[0].
-      return command.run(argc - 1, argv + 1);
+      // The command sees itself as argv[0], and ramap's names for COLMAP's renamed options.
+      std::vector<std::string> args = ramap::cli::TranslateColmapOptions(
+          std::vector<std::string>(argv + 2, argv + argc), std::cerr);
+      args.insert(args.begin(), argv[1]);
+      std::vector<char*> command_argv;
+      for (std::string& arg : args) command_argv.push_back(arg.data());
+      command_argv.push_back(nullptr);
+      return command.run(static_cast<int>(args.size()), command_argv.data());
     } catch (const ramap::InputError& error) {
       std::cerr << "ramap " << name << ": error: " << error.what() << "\n";
       return 2;

@@ -241,10 +241,16 @@ void AddTriangulationOptions(CLI::App& app, MapperOptions* o) {
 
 // Refinement (stage 6): bundle adjustment, with the intrinsics.
 void AddBundleAdjustmentOptions(CLI::App& app, MapperOptions* o) {
-  BundleAdjustmentOptions& ba = o->bundle_adjustment;
   app.add_option("--Mapper.refine", o->refine,
                  "1: bundle adjustment after averaging; 0: averaging alone (faster)")
       ->capture_default_str();
+  AddBundleAdjusterOptions(app, &o->bundle_adjustment);
+}
+
+}  // namespace
+
+void AddBundleAdjusterOptions(CLI::App& app, BundleAdjustmentOptions* options) {
+  BundleAdjustmentOptions& ba = *options;
   app.add_option("--BundleAdjustment.max_num_iterations", ba.max_num_iterations)
       ->capture_default_str()
       ->check(AtLeast(0));
@@ -267,6 +273,8 @@ void AddBundleAdjustmentOptions(CLI::App& app, MapperOptions* o) {
                  "1: refine distortion coefficients")
       ->capture_default_str();
 }
+
+namespace {
 
 // Self-calibration: the view graph before averaging, and the passes through BA's intrinsics.
 void AddCalibrationOptions(CLI::App& app, MapperOptions* o) {

@@ -30,6 +30,8 @@ void AddRotationAveragingOptions(CLI::App& app, MapperOptions* options, MapperOp
 // --Triangulation.*, --BundleAdjustment.* and --Mapper.* options bound to `options` (defaults shown
 // from the structs).
 void AddMapperOptions(CLI::App& app, MapperOptions* options, MapperOptionText* text);
+// The --BundleAdjustment.* options alone (the mapper's and `bundle_adjuster`'s).
+void AddBundleAdjusterOptions(CLI::App& app, BundleAdjustmentOptions* options);
 
 // Converts the enum options; throws InputError naming the option on a bad value.
 void FinishMapperOptions(const MapperOptionText& text, MapperOptions* options);

@@ -34,17 +34,21 @@ inline std::string WriteScratchFile(const std::string& name, const uint8_t* data
   return path;
 }
 
-// Splits the input at the first two occurrences of `separator` into up to three parts (the
-// model readers take three files).
-struct ThreeParts {
-  std::string parts[3];
+// Splits the input at the occurrences of `separator` into up to `N` parts (the model readers take
+// three files, or five with COLMAP 4's rigs and frames); `count` says how many were found.
+template <int N>
+struct Parts {
+  std::string parts[N];
+  int count = 0;
 };
-inline ThreeParts SplitThree(const uint8_t* data, size_t size, const std::string& separator) {
-  ThreeParts split;
+template <int N>
+inline Parts<N> Split(const uint8_t* data, size_t size, const std::string& separator) {
+  Parts<N> split;
   const std::string all(reinterpret_cast<const char*>(data), size);
   size_t begin = 0;
-  for (int k = 0; k < 3; ++k) {
-    const size_t end = k < 2 ? all.find(separator, begin) : std::string::npos;
+  for (int k = 0; k < N; ++k) {
+    const size_t end = k < N - 1 ? all.find(separator, begin) : std::string::npos;
+    split.count = k + 1;
     if (end == std::string::npos) {
       split.parts[k] = all.substr(begin);
       break;
@@ -55,15 +59,17 @@ inline ThreeParts SplitThree(const uint8_t* data, size_t size, const std::string
   return split;
 }
 
-// The three files of a model (cameras, images, points3D, with `extension`) in a fresh folder.
+// The files of a model (cameras, images, points3D, and rigs and frames when the input has five
+// parts, with `extension`) in a fresh folder.
 inline std::string WriteModelFolder(const uint8_t* data, size_t size,
                                     const std::string& extension) {
   const std::string folder = ScratchDir() + "/model";
   std::filesystem::remove_all(folder);
   std::filesystem::create_directories(folder);
-  const ThreeParts split = SplitThree(data, size, "\n@@\n");
-  const char* names[3] = {"cameras", "images", "points3D"};
-  for (int k = 0; k < 3; ++k) {
+  const Parts<5> split = Split<5>(data, size, "\n@@\n");
+  const char* names[5] = {"cameras", "images", "points3D", "rigs", "frames"};
+  for (int k = 0; k < 5; ++k) {
+    if (k >= 3 && k >= split.count) break;
     std::ofstream(folder + "/" + names[k] + extension, std::ios::binary) << split.parts[k];
   }
   return folder;

@@ -1,5 +1,6 @@
-// libFuzzer harness: a COLMAP model folder in the binary format, its three files
-// (cameras, images, points3D) separated in the input by "\n@@\n".
+// libFuzzer harness: a COLMAP model folder in the binary format, its files
+// (cameras, images, points3D, and COLMAP 4's rigs and frames when there are five parts) separated
+// in the input by "\n@@\n".
 #include "fuzz_input.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/util/error.h"

@@ -41,11 +41,19 @@ make_seeds() {
   "$ramap" relative_poses --database_path "$scene/database.db" \
     --output_path "$seeds/relative_poses/synthetic" >/dev/null
   cp "$scene/database.db" "$seeds/database/synthetic.db"
+  for generation in 3.10 4; do
+    "$ramap" database_converter --database_path "$scene/database.db" \
+      --output_path "$seeds/database/synthetic-$generation.db" --Database.generation "$generation" \
+      >/dev/null
+  done
   for format in bin txt; do
     local folder=$scene/ground_truth
     [[ $format == txt ]] && folder=$scene/text
     { cat "$folder/cameras.$format"; printf '\n@@\n'; cat "$folder/images.$format"
       printf '\n@@\n'; cat "$folder/points3D.$format"; } >"$seeds/model_$format/synthetic"
+    # With COLMAP 4's rigs and frames as the fourth and fifth parts.
+    { cat "$seeds/model_$format/synthetic"; printf '\n@@\n'; cat "$folder/rigs.$format"
+      printf '\n@@\n'; cat "$folder/frames.$format"; } >"$seeds/model_$format/synthetic_rigs"
   done
   { printf '\x00'; cat "$scene/ground_truth.txt"; } >"$seeds/ground_truth/tum"
 }

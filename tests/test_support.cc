@@ -29,6 +29,14 @@ bool ColmapAvailable() {
   return available;
 }
 
+std::string Colmap4Binary() {
+  const char* given = std::getenv("RAMAP_COLMAP4");
+  const std::string path = given != nullptr && *given != '\0'
+                               ? std::string(given)
+                               : std::string(RAMAP_SOURCE_DIR) + "/build-peers/build/src/colmap/exe/colmap";
+  return std::filesystem::exists(path) ? path : "";
+}
+
 std::string RamapBinary() { return RAMAP_CLI_PATH; }
 
 CommandResult RunCommand(const std::string& command_line) {

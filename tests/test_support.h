@@ -21,6 +21,10 @@ std::string SharedDataPath(const std::string& relative);
 // Whether the `colmap` binary is on the PATH.
 bool ColmapAvailable();
 
+// COLMAP 4.1.1 built by scripts/peers.sh ($RAMAP_COLMAP4, else build-peers/ in the checkout), or ""
+// when there is none: tests that run it skip visibly without it.
+std::string Colmap4Binary();
+
 // The built `ramap` binary.
 std::string RamapBinary();
 

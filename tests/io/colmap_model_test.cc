@@ -511,7 +511,8 @@ TEST(ColmapModelWriter, RejectsBadModelAndWritesNothing) {
   ExpectInputError([&] { WriteColmapModel(model, dir / "out", ModelFormat::kBinary); },
                    {"camera 4"});
   EXPECT_EQ(ReadBytes(dir / "out/images.bin"), before);
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir / "out"), fs::directory_iterator()), 3);
+  // The three model files and COLMAP 4's rigs and frames.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir / "out"), fs::directory_iterator()), 5);
 
   // A new nested folder, named with a trailing separator: created, nothing else left beside it.
   WriteColmapModel(HandBuiltModel(), dir / "nested/model/", ModelFormat::kText);

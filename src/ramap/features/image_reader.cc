@@ -200,6 +200,7 @@ FeatureDatabase ExtractImageFeatures(const std::string& image_path,
     if (const auto& gps = result.exif_gps) {
       image.prior_translation =
           Eigen::Vector3d(gps->latitude_deg, gps->longitude_deg, gps->altitude_m);
+      image.prior_coordinate_system = PriorCoordinateSystem::kWgs84;
       ++summary->num_images_with_gps;
     }
     database.images[image.image_id] = image;

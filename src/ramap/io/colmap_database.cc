@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "ramap/io/colmap_database_schema.h"
+#include "ramap/io/database_rigs_priors.h"
 #include "ramap/io/sqlite.h"
 #include "ramap/util/error.h"
 #include "ramap/util/staged_output.h"
@@ -24,39 +26,6 @@ using sqlite::BlobView;
 using sqlite::Connection;
 using sqlite::Statement;
 
-// COLMAP 3.8's schema, text for text as `colmap database_creator` leaves it in sqlite_master
-// (SQLite keeps the statement as written, minus COLMAP's IF NOT EXISTS), so that a schema dump of
-// our database and of COLMAP's are identical.
-constexpr const char* kSchema[] = {
-    "CREATE TABLE cameras   (camera_id            INTEGER  PRIMARY KEY AUTOINCREMENT  NOT NULL,    "
-    "model                INTEGER                             NOT NULL,    width                "
-    "INTEGER                             NOT NULL,    height               INTEGER               "
-    "              NOT NULL,    params               BLOB,    prior_focal_length   INTEGER       "
-    "                      NOT NULL)",
-    "CREATE TABLE images   (image_id   INTEGER  PRIMARY KEY AUTOINCREMENT  NOT NULL,    name       "
-    "TEXT                                NOT NULL UNIQUE,    camera_id  INTEGER                   "
-    "          NOT NULL,    prior_qw   REAL,    prior_qx   REAL,    prior_qy   REAL,    prior_qz   "
-    "REAL,    prior_tx   REAL,    prior_ty   REAL,    prior_tz   REAL,CONSTRAINT image_id_check "
-    "CHECK(image_id >= 0 and image_id < 2147483647),FOREIGN KEY(camera_id) REFERENCES "
-    "cameras(camera_id))",
-    "CREATE UNIQUE INDEX index_name ON images(name)",
-    "CREATE TABLE keypoints   (image_id  INTEGER  PRIMARY KEY  NOT NULL,    rows      INTEGER     "
-    "          NOT NULL,    cols      INTEGER               NOT NULL,    data      BLOB,FOREIGN "
-    "KEY(image_id) REFERENCES images(image_id) ON DELETE CASCADE)",
-    "CREATE TABLE descriptors   (image_id  INTEGER  PRIMARY KEY  NOT NULL,    rows      INTEGER   "
-    "            NOT NULL,    cols      INTEGER               NOT NULL,    data      BLOB,FOREIGN "
-    "KEY(image_id) REFERENCES images(image_id) ON DELETE CASCADE)",
-    "CREATE TABLE matches   (pair_id  INTEGER  PRIMARY KEY  NOT NULL,    rows     INTEGER          "
-    "     NOT NULL,    cols     INTEGER               NOT NULL,    data     BLOB)",
-    "CREATE TABLE two_view_geometries   (pair_id  INTEGER  PRIMARY KEY  NOT NULL,    rows     "
-    "INTEGER               NOT NULL,    cols     INTEGER               NOT NULL,    data     BLOB, "
-    " "
-    "  config   INTEGER               NOT NULL,    F        BLOB,    E        BLOB,    H        "
-    "BLOB,    qvec     BLOB,    tvec     BLOB)",
-};
-
-// COLMAP 3.8 stamps its databases with user_version = 3800.
-constexpr int kColmapUserVersion = 3800;
 // ramap's own table beside COLMAP's (see the header).
 constexpr const char* kMatchConfidenceTable = "ramap_match_confidence";
 
@@ -153,10 +122,10 @@ class Reader {
 
   FeatureDatabase Read() {
     CheckIsSqlite();
+    const DatabaseLayout layout = DetectDatabaseLayout(db_);
     CheckColumns("cameras",
                  {"camera_id", "model", "width", "height", "params", "prior_focal_length"});
-    CheckColumns("images", {"image_id", "name", "camera_id", "prior_qw", "prior_qx", "prior_qy",
-                            "prior_qz", "prior_tx", "prior_ty", "prior_tz"});
+    CheckColumns("images", {"image_id", "name", "camera_id"});
     CheckColumns("keypoints", {"image_id", "rows", "cols", "data"});
     if (options_.read_descriptors)
       CheckColumns("descriptors", {"image_id", "rows", "cols", "data"});
@@ -164,13 +133,16 @@ class Reader {
     CheckColumns("two_view_geometries",
                  {"pair_id", "rows", "cols", "data", "config", "F", "E", "H", "qvec", "tvec"});
     ReadCameras();
-    ReadImages();
+    ReadImages(layout.image_prior_columns);
+    ReadDatabasePosePriors(db_, layout, &database_);
+    if (layout.rigs_and_frames) ReadDatabaseRigsAndFrames(db_, &database_);
     ReadKeypoints();
     if (options_.read_descriptors) ReadDescriptors();
     if (options_.read_matches) ReadMatches();
     ReadTwoViewGeometries();
     ReadMatchConfidence();
     database_.source_path = path_;
+    database_.generation = layout.generation;
     return std::move(database_);
   }
 
@@ -206,9 +178,9 @@ class Reader {
         // COLMAP added the pose columns of two_view_geometries late; other gaps are rarer.
         const bool two_view_table = table == "two_view_geometries";
         Fail("table '" + table + "': missing column '" + column + "'" +
-             (two_view_table ? " (database from a COLMAP older than 3.8? ramap reads COLMAP 3.8 "
-                               "databases)"
-                             : " (not a COLMAP 3.8 database?)"));
+             (two_view_table ? " (database from a COLMAP older than 3.8? ramap reads COLMAP "
+                               "3.8-4.x databases)"
+                             : " (not a COLMAP database?)"));
       }
     }
   }
@@ -287,7 +259,7 @@ class Reader {
                                                    : std::nullopt;
       if (!model) {
         Fail(label + ": unknown camera model id " + std::to_string(model_id) +
-             " (COLMAP 3.8 models are 0-10)");
+             " (ramap reads COLMAP's models 0-10)");
       }
       Camera camera;
       camera.camera_id = static_cast<uint32_t>(id);
@@ -315,10 +287,14 @@ class Reader {
     }
   }
 
-  void ReadImages() {
-    Statement row(db_,
-                  "SELECT image_id, name, camera_id, prior_qw, prior_qx, prior_qy, prior_qz, "
-                  "prior_tx, prior_ty, prior_tz FROM images");
+  // With `prior_columns`, the priors of COLMAP 3.8's images table too (a database COLMAP 4
+  // upgraded keeps them; its pose_priors table, read after, has the last word).
+  void ReadImages(bool prior_columns) {
+    Statement row(db_, prior_columns
+                           ? "SELECT image_id, name, camera_id, prior_qw, prior_qx, prior_qy, "
+                             "prior_qz, prior_tx, prior_ty, prior_tz FROM images"
+                           : "SELECT image_id, name, camera_id, NULL, NULL, NULL, NULL, NULL, "
+                             "NULL, NULL FROM images");
     while (row.Step()) {
       const int64_t id = row.ColumnInt64(0);
       if (id < 0 || id >= static_cast<int64_t>(kMaxNumImages)) {
@@ -441,9 +417,9 @@ class Reader {
       geometry.image_id1 = id1;
       geometry.image_id2 = id2;
       const int64_t config = row.ColumnInt64(4);
-      if (config < 0 || config > static_cast<int>(TwoViewConfig::kMultiple)) {
+      if (config < 0 || config > static_cast<int>(TwoViewConfig::kCalibratedRig)) {
         Fail(what + ": unknown configuration type " + std::to_string(config) +
-             " (COLMAP 3.8 types are 0-8)");
+             " (COLMAP's types are 0-9)");
       }
       geometry.config = static_cast<TwoViewConfig>(config);
       geometry.inlier_matches = DecodeMatches(row, what);
@@ -594,7 +570,7 @@ void CheckWritableTwoViewGeometry(const FeatureDatabase& database, uint64_t pair
          std::to_string(pair_id) + " of another pair");
   }
   const int config = static_cast<int>(geometry.config);
-  if (config < 0 || config > static_cast<int>(TwoViewConfig::kMultiple)) {
+  if (config < 0 || config > static_cast<int>(TwoViewConfig::kCalibratedRig)) {
     Fail("two-view geometry of " + PairLabel(database, geometry.image_id1, geometry.image_id2) +
          ": unknown configuration type " + std::to_string(config));
   }
@@ -630,7 +606,8 @@ void BindRowMajor(Statement& statement, int index, const Matrix& matrix) {
   statement.BindBlob(index, row_major.data(), row_major.size() * sizeof(double));
 }
 
-void WriteImageRows(const FeatureDatabase& database, Connection& db) {
+void WriteImageRows(const FeatureDatabase& database, DatabaseGeneration generation,
+                    Connection& db) {
   Statement camera_row(db,
                        "INSERT INTO cameras(camera_id, model, width, height, params, "
                        "prior_focal_length) VALUES(?, ?, ?, ?, ?, ?)");
@@ -644,23 +621,26 @@ void WriteImageRows(const FeatureDatabase& database, Connection& db) {
     camera_row.Run();
   }
 
+  // From 3.10 on the priors have a table of their own (written below), without rotations.
+  const bool prior_columns = generation == DatabaseGeneration::kColmap38;
   Statement image_row(
-      db,
-      "INSERT INTO images(image_id, name, camera_id, prior_qw, prior_qx, prior_qy, "
-      "prior_qz, prior_tx, prior_ty, prior_tz) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      db, prior_columns
+              ? "INSERT INTO images(image_id, name, camera_id, prior_qw, prior_qx, prior_qy, "
+                "prior_qz, prior_tx, prior_ty, prior_tz) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?)"
+              : "INSERT INTO images(image_id, name, camera_id) VALUES(?, ?, ?)");
   for (const auto& [image_id, image] : database.images) {
     image_row.BindInt64(1, image_id);
     image_row.BindText(2, image.name);
     image_row.BindInt64(3, image.camera_id);
     // Unbound parameters are NULL: an absent prior.
-    if (image.prior_rotation) {
+    if (prior_columns && image.prior_rotation) {
       const Eigen::Quaterniond& q = *image.prior_rotation;
       image_row.BindDouble(4, q.w());
       image_row.BindDouble(5, q.x());
       image_row.BindDouble(6, q.y());
       image_row.BindDouble(7, q.z());
     }
-    if (image.prior_translation) {
+    if (prior_columns && image.prior_translation) {
       for (int i = 0; i < 3; ++i) image_row.BindDouble(8 + i, (*image.prior_translation)[i]);
     }
     image_row.Run();
@@ -676,18 +656,38 @@ void WriteImageRows(const FeatureDatabase& database, Connection& db) {
     keypoint_row.Run();
   }
 
+  // COLMAP 4 types its descriptors (FeatureExtractorType): 0 SIFT, -1 undefined (ramap's ORB),
+  // and matches only descriptors of one type.
+  const bool typed = generation == DatabaseGeneration::kColmap4;
   Statement descriptor_row(
-      db, "INSERT INTO descriptors(image_id, rows, cols, data) VALUES(?, ?, ?, ?)");
+      db, typed ? "INSERT INTO descriptors(image_id, rows, cols, data, type) VALUES(?, ?, ?, ?, ?)"
+                : "INSERT INTO descriptors(image_id, rows, cols, data) VALUES(?, ?, ?, ?)");
   for (const auto& [image_id, descriptors] : database.descriptors) {
     descriptor_row.BindInt64(1, image_id);
     descriptor_row.BindInt64(2, static_cast<int64_t>(descriptors.size()));
     descriptor_row.BindInt64(3, descriptors.num_cols);
     descriptor_row.BindBlob(4, descriptors.data.data(), descriptors.data.size());
+    if (typed) descriptor_row.BindInt64(5, descriptors.num_cols == 128 ? 0 : -1);
     descriptor_row.Run();
+  }
+  WriteDatabasePosePriors(database, generation, db);
+  if (generation == DatabaseGeneration::kColmap4) WriteDatabaseRigsAndFrames(database, db);
+}
+
+// COLMAP 4 stores an unknown F, E, H or relative pose as NULL, where older versions stored zeros
+// and the identity (which COLMAP 4 turns into NULL when it upgrades such a database).
+template <typename Matrix>
+void BindMatrixOrNull(Statement& statement, int index, const Matrix& matrix, bool null_if_zero) {
+  if (null_if_zero && matrix.isZero(0)) {
+    statement.BindNull(index);
+  } else {
+    BindRowMajor(statement, index, matrix);
   }
 }
 
-void WriteMatchRows(const FeatureDatabase& database, Connection& db) {
+void WriteMatchRows(const FeatureDatabase& database, DatabaseGeneration generation,
+                    Connection& db) {
+  const bool null_if_unknown = generation == DatabaseGeneration::kColmap4;
   Statement match_row(db, "INSERT INTO matches(pair_id, rows, cols, data) VALUES(?, ?, ?, ?)");
   for (const auto& [pair_id, matches] : database.matches) {
     match_row.BindInt64(1, static_cast<int64_t>(pair_id));
@@ -711,13 +711,17 @@ void WriteMatchRows(const FeatureDatabase& database, Connection& db) {
     geometry_row.BindBlob(4, geometry.inlier_matches.data(),
                           geometry.inlier_matches.size() * sizeof(FeatureMatch));
     geometry_row.BindInt64(5, static_cast<int>(geometry.config));
-    BindRowMajor(geometry_row, 6, geometry.F);
-    BindRowMajor(geometry_row, 7, geometry.E);
-    BindRowMajor(geometry_row, 8, geometry.H);
+    BindMatrixOrNull(geometry_row, 6, geometry.F, null_if_unknown);
+    BindMatrixOrNull(geometry_row, 7, geometry.E, null_if_unknown);
+    BindMatrixOrNull(geometry_row, 8, geometry.H, null_if_unknown);
     const Eigen::Quaterniond& q = geometry.cam2_from_cam1.rotation;
-    const Eigen::Vector4d qvec(q.w(), q.x(), q.y(), q.z());
-    geometry_row.BindBlob(9, qvec.data(), 4 * sizeof(double));
-    geometry_row.BindBlob(10, geometry.cam2_from_cam1.translation.data(), 3 * sizeof(double));
+    const bool unknown_pose = q.coeffs() == Eigen::Quaterniond::Identity().coeffs() &&
+                              geometry.cam2_from_cam1.translation.isZero(0);
+    if (!(null_if_unknown && unknown_pose)) {
+      const Eigen::Vector4d qvec(q.w(), q.x(), q.y(), q.z());
+      geometry_row.BindBlob(9, qvec.data(), 4 * sizeof(double));
+      geometry_row.BindBlob(10, geometry.cam2_from_cam1.translation.data(), 3 * sizeof(double));
+    }
     geometry_row.Run();
   }
 
@@ -763,7 +767,8 @@ std::vector<std::string> ReadDatabaseImageNames(const std::string& path) {
   return names;
 }
 
-void WriteColmapDatabase(const FeatureDatabase& database, const std::string& path) {
+void WriteColmapDatabase(const FeatureDatabase& database, const std::string& path,
+                         DatabaseGeneration generation) {
   CheckWritable(database, path);
   StagedPath staged(path);
   {
@@ -771,10 +776,10 @@ void WriteColmapDatabase(const FeatureDatabase& database, const std::string& pat
     // The staged file is thrown away on any failure, so durability while writing is not needed.
     db.Execute("PRAGMA synchronous = OFF; PRAGMA journal_mode = MEMORY;");
     db.Execute("BEGIN TRANSACTION");
-    for (const char* statement : kSchema) db.Execute(statement);
-    db.Execute("PRAGMA user_version = " + std::to_string(kColmapUserVersion));
-    WriteImageRows(database, db);
-    WriteMatchRows(database, db);
+    for (const std::string& statement : SchemaStatements(generation)) db.Execute(statement);
+    db.Execute("PRAGMA user_version = " + std::to_string(SchemaUserVersion(generation)));
+    WriteImageRows(database, generation, db);
+    WriteMatchRows(database, generation, db);
     db.Execute("COMMIT");
     // COLMAP keeps its databases in WAL mode (a setting stored in the file); closing the
     // connection checkpoints and removes the -wal file, so only the database is renamed.
@@ -800,9 +805,11 @@ void WriteColmapDatabaseMatches(const FeatureDatabase& database, const std::stri
                                  " (" + image.name + ") is not that image in the database");
     }
   }
+  // The file keeps its generation: its geometries are stored by its conventions.
+  const DatabaseGeneration generation = DetectDatabaseLayout(db).generation;
   db.Execute("DELETE FROM matches; DELETE FROM two_view_geometries;");
   db.Execute(std::string("DROP TABLE IF EXISTS ") + kMatchConfidenceTable);
-  WriteMatchRows(database, db);
+  WriteMatchRows(database, generation, db);
   // Nothing is changed unless everything is: an exception before this line rolls back when the
   // connection closes.
   db.Execute("COMMIT");

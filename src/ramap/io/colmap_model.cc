@@ -10,12 +10,15 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "ramap/io/colmap_model_rigs.h"
+#include "ramap/io/model_file_io.h"
 #include "ramap/util/error.h"
 #include "ramap/util/staged_output.h"
 
@@ -35,10 +38,6 @@ ModelFiles FilesIn(const std::string& folder, const std::string& extension) {
   const fs::path dir(folder);
   return {(dir / ("cameras" + extension)).string(), (dir / ("images" + extension)).string(),
           (dir / ("points3D" + extension)).string()};
-}
-
-std::string Ordinal(uint64_t index, uint64_t count) {
-  return std::to_string(index + 1) + " (of " + std::to_string(count) + ")";
 }
 
 std::string ImageLabel(const Image& image) {
@@ -192,128 +191,6 @@ void CheckModel(const Reconstruction& model, const ModelFiles& files) {
 // ---------------------------------------------------------------------------------------------
 // Binary format: little-endian, fields as in COLMAP 3.8 (src/base/reconstruction.cc).
 
-std::string ReadWholeFile(const std::string& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw InputError(path, "file not found");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path, "cannot open for reading");
-  std::string data((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (file.bad()) throw InputError(path, "read failed");
-  return data;
-}
-
-class BinaryReader {
- public:
-  explicit BinaryReader(std::string path) : path_(std::move(path)), data_(ReadWholeFile(path_)) {}
-
-  // What is being read, for the truncation message ("image 3 (of 12)").
-  void SetItem(std::string item) { item_ = std::move(item); }
-  const std::string& path() const { return path_; }
-  size_t remaining() const { return data_.size() - pos_; }
-
-  uint64_t ReadUnsigned(int num_bytes) {
-    Need(num_bytes);
-    uint64_t value = 0;
-    for (int i = 0; i < num_bytes; ++i) {
-      value |= static_cast<uint64_t>(static_cast<uint8_t>(data_[pos_ + i])) << (8 * i);
-    }
-    pos_ += num_bytes;
-    return value;
-  }
-  uint8_t ReadUint8() { return static_cast<uint8_t>(ReadUnsigned(1)); }
-  uint32_t ReadUint32() { return static_cast<uint32_t>(ReadUnsigned(4)); }
-  int32_t ReadInt32() {
-    const uint32_t bits = ReadUint32();
-    int32_t value;
-    std::memcpy(&value, &bits, sizeof(value));
-    return value;
-  }
-  uint64_t ReadUint64() { return ReadUnsigned(8); }
-  double ReadDouble() {
-    const uint64_t bits = ReadUint64();
-    double value;
-    std::memcpy(&value, &bits, sizeof(value));
-    return value;
-  }
-  std::string ReadString() {
-    const size_t end = data_.find('\0', pos_);
-    if (end == std::string::npos) Truncated();
-    std::string value = data_.substr(pos_, end - pos_);
-    pos_ = end + 1;
-    return value;
-  }
-  // A count of `count` records of at least `min_bytes` each must fit in what is left; checked
-  // before allocating so that a corrupt count fails cleanly.
-  void ExpectRecords(uint64_t count, uint64_t min_bytes) {
-    if (min_bytes > 0 && count > remaining() / min_bytes) Truncated();
-  }
-  void ExpectEnd() {
-    if (remaining() != 0) {
-      throw InputError(path_, std::to_string(remaining()) +
-                                  " unexpected bytes after the last record (not a COLMAP 3.8 "
-                                  "model, or a corrupt count)");
-    }
-  }
-
- private:
-  void Need(size_t num_bytes) {
-    if (remaining() < num_bytes) Truncated();
-  }
-  [[noreturn]] void Truncated() const {
-    throw InputError(path_, "truncated while reading " + item_);
-  }
-
-  std::string path_;
-  std::string data_;
-  size_t pos_ = 0;
-  std::string item_ = "the header";
-};
-
-// Little-endian values, gathered in a buffer and written a mebibyte at a time: one ostream call
-// per value took 1.6 s for the 130 MB images.bin of a 4541-frame drive. The rest is written when
-// the writer goes out of scope; stream errors stay in the stream's state for the caller to check.
-class BinaryWriter {
- public:
-  explicit BinaryWriter(std::ostream& out) : out_(out) { buffer_.reserve(kFlushBytes + 64); }
-  ~BinaryWriter() { Flush(); }
-  BinaryWriter(const BinaryWriter&) = delete;
-  BinaryWriter& operator=(const BinaryWriter&) = delete;
-
-  void WriteUnsigned(uint64_t value, int num_bytes) {
-    for (int i = 0; i < num_bytes; ++i)
-      buffer_.push_back(static_cast<char>((value >> (8 * i)) & 0xff));
-    if (buffer_.size() >= kFlushBytes) Flush();
-  }
-  void WriteUint8(uint8_t value) { WriteUnsigned(value, 1); }
-  void WriteUint32(uint32_t value) { WriteUnsigned(value, 4); }
-  void WriteInt32(int32_t value) {
-    uint32_t bits;
-    std::memcpy(&bits, &value, sizeof(bits));
-    WriteUnsigned(bits, 4);
-  }
-  void WriteUint64(uint64_t value) { WriteUnsigned(value, 8); }
-  void WriteDouble(double value) {
-    uint64_t bits;
-    std::memcpy(&bits, &value, sizeof(bits));
-    WriteUnsigned(bits, 8);
-  }
-  void WriteString(const std::string& value) {
-    buffer_.append(value.c_str(), value.size() + 1);
-    if (buffer_.size() >= kFlushBytes) Flush();
-  }
-
- private:
-  static constexpr size_t kFlushBytes = size_t{1} << 20;
-
-  void Flush() {
-    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-    buffer_.clear();
-  }
-
-  std::ostream& out_;
-  std::string buffer_;
-};
-
 void ReadCamerasBinary(const std::string& path, Reconstruction* model) {
   BinaryReader in(path);
   in.SetItem("the number of cameras");
@@ -400,88 +277,6 @@ void ReadPoints3DBinary(const std::string& path, Reconstruction* model) {
   }
   in.ExpectEnd();
 }
-
-// ---------------------------------------------------------------------------------------------
-// Text format, as COLMAP 3.8 writes it: '#' comment header, space-separated fields, images on two
-// lines (the second one, the observations, may be empty).
-
-class TextLines {
- public:
-  explicit TextLines(const std::string& path) : path_(path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw InputError(path, "file not found");
-    file_.open(path);
-    if (!file_) throw InputError(path, "cannot open for reading");
-  }
-
-  // The next line that is neither blank nor a comment; false at the end of the file.
-  bool NextDataLine(std::vector<std::string>* tokens) {
-    std::string line;
-    while (NextLine(&line)) {
-      Split(line, tokens);
-      if (!tokens->empty() && (*tokens)[0][0] != '#') return true;
-    }
-    return false;
-  }
-  // The very next line, whatever it holds (the observations line of an image).
-  bool NextRawLine(std::vector<std::string>* tokens) {
-    std::string line;
-    if (!NextLine(&line)) return false;
-    Split(line, tokens);
-    return true;
-  }
-
-  int line_number() const { return line_number_; }
-  const std::string& path() const { return path_; }
-
-  [[noreturn]] void Fail(const std::string& problem) const {
-    throw InputError(path_, "line " + std::to_string(line_number_) + ": " + problem);
-  }
-
-  double Double(const std::string& token, const std::string& what) const {
-    char* end = nullptr;
-    errno = 0;
-    const double value = std::strtod(token.c_str(), &end);
-    if (token.empty() || *end != '\0') Fail("cannot read " + what + " from '" + token + "'");
-    return value;
-  }
-  double FiniteDouble(const std::string& token, const std::string& what) const {
-    const double value = Double(token, what);
-    if (!std::isfinite(value)) Fail(what + " is not a finite number ('" + token + "')");
-    return value;
-  }
-  uint64_t Unsigned(const std::string& token, const std::string& what, uint64_t max) const {
-    char* end = nullptr;
-    errno = 0;
-    const unsigned long long value = std::strtoull(token.c_str(), &end, 10);
-    if (token.empty() || token[0] == '-' || token[0] == '+' || *end != '\0' || errno == ERANGE ||
-        value > max) {
-      Fail("cannot read " + what + " from '" + token + "'");
-    }
-    return value;
-  }
-
- private:
-  bool NextLine(std::string* line) {
-    if (!std::getline(file_, *line)) return false;
-    ++line_number_;
-    if (!line->empty() && line->back() == '\r') line->pop_back();
-    return true;
-  }
-  static void Split(const std::string& line, std::vector<std::string>* tokens) {
-    tokens->clear();
-    std::istringstream stream(line);
-    std::string token;
-    while (stream >> token) tokens->push_back(token);
-  }
-
-  std::string path_;
-  std::ifstream file_;
-  int line_number_ = 0;
-};
-
-constexpr uint64_t kMaxUint32 = 0xffffffffull;
-constexpr uint64_t kMaxUint64 = ~0ull;
 
 void ReadCamerasText(const std::string& path, Reconstruction* model) {
   TextLines in(path);
@@ -587,13 +382,6 @@ void ReadPoints3DText(const std::string& path, Reconstruction* model) {
     if (model->points3D.count(point3D_id) != 0) in.Fail("duplicate 3D point id " + t[0]);
     model->points3D.emplace(point3D_id, std::move(point));
   }
-}
-
-// %.17g: what COLMAP 3.8 writes (ostream precision 17), and enough to read back the same double.
-std::string FormatDouble(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
-  return buffer;
 }
 
 size_t NumObservations(const Reconstruction& model) {
@@ -771,6 +559,7 @@ Reconstruction ReadColmapModelBinary(const std::string& path) {
   ReadImagesBinary(files.images, &model);
   ReadPoints3DBinary(files.points3D, &model);
   CheckModel(model, files);
+  ReadColmapModelRigs(path, /*binary=*/true, &model);
   return model;
 }
 
@@ -781,6 +570,7 @@ Reconstruction ReadColmapModelText(const std::string& path) {
   ReadImagesText(files.images, &model);
   ReadPoints3DText(files.points3D, &model);
   CheckModel(model, files);
+  ReadColmapModelRigs(path, /*binary=*/false, &model);
   return model;
 }
 
@@ -828,17 +618,34 @@ void WriteColmapModel(const Reconstruction& reconstruction, const std::string& p
     if (ec) throw InputError(path, "cannot create the folder: " + ec.message());
     folder = staged_folder->path();
   }
-  const ModelFiles files = FilesIn(folder, binary ? ".bin" : ".txt");
+  const std::string extension = binary ? ".bin" : ".txt";
+  const ModelFiles files = FilesIn(folder, extension);
 
+  // COLMAP 4's rigs and frames go beside the three files COLMAP 3.8 reads (it ignores them).
+  const ModelRigsAndFrames rigs = RigsAndFramesToWrite(reconstruction);
   struct Part {
     std::string final_path;
     std::string path;
-    void (*write)(const Reconstruction&, std::ostream&);
+    std::function<void(std::ostream&)> write;
+  };
+  const auto model_part = [&](const std::string& final_path, const std::string& staged_path,
+                              void (*write)(const Reconstruction&, std::ostream&)) {
+    return Part{final_path, staged_path, [&, write](std::ostream& out) { write(reconstruction, out); }};
+  };
+  const auto rig_part = [&](const std::string& name,
+                            void (*write)(const ModelRigsAndFrames&, std::ostream&)) {
+    return Part{(fs::path(path) / (name + extension)).string(),
+                (fs::path(folder) / (name + extension)).string(),
+                [&, write](std::ostream& out) { write(rigs, out); }};
   };
   const std::vector<Part> parts = {
-      {final_files.cameras, files.cameras, binary ? &WriteCamerasBinary : &WriteCamerasText},
-      {final_files.images, files.images, binary ? &WriteImagesBinary : &WriteImagesText},
-      {final_files.points3D, files.points3D, binary ? &WritePoints3DBinary : &WritePoints3DText},
+      model_part(final_files.cameras, files.cameras,
+                 binary ? &WriteCamerasBinary : &WriteCamerasText),
+      model_part(final_files.images, files.images, binary ? &WriteImagesBinary : &WriteImagesText),
+      model_part(final_files.points3D, files.points3D,
+                 binary ? &WritePoints3DBinary : &WritePoints3DText),
+      rig_part("rigs", binary ? &WriteRigsBinary : &WriteRigsText),
+      rig_part("frames", binary ? &WriteFramesBinary : &WriteFramesText),
   };
   std::vector<std::unique_ptr<StagedPath>> staged_files;
   for (const Part& part : parts) {
@@ -849,7 +656,7 @@ void WriteColmapModel(const Reconstruction& reconstruction, const std::string& p
     }
     std::ofstream file(target, binary ? std::ios::binary | std::ios::out : std::ios::out);
     if (!file) throw InputError(part.final_path, "cannot open for writing");
-    part.write(reconstruction, file);
+    part.write(file);
     file.flush();
     if (!file) throw InputError(part.final_path, "write failed (disk full?)");
   }

@@ -1,4 +1,5 @@
-// Reading and writing COLMAP 3.8 sparse models: cameras, images, points3D as .bin or .txt.
+// Reading and writing COLMAP sparse models: cameras, images, points3D as .bin or .txt (COLMAP 3.8's
+// files, which 4.x keeps), and COLMAP 4's rigs and frames beside them (io/colmap_model_rigs.h).
 #pragma once
 
 #include <string>
@@ -26,7 +27,8 @@ Reconstruction ReadColmapModel(const std::string& path);
 Reconstruction ReadColmapModelBinary(const std::string& path);
 Reconstruction ReadColmapModelText(const std::string& path);
 
-// Writes the model into folder `path` (created; its three files are replaced), staging each file
+// Writes the model into folder `path` (created; its five files are replaced: the three of COLMAP
+// 3.8, and rigs and frames for COLMAP 4), staging each file
 // and renaming it into place when complete. Ids are written in increasing order, so writing what
 // was read gives identical binary files; text uses COLMAP 3.8's layout and header comments, with
 // 17 significant digits (lossless). The model is checked as by the readers before anything is

@@ -73,6 +73,13 @@ std::vector<PriorRecord> PriorRecordsFromDatabase(const FeatureDatabase& databas
     record.image_name = image.name;
     record.value = *image.prior_translation;
     record.where = "database, image " + std::to_string(id);
+    // COLMAP 3.11 on stores the prior's covariance (m^2); its diagonal gives the deviations.
+    if (image.prior_position_covariance) {
+      const Eigen::Vector3d variances = image.prior_position_covariance->diagonal();
+      if (variances.allFinite() && variances.minCoeff() > 0) {
+        record.std_dev_m = variances.cwiseSqrt();
+      }
+    }
     records.push_back(record);
   }
   return records;

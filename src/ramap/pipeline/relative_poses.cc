@@ -8,7 +8,8 @@ namespace ramap {
 
 bool IsUsableTwoViewConfig(TwoViewConfig config) {
   return config == TwoViewConfig::kCalibrated || config == TwoViewConfig::kUncalibrated ||
-         config == TwoViewConfig::kPlanar || config == TwoViewConfig::kPlanarOrPanoramic;
+         config == TwoViewConfig::kPlanar || config == TwoViewConfig::kPlanarOrPanoramic ||
+         config == TwoViewConfig::kCalibratedRig;
 }
 
 std::vector<ImagePair> EstimateRelativePoses(const FeatureDatabase& database,

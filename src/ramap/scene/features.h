@@ -10,6 +10,7 @@
 
 #include "ramap/scene/camera.h"
 #include "ramap/scene/image.h"
+#include "ramap/scene/rig.h"
 #include "ramap/scene/rigid3.h"
 
 namespace ramap {
@@ -52,7 +53,7 @@ struct FeatureMatch {
   uint32_t point2D_idx2 = 0;
 };
 
-// COLMAP's TwoViewGeometry::ConfigurationType.
+// COLMAP's TwoViewGeometry::ConfigurationType (4.x added kCalibratedRig).
 enum class TwoViewConfig : int {
   kUndefined = 0,
   kDegenerate = 1,
@@ -63,6 +64,7 @@ enum class TwoViewConfig : int {
   kPlanarOrPanoramic = 6,
   kWatermark = 7,
   kMultiple = 8,
+  kCalibratedRig = 9,  // COLMAP 4: the known relative pose of two cameras of one rig
 };
 
 // The verified geometry of an image pair, always held with image_id1 < image_id2 (the database
@@ -86,10 +88,15 @@ struct TwoViewGeometry {
 // The same geometry seen from the other image: ids, match columns, F, E, H and pose inverted.
 TwoViewGeometry InvertTwoViewGeometry(const TwoViewGeometry& geometry);
 
-// Everything a COLMAP database holds, keyed by id (pairs by pair_id, smaller image id first).
 // image id -> the unit bearing (camera frame) of each of its keypoints, by keypoint index.
 using KeypointBearings = std::map<uint32_t, std::vector<Eigen::Vector3d>>;
 
+// The generations of COLMAP's database schema (io/colmap_database_schema.h tells them apart):
+// 3.8-3.9 (pose priors in the images table), 3.10-3.11 (a pose_priors table keyed by image) and
+// 3.12-4.x (rigs, frames, pose_priors keyed by sensor data, typed descriptors).
+enum class DatabaseGeneration { kColmap38, kColmap310, kColmap4 };
+
+// Everything a COLMAP database holds, keyed by id (pairs by pair_id, smaller image id first).
 struct FeatureDatabase {
   std::map<uint32_t, Camera> cameras;
   std::map<uint32_t, Image> images;  // points2D empty; keypoints are below
@@ -97,6 +104,11 @@ struct FeatureDatabase {
   std::map<uint32_t, Descriptors> descriptors;
   std::map<uint64_t, std::vector<FeatureMatch>> matches;
   std::map<uint64_t, TwoViewGeometry> two_view_geometries;
+  // Rigs and frames (3.12-4.x); empty: none stored, one rig per camera and one frame per image.
+  Rigs rigs;
+  Frames frames;
+  // The schema it was read from (kColmap38 when built in memory).
+  DatabaseGeneration generation = DatabaseGeneration::kColmap38;
   // The file it was read from (empty when built in memory), for messages.
   std::string source_path;
 };

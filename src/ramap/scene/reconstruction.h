@@ -9,6 +9,7 @@
 
 #include "ramap/scene/camera.h"
 #include "ramap/scene/image.h"
+#include "ramap/scene/rig.h"
 
 namespace ramap {
 
@@ -29,6 +30,10 @@ struct Reconstruction {
   std::map<uint32_t, Camera> cameras;
   std::map<uint32_t, Image> images;
   std::map<uint64_t, Point3D> points3D;
+  // A COLMAP 4 model's rigs and frames as read (io/colmap_model_rigs.h); empty: one rig per camera
+  // and one frame per image. The images' poses are the truth: frames' poses follow them on writing.
+  Rigs rigs;
+  Frames frames;
 };
 
 }  // namespace ramap

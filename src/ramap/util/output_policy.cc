@@ -75,6 +75,18 @@ void CheckFolderOutput(const std::string& option, const std::string& path,
   }
 }
 
+void CheckModelOutputMayReplaceInput(const std::string& option, const std::string& path,
+                                     const std::string& input_model,
+                                     const std::vector<std::string>& other_inputs) {
+  if (!path.empty() && SameFile(path, input_model)) {
+    CheckFolderOutput(option, path, other_inputs);
+    return;
+  }
+  std::vector<std::string> inputs = other_inputs;
+  inputs.push_back(input_model);
+  CheckFolderOutput(option, path, inputs);
+}
+
 void CheckNewDatabasePath(const std::string& option, const std::string& path,
                           const std::vector<std::string>& inputs) {
   CheckFileOutput(option, path, inputs);

@@ -21,6 +21,13 @@ void CheckFileOutput(const std::string& option, const std::string& path,
 void CheckFolderOutput(const std::string& option, const std::string& path,
                        const std::vector<std::string>& inputs);
 
+// A model output of a command that transforms one model (bundle_adjuster, model_aligner): as
+// COLMAP's, it may be the input folder itself (the model is read whole first; its files are then
+// replaced by renames, other files in the folder left alone); otherwise as CheckFolderOutput.
+void CheckModelOutputMayReplaceInput(const std::string& option, const std::string& path,
+                                     const std::string& input_model,
+                                     const std::vector<std::string>& other_inputs = {});
+
 // A new database file: as CheckFileOutput, and it must not exist yet (the commands that create
 // a database never overwrite one; `ramap matcher` is the one that changes a database in place).
 void CheckNewDatabasePath(const std::string& option, const std::string& path,

@@ -31,7 +31,7 @@ int RunBundleAdjuster(int argc, char** argv) {
 
   Reconstruction model = ReadColmapModel(input_path);
   const BundleAdjustmentSummary summary = BundleAdjustModel(&model, options, input_path);
-  WriteColmapModel(model, output_path, format);
+  WriteColmapModelAndTrajectory(model, output_path, format);
   std::cout << std::fixed << std::setprecision(3) << "ramap bundle_adjuster: " << summary.num_images
             << " images, " << summary.num_points << " points, RMSE " << summary.initial_rmse_px
             << " -> " << summary.final_rmse_px << " px in " << summary.num_iterations

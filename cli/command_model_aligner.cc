@@ -24,7 +24,7 @@ namespace {
 
 void WriteAligned(const Reconstruction& model, const std::optional<GeodeticPoint>& origin,
                   const std::string& folder, ModelFormat format) {
-  WriteColmapModel(model, folder, format);
+  WriteColmapModelAndTrajectory(model, folder, format);
   if (origin) WriteGeoreference(model, *origin, folder);
 }
 
@@ -59,7 +59,7 @@ int AlignToPlane(Reconstruction model, const std::string& input_path,
                  const std::string& output_path, ModelFormat format) {
   const Sim3d new_from_old = PrincipalPlaneAlignment(model, input_path);
   TransformReconstruction(new_from_old, &model);
-  WriteColmapModel(model, output_path, format);
+  WriteColmapModelAndTrajectory(model, output_path, format);
   std::cout << "ramap model_aligner: " << model.images.size() << " images and "
             << model.points3D.size()
             << " points set upright on their principal plane (z = 0, +Z towards the cameras) -> "

@@ -109,14 +109,17 @@ for entry in "${RAMAP_DATASETS[@]}"; do
     mapped=$(auc3 "$work/$db.ramap/0" "$database")
     cp "$database" "$work/$db.rematched.db"
     "$ramap" matcher --database_path "$work/$db.rematched.db" >"$work/$db.matcher.log" 2>&1 || true
+    rematched_schema=$(schema_of "$work/$db.rematched.db")
+    # COLMAP 4 upgrades what it opens: it gets a copy.
+    cp "$work/$db.rematched.db" "$work/$db.colmap4.db"
     mkdir -p "$work/$db.colmap4"
-    "$colmap4" mapper --database_path "$work/$db.rematched.db" --image_path "$img" \
+    "$colmap4" mapper --database_path "$work/$db.colmap4.db" --image_path "$img" \
       --output_path "$work/$db.colmap4" --Mapper.ba_refine_focal_length 0 \
       --Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 0 \
       >"$work/$db.colmap4.log" 2>&1 || true
     by_colmap4="failed (log: $work/$db.colmap4.log)"
     [[ -f $work/$db.colmap4/0/images.bin ]] && by_colmap4=$(auc3 "$work/$db.colmap4/0" "$database")
-    echo "| $name | $db | ${made_by[$db]} | $(schema_of "$database") | $mapped | $(schema_of "$work/$db.rematched.db") | $by_colmap4 |"
+    echo "| $name | $db | ${made_by[$db]} | $(schema_of "$database") | $mapped | $rematched_schema | $by_colmap4 |"
   done
 
   # ramap's model of the COLMAP-created 4.x database, read by both COLMAPs.

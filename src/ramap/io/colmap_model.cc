@@ -19,6 +19,7 @@
 
 #include "ramap/io/colmap_model_rigs.h"
 #include "ramap/io/model_file_io.h"
+#include "ramap/io/trajectory.h"
 #include "ramap/util/error.h"
 #include "ramap/util/staged_output.h"
 
@@ -574,6 +575,79 @@ Reconstruction ReadColmapModelText(const std::string& path) {
   return model;
 }
 
+namespace {
+
+// Refuses a folder that cannot take the model: a file in its place, a model of the other format
+// in it, or a folder where a model file goes.
+void CheckModelFolder(const std::string& path, bool binary, const ModelFiles& final_files) {
+  std::error_code ec;
+  if (fs::exists(path, ec) && !fs::is_directory(path, ec)) {
+    throw InputError(path, "exists and is not a folder");
+  }
+  if (!fs::is_directory(path, ec)) return;
+  // A model of the other format beside the new one would be what readers see (COLMAP reads .bin
+  // first), so a mixed folder is refused rather than silently shadowed or cleaned up.
+  const ModelFiles other = FilesIn(path, binary ? ".txt" : ".bin");
+  for (const std::string& file : {other.cameras, other.images, other.points3D}) {
+    if (fs::exists(file, ec)) {
+      throw InputError(path, "already holds a " + std::string(binary ? "text" : "binary") +
+                                 " model (" + file + "); write the " +
+                                 (binary ? "binary" : "text") +
+                                 " model to another folder, or remove that one first");
+    }
+  }
+  for (const std::string& file : {final_files.cameras, final_files.images, final_files.points3D}) {
+    if (fs::is_directory(file, ec)) throw InputError(file, "is a folder; expected a model file");
+  }
+}
+
+// A new folder staged whole (null when `path` exists: its files are staged one by one).
+std::unique_ptr<StagedPath> StagedModelFolder(const std::string& path) {
+  std::error_code ec;
+  if (fs::exists(path, ec)) return nullptr;
+  fs::path folder_path = fs::absolute(fs::path(path));
+  if (!folder_path.has_filename()) folder_path = folder_path.parent_path();  // "out/"
+  fs::create_directories(folder_path.parent_path(), ec);
+  if (ec) throw InputError(path, "cannot create the parent folder: " + ec.message());
+  auto staged = std::make_unique<StagedPath>(path);
+  fs::create_directory(staged->path(), ec);
+  if (ec) throw InputError(path, "cannot create the folder: " + ec.message());
+  return staged;
+}
+
+// One file of a model: where it ends up, where it is written first, and what writes it.
+struct ModelPart {
+  std::string final_path;
+  std::string path;
+  std::function<void(std::ostream&)> write;
+};
+
+// The five files: COLMAP 3.8's three, and COLMAP 4's rigs and frames (3.8 ignores them).
+std::vector<ModelPart> ModelParts(const Reconstruction& reconstruction,
+                                  const ModelRigsAndFrames& rigs, const std::string& path,
+                                  const std::string& folder, bool binary) {
+  const std::string extension = binary ? ".bin" : ".txt";
+  const auto part = [&](const std::string& name, std::function<void(std::ostream&)> write) {
+    return ModelPart{(fs::path(path) / (name + extension)).string(),
+                     (fs::path(folder) / (name + extension)).string(), std::move(write)};
+  };
+  const auto model = [&](void (*write)(const Reconstruction&, std::ostream&)) {
+    return [&reconstruction, write](std::ostream& out) { write(reconstruction, out); };
+  };
+  const auto rig = [&](void (*write)(const ModelRigsAndFrames&, std::ostream&)) {
+    return [&rigs, write](std::ostream& out) { write(rigs, out); };
+  };
+  return {
+      part("cameras", model(binary ? &WriteCamerasBinary : &WriteCamerasText)),
+      part("images", model(binary ? &WriteImagesBinary : &WriteImagesText)),
+      part("points3D", model(binary ? &WritePoints3DBinary : &WritePoints3DText)),
+      part("rigs", rig(binary ? &WriteRigsBinary : &WriteRigsText)),
+      part("frames", rig(binary ? &WriteFramesBinary : &WriteFramesText)),
+  };
+}
+
+}  // namespace
+
 void WriteColmapModel(const Reconstruction& reconstruction, const std::string& path,
                       ModelFormat format) {
   const bool binary = format == ModelFormat::kBinary;
@@ -581,74 +655,15 @@ void WriteColmapModel(const Reconstruction& reconstruction, const std::string& p
   // Everything is checked before anything is created, so a bad model leaves no trace.
   CheckModel(reconstruction, final_files);
   CheckNamesWritable(reconstruction, final_files, format);
-
-  std::error_code ec;
-  if (fs::exists(path, ec) && !fs::is_directory(path, ec)) {
-    throw InputError(path, "exists and is not a folder");
-  }
-  if (fs::is_directory(path, ec)) {
-    // A model of the other format beside the new one would be what readers see (COLMAP reads
-    // .bin first), so a mixed folder is refused rather than silently shadowed or cleaned up.
-    const ModelFiles other = FilesIn(path, binary ? ".txt" : ".bin");
-    for (const std::string& file : {other.cameras, other.images, other.points3D}) {
-      if (fs::exists(file, ec)) {
-        throw InputError(path, "already holds a " + std::string(binary ? "text" : "binary") +
-                                   " model (" + file + "); write the " +
-                                   (binary ? "binary" : "text") +
-                                   " model to another folder, or remove that one first");
-      }
-    }
-    for (const std::string& file :
-         {final_files.cameras, final_files.images, final_files.points3D}) {
-      if (fs::is_directory(file, ec)) throw InputError(file, "is a folder; expected a model file");
-    }
-  }
-  // A new folder is staged whole; into an existing one, the three files are staged side by side
-  // and renamed only once all three are complete.
-  std::unique_ptr<StagedPath> staged_folder;
-  std::string folder = path;
-  if (!fs::exists(path, ec)) {
-    fs::path folder_path = fs::absolute(fs::path(path));
-    if (!folder_path.has_filename()) folder_path = folder_path.parent_path();  // "out/"
-    const fs::path parent = folder_path.parent_path();
-    fs::create_directories(parent, ec);
-    if (ec) throw InputError(path, "cannot create the parent folder: " + ec.message());
-    staged_folder = std::make_unique<StagedPath>(path);
-    fs::create_directory(staged_folder->path(), ec);
-    if (ec) throw InputError(path, "cannot create the folder: " + ec.message());
-    folder = staged_folder->path();
-  }
-  const std::string extension = binary ? ".bin" : ".txt";
-  const ModelFiles files = FilesIn(folder, extension);
-
-  // COLMAP 4's rigs and frames go beside the three files COLMAP 3.8 reads (it ignores them).
+  CheckModelFolder(path, binary, final_files);
   const ModelRigsAndFrames rigs = RigsAndFramesToWrite(reconstruction);
-  struct Part {
-    std::string final_path;
-    std::string path;
-    std::function<void(std::ostream&)> write;
-  };
-  const auto model_part = [&](const std::string& final_path, const std::string& staged_path,
-                              void (*write)(const Reconstruction&, std::ostream&)) {
-    return Part{final_path, staged_path, [&, write](std::ostream& out) { write(reconstruction, out); }};
-  };
-  const auto rig_part = [&](const std::string& name,
-                            void (*write)(const ModelRigsAndFrames&, std::ostream&)) {
-    return Part{(fs::path(path) / (name + extension)).string(),
-                (fs::path(folder) / (name + extension)).string(),
-                [&, write](std::ostream& out) { write(rigs, out); }};
-  };
-  const std::vector<Part> parts = {
-      model_part(final_files.cameras, files.cameras,
-                 binary ? &WriteCamerasBinary : &WriteCamerasText),
-      model_part(final_files.images, files.images, binary ? &WriteImagesBinary : &WriteImagesText),
-      model_part(final_files.points3D, files.points3D,
-                 binary ? &WritePoints3DBinary : &WritePoints3DText),
-      rig_part("rigs", binary ? &WriteRigsBinary : &WriteRigsText),
-      rig_part("frames", binary ? &WriteFramesBinary : &WriteFramesText),
-  };
+
+  // A new folder is staged whole; into an existing one, the files are staged side by side and
+  // renamed only once all of them are complete.
+  const std::unique_ptr<StagedPath> staged_folder = StagedModelFolder(path);
+  const std::string folder = staged_folder ? staged_folder->path() : path;
   std::vector<std::unique_ptr<StagedPath>> staged_files;
-  for (const Part& part : parts) {
+  for (const ModelPart& part : ModelParts(reconstruction, rigs, path, folder, binary)) {
     std::string target = part.path;
     if (!staged_folder) {
       staged_files.push_back(std::make_unique<StagedPath>(part.path));
@@ -665,6 +680,15 @@ void WriteColmapModel(const Reconstruction& reconstruction, const std::string& p
   } else {
     for (const auto& staged : staged_files) staged->Commit();
   }
+}
+
+void WriteColmapModelAndTrajectory(const Reconstruction& reconstruction, const std::string& path,
+                                   ModelFormat format) {
+  const std::string trajectory = (fs::path(path) / "trajectory_tum.txt").string();
+  std::error_code ec;
+  const bool had_trajectory = fs::is_regular_file(trajectory, ec);
+  WriteColmapModel(reconstruction, path, format);
+  if (had_trajectory) WriteTumTrajectory(reconstruction, trajectory);
 }
 
 }  // namespace ramap

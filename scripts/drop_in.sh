@@ -7,6 +7,8 @@
 # and undistorted images of the cameras' size for 3DGS; and the poses against the ground truth.
 #
 #   scripts/drop_in.sh [NAME ...]     (default: templeRing Herz-Jesus-P8)
+#   scripts/drop_in.sh --one ramap|colmap nerfstudio|convert NAME WORK_DIR
+#                                     (one sequence alone, into a fresh WORK_DIR: for timing pairs)
 #
 # Settings: RAMAP_DATA_DIR (default ../shared/data), RAMAP_BENCH_DIR (default build/bench),
 # RAMAP_DROP_IN_COLMAP=0 leaves COLMAP 3.8 out.
@@ -110,6 +112,27 @@ print(f"{r['num_registered']} / {r['num_images']} | {100 * r['relative']['auc_by
       f"{r['rotation_error_deg']['median']:.3f}")
 PY
 }
+
+# One sequence alone, e.g. under a timer that pairs ramap's run with COLMAP's.
+if [[ ${1:-} == --one ]]; then
+  [[ $# == 5 ]] || { echo "usage: drop_in.sh --one ramap|colmap nerfstudio|convert NAME WORK_DIR" >&2; exit 2; }
+  exe=$ramap gpu=1
+  [[ $2 == colmap ]] && exe=colmap && gpu=0
+  for entry in "${RAMAP_DATASETS[@]}"; do
+    IFS='|' read -r name images _ <<<"$entry"
+    [[ $name == "$4" ]] || continue
+    rm -rf "$5" && mkdir -p "$5"
+    if [[ $3 == nerfstudio ]]; then
+      nerfstudio "$exe" "$data_dir/$images" "$5" "$gpu" >"$5.log" 2>&1
+    else
+      ln -s "$data_dir/$images" "$5/input"
+      convert_py "$exe" "$5" "$gpu" >"$5.log" 2>&1
+    fi
+    exit 0
+  done
+  echo "drop_in: no data set $4" >&2
+  exit 2
+fi
 
 echo "| data set | tool's sequence | executable | time (s) | registered | AUC@3 | rot. err. median (deg) | what the tool reads next |"
 echo "| --- | --- | --- | --- | --- | --- | --- | --- |"

@@ -1,5 +1,7 @@
 #include "test_support.h"
 
+#include "ramap/util/error.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -38,6 +40,18 @@ std::string Colmap4Binary() {
 }
 
 std::string RamapBinary() { return RAMAP_CLI_PATH; }
+
+void ExpectInputError(const std::function<void()>& action, const std::vector<std::string>& parts) {
+  try {
+    action();
+    ADD_FAILURE() << "no InputError; expected one mentioning '" << parts.front() << "'";
+  } catch (const InputError& error) {
+    for (const std::string& part : parts) {
+      EXPECT_NE(std::string(error.what()).find(part), std::string::npos)
+          << "message '" << error.what() << "' lacks '" << part << "'";
+    }
+  }
+}
 
 CommandResult RunCommand(const std::string& command_line) {
   CommandResult result;

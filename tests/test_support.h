@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,9 @@ SyntheticSceneOptions NoiseFree(SyntheticLayout layout, SyntheticPath path, int 
 // one centre and turn a little, and image 11's only verified pairs are its pure rotations to 10
 // and 12, so that it has no direction to any camera.
 SyntheticScene StandstillLineScene();
+
+// Runs `action` and expects an InputError whose message contains every one of `parts`.
+void ExpectInputError(const std::function<void()>& action, const std::vector<std::string>& parts);
 
 // A fresh folder under the system's temporary folder, removed with its contents at scope end.
 class TempDir {

@@ -149,19 +149,7 @@ void ExpectSameFiles(const std::string& dir_a, const std::string& dir_b, const s
   }
 }
 
-// Runs `read` and expects an InputError whose message contains every one of `parts`.
-template <typename Fn>
-void ExpectInputError(Fn&& read, const std::vector<std::string>& parts) {
-  try {
-    read();
-    ADD_FAILURE() << "no InputError; expected one mentioning '" << parts.front() << "'";
-  } catch (const InputError& error) {
-    for (const std::string& part : parts) {
-      EXPECT_NE(std::string(error.what()).find(part), std::string::npos)
-          << "message '" << error.what() << "' lacks '" << part << "'";
-    }
-  }
-}
+using test::ExpectInputError;
 
 TEST(ColmapModel, BinaryRoundTripIsBitIdentical) {
   TempDir dir;

@@ -45,18 +45,7 @@ void ExpectRotation(const Rigid3d& pose) {
   EXPECT_NEAR(R.determinant(), 1.0, 1e-12);
 }
 
-template <typename Fn>
-void ExpectInputError(Fn&& read, const std::vector<std::string>& parts) {
-  try {
-    read();
-    ADD_FAILURE() << "no InputError; expected one mentioning '" << parts.front() << "'";
-  } catch (const InputError& error) {
-    for (const std::string& part : parts) {
-      EXPECT_NE(std::string(error.what()).find(part), std::string::npos)
-          << "message '" << error.what() << "' lacks '" << part << "'";
-    }
-  }
-}
+using test::ExpectInputError;
 
 TEST(Trajectory, FormatNames) {
   EXPECT_EQ(GroundTruthFormatFromName("kitti"), GroundTruthFormat::kKitti);

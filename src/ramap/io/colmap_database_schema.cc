@@ -181,16 +181,33 @@ void DetectRigsAndFrames(sqlite::Connection& db, DatabaseLayout* layout) {
 
 }  // namespace
 
-std::string DatabaseGenerationName(DatabaseGeneration generation) {
-  switch (generation) {
-    case DatabaseGeneration::kColmap38:
-      return "3.8";
-    case DatabaseGeneration::kColmap310:
-      return "3.10";
-    case DatabaseGeneration::kColmap4:
-      return "4";
+namespace {
+
+// What sets each generation apart when it is named or written.
+struct GenerationInfo {
+  DatabaseGeneration generation;
+  const char* name;   // as --Database.generation takes it
+  const char* label;  // for logs and summaries
+  int user_version;   // what COLMAP 3.8, 3.11 and 4.1.1 stamp
+  const std::vector<std::string>* schema;
+};
+
+const GenerationInfo& Info(DatabaseGeneration generation) {
+  static const GenerationInfo kInfo[] = {
+      {DatabaseGeneration::kColmap38, "3.8", "COLMAP 3.8-3.9", 3800, &kSchema38},
+      {DatabaseGeneration::kColmap310, "3.10", "COLMAP 3.10-3.11", 3110000, &kSchema310},
+      {DatabaseGeneration::kColmap4, "4", "COLMAP 3.12-4.x", 4010100, &kSchema4},
+  };
+  for (const GenerationInfo& info : kInfo) {
+    if (info.generation == generation) return info;
   }
-  return "";
+  return kInfo[0];
+}
+
+}  // namespace
+
+std::string DatabaseGenerationName(DatabaseGeneration generation) {
+  return Info(generation).name;
 }
 
 DatabaseGeneration DatabaseGenerationFromName(const std::string& name, const std::string& option) {
@@ -199,7 +216,8 @@ DatabaseGeneration DatabaseGenerationFromName(const std::string& name, const std
                  [](unsigned char c) { return std::tolower(c); });
   if (lower == "3.8" || lower == "3.9") return DatabaseGeneration::kColmap38;
   if (lower == "3.10" || lower == "3.11") return DatabaseGeneration::kColmap310;
-  if (lower == "4" || lower == "4.x" || lower == "3.12" || lower.rfind("4.", 0) == 0) {
+  if (lower == "4" || lower == "4.x" || lower == "3.12" || lower == "3.13" ||
+      lower.rfind("4.", 0) == 0) {
     return DatabaseGeneration::kColmap4;
   }
   throw InputError(option, "'" + name +
@@ -208,15 +226,7 @@ DatabaseGeneration DatabaseGenerationFromName(const std::string& name, const std
 }
 
 std::string DatabaseGenerationLabel(DatabaseGeneration generation) {
-  switch (generation) {
-    case DatabaseGeneration::kColmap38:
-      return "COLMAP 3.8-3.9";
-    case DatabaseGeneration::kColmap310:
-      return "COLMAP 3.10-3.11";
-    case DatabaseGeneration::kColmap4:
-      return "COLMAP 3.12-4.x";
-  }
-  return "";
+  return Info(generation).label;
 }
 
 std::set<std::string> TableColumns(sqlite::Connection& db, const std::string& table) {
@@ -264,27 +274,9 @@ DatabaseLayout DetectDatabaseLayout(sqlite::Connection& db) {
 }
 
 const std::vector<std::string>& SchemaStatements(DatabaseGeneration generation) {
-  switch (generation) {
-    case DatabaseGeneration::kColmap310:
-      return kSchema310;
-    case DatabaseGeneration::kColmap4:
-      return kSchema4;
-    case DatabaseGeneration::kColmap38:
-      break;
-  }
-  return kSchema38;
+  return *Info(generation).schema;
 }
 
-int SchemaUserVersion(DatabaseGeneration generation) {
-  switch (generation) {
-    case DatabaseGeneration::kColmap310:
-      return 3110000;
-    case DatabaseGeneration::kColmap4:
-      return 4010100;
-    case DatabaseGeneration::kColmap38:
-      break;
-  }
-  return 3800;
-}
+int SchemaUserVersion(DatabaseGeneration generation) { return Info(generation).user_version; }
 
 }  // namespace ramap

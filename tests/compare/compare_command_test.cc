@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
@@ -159,6 +160,34 @@ TEST(CompareCommand, ReportAgreesWithEvaluateAndColmapModelComparer) {
     ASSERT_FALSE(run["evaluation"].is_null()) << run["name"];
     EXPECT_LT(run["evaluation"]["ate"]["rmse_over_extent"].get<double>(), 0.01) << run["name"];
   }
+}
+
+// COLMAP 3.8 reads no 4.x database (and would stamp its version on one): it maps a 3.8 copy, and
+// the user's database is left as it was.
+TEST(CompareCommand, ColmapMapsA38CopyOfA4xDatabase) {
+  RAMAP_REQUIRE_COLMAP();
+  TempDir dir;
+  const std::string ramap = "'" + RamapBinary() + "' ";
+  ASSERT_EQ(RunCommand(ramap + "synthesize --output_path '" + (dir / "scene") +
+                       "' --Synthetic.path circle --Synthetic.num_images 8 "
+                       "--Synthetic.num_points 800 --Synthetic.seed 5 --Database.generation 4")
+                .exit_code,
+            0);
+  const std::string db = dir / "scene/database.db";
+  std::ifstream before_file(db, std::ios::binary);
+  const std::string before((std::istreambuf_iterator<char>(before_file)),
+                           std::istreambuf_iterator<char>());
+  const CommandResult compare = RunCommand(ramap + "compare --database_path '" + db +
+                                           "' --output_path '" + (dir / "cmp") + "'");
+  ASSERT_EQ(compare.exit_code, 0) << compare.output;
+  const nlohmann::json report = ReadJson(dir / "cmp/report.json");
+  EXPECT_TRUE(RunNamed(report, "COLMAP")["succeeded"].get<bool>()) << compare.output;
+  EXPECT_EQ(RunNamed(report, "COLMAP")["num_registered"], 8);
+  EXPECT_FALSE(std::filesystem::exists(dir / "cmp/colmap.database.db"));
+  std::ifstream after_file(db, std::ios::binary);
+  const std::string after((std::istreambuf_iterator<char>(after_file)),
+                          std::istreambuf_iterator<char>());
+  EXPECT_TRUE(before == after) << "the compared database changed";
 }
 
 TEST(CompareCommand, GroundTruthNeedsItsFormat) {

@@ -6,6 +6,8 @@
 #include <memory>
 #include <regex>
 
+#include "ramap/io/colmap_database.h"
+
 namespace ramap {
 namespace {
 
@@ -73,10 +75,15 @@ std::vector<MapperPlan> MapperPlans(const CompareOptions& options,
                                 : options.ramap_binary;
   auto folder_path = [&](const std::string& folder) { return options.output_path + "/" + folder; };
   std::vector<MapperPlan> plans;
+  // COLMAP 3.8 maps a database of a later generation from a 3.8 copy of it.
+  const bool needs_38_copy =
+      ReadDatabaseGeneration(options.database_path) != DatabaseGeneration::kColmap38;
+  const std::string colmap_database =
+      needs_38_copy ? folder_path("colmap.database.db") : options.database_path;
   plans.push_back({mapper_row::kColmap, "colmap",
-                   ColmapMapperCommand(options.colmap_binary, "mapper", "Mapper",
-                                       options.database_path, folder_path("colmap"), options),
-                   options.database_path, false});
+                   ColmapMapperCommand(options.colmap_binary, "mapper", "Mapper", colmap_database,
+                                       folder_path("colmap"), options),
+                   colmap_database, needs_38_copy, needs_38_copy});
   if (!options.peer_colmap_binary.empty()) {
     // Each peer gets its own copy: COLMAP 4 upgrades a 3.8 database when it opens it.
     const std::string incremental_copy = folder_path("colmap_peer.database.db");

@@ -18,6 +18,9 @@ struct MapperPlan {
   // removed after the run.
   std::string database_path;
   bool on_database_copy = false;
+  // The copy is rewritten as a COLMAP 3.8 database: COLMAP 3.8 reads no later generation (and
+  // would stamp its own version on one).
+  bool copy_as_colmap38 = false;
 };
 
 // The runs in report order: COLMAP; with a peer binary, "COLMAP <peer_version>" (its incremental

@@ -1,5 +1,6 @@
 #include "ramap/compare/mapper_process.h"
 
+
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include <system_error>
 
 #include "ramap/geometry/camera_projection.h"
+#include "ramap/io/colmap_database.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/pipeline/stage_log.h"
@@ -88,11 +90,18 @@ std::vector<std::pair<std::string, double>> LoggedStageSeconds(const std::string
   return stages;
 }
 
-// A peer's copy of the database, removed when the run is over (it may have been upgraded).
+// A peer's copy of the database, removed when the run is over (it may have been upgraded):
+// byte for byte, or rewritten as a COLMAP 3.8 database.
 class DatabaseCopy {
  public:
-  DatabaseCopy(const std::string& from, const std::string& to) : path_(to) {
-    fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+  DatabaseCopy(const std::string& from, const std::string& to, bool as_colmap38) : path_(to) {
+    if (!as_colmap38) {
+      fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+      return;
+    }
+    DatabaseReadOptions everything;
+    everything.read_descriptors = true;
+    WriteColmapDatabase(ReadColmapDatabase(from, everything), to, DatabaseGeneration::kColmap38);
   }
   ~DatabaseCopy() {
     // With the files SQLite may leave beside it.
@@ -141,7 +150,9 @@ MapperRun RunMapperPlan(const MapperPlan& plan, const CompareOptions& options, s
   run.command = plan.command;
   {
     std::optional<DatabaseCopy> copy;
-    if (plan.on_database_copy) copy.emplace(options.database_path, plan.database_path);
+    if (plan.on_database_copy) {
+      copy.emplace(options.database_path, plan.database_path, plan.copy_as_colmap38);
+    }
     const auto [seconds, exited_cleanly] = RunTimed(plan.command, folder + ".log");
     run.seconds = seconds;
     run.succeeded = exited_cleanly;

@@ -756,6 +756,14 @@ FeatureDatabase ReadColmapDatabase(const std::string& path, const DatabaseReadOp
   return Reader(path, options).Read();
 }
 
+DatabaseGeneration ReadDatabaseGeneration(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw InputError(path, "no such file (expected a COLMAP database)");
+  Connection db(path, Connection::OpenExisting(), path);
+  db.SetQueryOnly();
+  return DetectDatabaseLayout(db).generation;
+}
+
 std::vector<std::string> ReadDatabaseImageNames(const std::string& path) {
   DatabaseReadOptions read_options;
   read_options.read_matches = false;

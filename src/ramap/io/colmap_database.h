@@ -46,6 +46,10 @@ inline DatabaseReadOptions MapperDatabaseReadOptions() {
 FeatureDatabase ReadColmapDatabase(const std::string& path,
                                    const DatabaseReadOptions& options = DatabaseReadOptions());
 
+// The generation of the database at `path` (its tables only; no row is read). Throws InputError
+// as ReadColmapDatabase for a file that is no COLMAP database.
+DatabaseGeneration ReadDatabaseGeneration(const std::string& path);
+
 // The names of the database's images, sorted (read without matches or descriptors).
 std::vector<std::string> ReadDatabaseImageNames(const std::string& path);
 

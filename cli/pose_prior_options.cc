@@ -15,8 +15,9 @@ void AddPosePriorOptions(CLI::App& app, PosePriorOptionText* text,
                  "prior file: NAME V1 V2 V3 [SX SY SZ] per line (default: the database's "
                  "prior_tx/ty/tz, where COLMAP stores EXIF GPS)");
   app.add_option("--PosePrior.type", text->type,
-                 "wgs84 (lat lon alt) | enu (m, about --PosePrior.origin) | ecef (m) | xyz (any "
-                 "metric frame)")
+                 "auto (the database's priors: as it says, COLMAP 3.10 on; else wgs84) | wgs84 "
+                 "(lat lon alt) | enu (m, about --PosePrior.origin) | ecef (m) | xyz (any metric "
+                 "frame)")
       ->capture_default_str();
   app.add_option("--PosePrior.from_database", text->from_database,
                  "without --PosePrior.path: 1 uses the database's prior positions")
@@ -63,7 +64,11 @@ void AddPosePriorOptions(CLI::App& app, PosePriorOptionText* text,
 LocalizedPriors LoadPosePriors(const PosePriorOptionText& text, const FeatureDatabase& database,
                                const std::string& command, std::ostream& log) {
   PosePriorOptions options;
-  options.coordinates = PriorCoordinatesFromName(text.type, "--PosePrior.type");
+  const bool from_database = text.path.empty() && text.from_database;
+  options.coordinates =
+      text.type != "auto" ? PriorCoordinatesFromName(text.type, "--PosePrior.type")
+      : from_database     ? DatabasePriorCoordinates(database, PriorCoordinates::kWgs84)
+                          : PriorCoordinates::kWgs84;
   options.std_dev_m = Eigen::Vector3d(text.std_x_m, text.std_y_m, text.std_z_m);
   if (!text.origin.empty()) options.origin = ParseGeodeticPoint(text.origin, "--PosePrior.origin");
   options.max_distance_from_origin_m = text.max_distance_from_origin_m;
@@ -71,7 +76,7 @@ LocalizedPriors LoadPosePriors(const PosePriorOptionText& text, const FeatureDat
   std::vector<PriorRecord> records;
   if (!text.path.empty()) {
     records = ReadPriorFile(text.path);
-  } else if (text.from_database) {
+  } else if (from_database) {
     records = PriorRecordsFromDatabase(database);
   }
   LocalizedPriors priors = LocalizePriors(records, database, options);
@@ -85,7 +90,7 @@ LocalizedPriors LoadPosePriors(const PosePriorOptionText& text, const FeatureDat
   if (!records.empty()) {
     log << "[ramap] position priors: " << priors.priors.by_image.size() << " of " << records.size()
         << " usable (" << (text.path.empty() ? std::string("database") : text.path) << ", "
-        << text.type << ")\n";
+        << PriorCoordinatesName(options.coordinates) << ")\n";
   }
   return priors;
 }

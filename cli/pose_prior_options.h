@@ -16,7 +16,8 @@ namespace ramap::cli {
 
 struct PosePriorOptionText {
   std::string path;  // prior file; empty: the database's prior_tx/ty/tz
-  std::string type = "wgs84";
+  // auto: as the database says its priors are (wgs84 or xyz), else wgs84.
+  std::string type = "auto";
   std::string origin;  // "lat,lon,alt"; empty: the median of the priors
   bool from_database = true;
   double std_x_m = 3.0, std_y_m = 3.0, std_z_m = 6.0;

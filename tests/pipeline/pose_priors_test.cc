@@ -103,5 +103,27 @@ TEST(PosePriors, EcefEnuAndXyzFrames) {
   EXPECT_TRUE(Mentions(bad.warnings, "not an earth-centred position"));
 }
 
+// COLMAP 3.10 on says what its priors are; a 3.8 database does not.
+TEST(PosePriors, CoordinatesAsTheDatabaseStatesThem) {
+  FeatureDatabase database;
+  for (uint32_t id = 1; id <= 3; ++id) {
+    database.images[id].image_id = id;
+    database.images[id].prior_translation = Eigen::Vector3d(id, 2.0 * id, 0.5);
+  }
+  database.images[4].image_id = 4;  // no prior: says nothing
+  database.images[4].prior_coordinate_system = PriorCoordinateSystem::kWgs84;
+  EXPECT_EQ(DatabasePriorCoordinates(database, PriorCoordinates::kWgs84), PriorCoordinates::kWgs84);
+  for (uint32_t id = 1; id <= 3; ++id) {
+    database.images[id].prior_coordinate_system = PriorCoordinateSystem::kCartesian;
+  }
+  EXPECT_EQ(DatabasePriorCoordinates(database, PriorCoordinates::kWgs84), PriorCoordinates::kXyz);
+  database.images[2].prior_coordinate_system = PriorCoordinateSystem::kWgs84;  // they disagree
+  EXPECT_EQ(DatabasePriorCoordinates(database, PriorCoordinates::kEcef), PriorCoordinates::kEcef);
+  for (uint32_t id = 1; id <= 3; ++id) {
+    database.images[id].prior_coordinate_system = PriorCoordinateSystem::kWgs84;
+  }
+  EXPECT_EQ(DatabasePriorCoordinates(database, PriorCoordinates::kXyz), PriorCoordinates::kWgs84);
+}
+
 }  // namespace
 }  // namespace ramap

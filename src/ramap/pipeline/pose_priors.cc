@@ -85,6 +85,18 @@ std::vector<PriorRecord> PriorRecordsFromDatabase(const FeatureDatabase& databas
   return records;
 }
 
+PriorCoordinates DatabasePriorCoordinates(const FeatureDatabase& database,
+                                          PriorCoordinates fallback) {
+  bool wgs84 = false, cartesian = false;
+  for (const auto& [id, image] : database.images) {
+    if (!image.prior_translation) continue;
+    wgs84 |= image.prior_coordinate_system == PriorCoordinateSystem::kWgs84;
+    cartesian |= image.prior_coordinate_system == PriorCoordinateSystem::kCartesian;
+  }
+  if (wgs84 == cartesian) return fallback;
+  return cartesian ? PriorCoordinates::kXyz : PriorCoordinates::kWgs84;
+}
+
 namespace {
 
 // The local east-north-up frame: about the given origin, or for geodetic and ECEF priors about

@@ -44,6 +44,13 @@ struct LocalizedPriors {
 // The database's prior_tx/ty/tz of every image that has them (finite or not).
 std::vector<PriorRecord> PriorRecordsFromDatabase(const FeatureDatabase& database);
 
+// The coordinates of the database's position priors as the database states them (COLMAP 3.10 on
+// stores a coordinate system with each): kXyz when they say Cartesian and none says WGS84, kWgs84
+// when some say WGS84 and none Cartesian; `fallback` when none says, or they disagree (a 3.8
+// database stores EXIF GPS as latitude, longitude, altitude without saying so).
+PriorCoordinates DatabasePriorCoordinates(const FeatureDatabase& database,
+                                          PriorCoordinates fallback);
+
 // Converts `records` into the local frame, keyed by the image ids of `database` (by name). Never
 // throws on a bad record: it is skipped with a warning.
 LocalizedPriors LocalizePriors(const std::vector<PriorRecord>& records,

@@ -12,7 +12,7 @@ struct Alias {
 };
 
 // COLMAP 3.8's names and COLMAP 4.1.1's (its option manager), as the peers' sources give them.
-constexpr std::array<Alias, 28> kAliases = {{
+constexpr std::array<Alias, 29> kAliases = {{
     // Feature extraction: SiftExtraction (3.x) became FeatureExtraction (4.x) for what is not
     // specific to SIFT.
     {"--SiftExtraction.max_image_size", "--FeatureExtraction.max_image_size"},
@@ -36,7 +36,10 @@ constexpr std::array<Alias, 28> kAliases = {{
     {"--TwoViewGeometry.max_error", "--Matching.max_error_px"},
     {"--TwoViewGeometry.min_num_inliers", "--Matching.min_num_inliers"},
     {"--SequentialMatching.overlap", "--Matching.overlap"},
-    {"--ExhaustiveMatching.block_size", nullptr, "ramap screens and matches every pair in one pass"},
+    {"--ExhaustiveMatching.block_size", nullptr,
+     "ramap screens and matches every pair in one pass"},
+    {"--VocabTreeMatching.vocab_tree_path", nullptr,
+     "ramap has no vocabulary tree (it screens pairs by preemptive matching)"},
     // The mapper's global bundle adjustment.
     {"--Mapper.ba_global_function_tolerance", "--BundleAdjustment.function_tolerance"},
     {"--Mapper.ba_global_max_num_iterations", "--BundleAdjustment.max_num_iterations"},

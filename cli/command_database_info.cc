@@ -16,8 +16,8 @@ namespace {
 
 // COLMAP's names of TwoViewGeometry::ConfigurationType, by value.
 constexpr std::array<const char*, 10> kConfigNames = {
-    "UNDEFINED",           "DEGENERATE", "CALIBRATED", "UNCALIBRATED", "PLANAR", "PANORAMIC",
-    "PLANAR_OR_PANORAMIC", "WATERMARK",  "MULTIPLE",   "CALIBRATED_RIG"};
+    "UNDEFINED", "DEGENERATE",          "CALIBRATED", "UNCALIBRATED", "PLANAR",
+    "PANORAMIC", "PLANAR_OR_PANORAMIC", "WATERMARK",  "MULTIPLE",     "CALIBRATED_RIG"};
 
 }  // namespace
 
@@ -35,8 +35,7 @@ int RunDatabaseInfo(int argc, char** argv) {
   const DatabaseCounts c = CountDatabase(database);
   const RigSummary rigs = SummarizeRigs(database);
   std::cout << "Database: " << database_path << "\n"
-            << "  schema:                  " << DatabaseGenerationLabel(database.generation)
-            << "\n"
+            << "  schema:                  " << DatabaseGenerationLabel(database.generation) << "\n"
             << "  cameras:                 " << database.cameras.size() << "\n"
             << "  rigs, frames:            " << rigs.num_rigs << ", " << rigs.num_frames << " ("
             << rigs.num_multi_camera_frames << " with images of several cameras)\n"

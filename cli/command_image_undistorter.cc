@@ -43,10 +43,10 @@ int RunImageUndistorter(int argc, char** argv) {
   const Reconstruction model = ReadColmapModel(input_path);
   const ImageUndistortionSummary summary = UndistortImages(
       model, image_path, output_path, options, ModelFormat::kBinary, num_threads, &std::cout);
-  std::cout << std::fixed << std::setprecision(2) << "ramap image_undistorter: "
-            << summary.num_images << " images undistorted to " << model.cameras.size()
-            << " PINHOLE camera(s), " << summary.seconds << " s -> " << output_path
-            << "/images, " << output_path << "/sparse\n";
+  std::cout << std::fixed << std::setprecision(2)
+            << "ramap image_undistorter: " << summary.num_images << " images undistorted to "
+            << model.cameras.size() << " PINHOLE camera(s), " << summary.seconds << " s -> "
+            << output_path << "/images, " << output_path << "/sparse\n";
   return 0;
 }
 

@@ -54,8 +54,8 @@ int RunMapper(int argc, char** argv) {
                        DatabaseGenerationLabel(database.generation));
   }
   if (rigs.num_multi_camera_frames > 0) {
-    std::cerr << "ramap mapper: note: " << rigs.num_multi_camera_frames << " of "
-              << rigs.num_frames << " frames hold images of up to " << rigs.max_cameras_per_frame
+    std::cerr << "ramap mapper: note: " << rigs.num_multi_camera_frames << " of " << rigs.num_frames
+              << " frames hold images of up to " << rigs.max_cameras_per_frame
               << " cameras of one rig; the rig constraints are not used yet: each image is "
                  "averaged on its own\n";
   }

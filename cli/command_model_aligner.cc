@@ -49,8 +49,7 @@ void AddColmapAlignerOptions(CLI::App& app, ColmapAlignerOptions* o) {
                  "as --PosePrior.max_alignment_error_m (ignored by plane)")
       ->check(AtLeast(0));
   app.add_option("--robust_alignment", o->robust_alignment, "accepted: ramap is always robust");
-  app.add_option("--robust_alignment_max_error", o->alignment_max_error,
-                 "as --alignment_max_error")
+  app.add_option("--robust_alignment_max_error", o->alignment_max_error, "as --alignment_max_error")
       ->check(AtLeast(0));
 }
 

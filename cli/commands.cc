@@ -41,6 +41,10 @@ const std::vector<Command>& AllCommands() {
        [](int argc, char** argv) { return RunMatcherInMode("exhaustive", argc, argv); }},
       {"sequential_matcher", "as COLMAP's: matcher --Matching.mode sequential",
        [](int argc, char** argv) { return RunMatcherInMode("sequential", argc, argv); }},
+      // nerfstudio's default: ramap has no vocabulary tree; its exhaustive mode screens pairs by
+      // preemptive matching, and auto picks sequential matching for long frame sequences.
+      {"vocab_tree_matcher", "as COLMAP's, without a tree: matcher --Matching.mode auto",
+       [](int argc, char** argv) { return RunMatcherInMode("auto", argc, argv); }},
       {"mapper", "camera poses and points from a COLMAP database by motion averaging", RunMapper},
       {"relative_poses", "relative pose of every verified pair (grid 6-point, Kneip)",
        RunRelativePoses},

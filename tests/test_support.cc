@@ -1,7 +1,5 @@
 #include "test_support.h"
 
-#include "ramap/util/error.h"
-
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -12,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+
+#include "ramap/util/error.h"
 
 namespace ramap::test {
 namespace fs = std::filesystem;
@@ -33,9 +33,10 @@ bool ColmapAvailable() {
 
 std::string Colmap4Binary() {
   const char* given = std::getenv("RAMAP_COLMAP4");
-  const std::string path = given != nullptr && *given != '\0'
-                               ? std::string(given)
-                               : std::string(RAMAP_SOURCE_DIR) + "/build-peers/build/src/colmap/exe/colmap";
+  const std::string path =
+      given != nullptr && *given != '\0'
+          ? std::string(given)
+          : std::string(RAMAP_SOURCE_DIR) + "/build-peers/build/src/colmap/exe/colmap";
   return std::filesystem::exists(path) ? path : "";
 }
 

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
+#include <sstream>
 
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/colmap_model.h"
@@ -44,19 +44,23 @@ void ExpectSucceeds(const test::CommandResult& result, const std::string& note =
 TEST(DropIn, MapperBundleAdjusterAndAlignerLines) {
   test::TempDir dir;
   const std::string d = dir.path();
-  ExpectSucceeds(RunRamap("synthesize --output_path " + d + "/scene --Synthetic.path circle "
-                     "--Synthetic.num_images 10 --Synthetic.num_points 800 --Synthetic.seed 4"));
+  ExpectSucceeds(
+      RunRamap("synthesize --output_path " + d +
+               "/scene --Synthetic.path circle "
+               "--Synthetic.num_images 10 --Synthetic.num_points 800 --Synthetic.seed 4"));
   fs::create_directories(d + "/sparse");
   // nerfstudio (COLMAP >= 3.7) and convert.py.
-  ExpectSucceeds(RunRamap("mapper --database_path " + d + "/scene/database.db --image_path " + d +
-                     "/scene --output_path " + d + "/sparse --Mapper.ba_global_function_tolerance=1e-6"),
-                 "--Mapper.ba_global_function_tolerance read as --BundleAdjustment.function_tolerance");
+  ExpectSucceeds(
+      RunRamap("mapper --database_path " + d + "/scene/database.db --image_path " + d +
+               "/scene --output_path " + d + "/sparse --Mapper.ba_global_function_tolerance=1e-6"),
+      "--Mapper.ba_global_function_tolerance read as --BundleAdjustment.function_tolerance");
   ExpectSucceeds(RunRamap("bundle_adjuster --input_path " + d + "/sparse/0 --output_path " + d +
-                     "/sparse/0 --BundleAdjustment.refine_principal_point 1"));
+                          "/sparse/0 --BundleAdjustment.refine_principal_point 1"));
   const std::string trajectory_before = ReadText(d + "/sparse/0/trajectory_tum.txt");
   ExpectSucceeds(RunRamap("model_aligner --input_path " + d + "/sparse/0 --database_path " + d +
-                     "/scene/database.db --alignment_max_error  0.1 --alignment_type  plane "
-                     "--output_path " + d + "/sparse/0"));
+                          "/scene/database.db --alignment_max_error  0.1 --alignment_type  plane "
+                          "--output_path " +
+                          d + "/sparse/0"));
   const Reconstruction model = ReadColmapModel(d + "/sparse/0");
   EXPECT_EQ(model.images.size(), 10u);
   // The mapper's trajectory beside the model follows it to the new frame.
@@ -72,9 +76,9 @@ TEST(DropIn, MapperBundleAdjusterAndAlignerLines) {
   EXPECT_LT(spread.y(), spread.x());
 
   // An option ramap does not know still fails, by name.
-  const test::CommandResult unknown = RunRamap("mapper --database_path " + d +
-                                          "/scene/database.db --output_path " + d +
-                                          "/other --Mapper.ba_local_max_refinements 2");
+  const test::CommandResult unknown =
+      RunRamap("mapper --database_path " + d + "/scene/database.db --output_path " + d +
+               "/other --Mapper.ba_local_max_refinements 2");
   EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
   EXPECT_NE(unknown.output.find("--Mapper.ba_local_max_refinements"), std::string::npos);
 }
@@ -99,17 +103,26 @@ TEST(DropIn, ExtractorAndMatcherLines) {
   const std::string d = dir.path();
   WriteImages(d + "/input");
   fs::create_directories(d + "/distorted");
-  ExpectSucceeds(RunRamap("feature_extractor --database_path " + d + "/distorted/database.db "
-                     "--image_path " + d + "/input --ImageReader.single_camera 1 "
-                     "--ImageReader.camera_model OPENCV --SiftExtraction.use_gpu 1"),
+  ExpectSucceeds(RunRamap("feature_extractor --database_path " + d +
+                          "/distorted/database.db "
+                          "--image_path " +
+                          d +
+                          "/input --ImageReader.single_camera 1 "
+                          "--ImageReader.camera_model OPENCV --SiftExtraction.use_gpu 1"),
                  "--SiftExtraction.use_gpu 1 ignored: ramap runs on the CPU");
   ExpectSucceeds(RunRamap("exhaustive_matcher --database_path " + d +
-                     "/distorted/database.db --SiftMatching.use_gpu 1"),
+                          "/distorted/database.db --SiftMatching.use_gpu 1"),
                  "--SiftMatching.use_gpu 1 ignored");
   ExpectSucceeds(RunRamap("sequential_matcher --database_path " + d +
-                     "/distorted/database.db --FeatureMatching.use_gpu 0 "
-                     "--SequentialMatching.overlap 2"),
+                          "/distorted/database.db --FeatureMatching.use_gpu 0 "
+                          "--SequentialMatching.overlap 2"),
                  "--SequentialMatching.overlap read as --Matching.overlap");
+  // nerfstudio's default matching, with the tree it downloads.
+  ExpectSucceeds(RunRamap("vocab_tree_matcher --database_path " + d +
+                          "/distorted/database.db --SiftMatching.use_gpu 1 "
+                          "--VocabTreeMatching.vocab_tree_path " +
+                          d + "/vocab_tree.fbow"),
+                 "--VocabTreeMatching.vocab_tree_path");
   const FeatureDatabase database = ReadColmapDatabase(d + "/distorted/database.db");
   ASSERT_EQ(database.cameras.size(), 1u);
   EXPECT_EQ(database.cameras.begin()->second.model, CameraModel::kOpenCV);

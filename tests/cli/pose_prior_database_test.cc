@@ -20,7 +20,8 @@ TEST(PosePriorDatabase, CartesianPriorsOfA4xDatabaseGeoregister) {
   FeatureDatabase database = scene.database;
   // Metres in a local frame, far from any latitude and longitude (as WGS84 they would be refused).
   for (auto& [image_id, image] : database.images) {
-    const Eigen::Vector3d center = CameraCenter(scene.ground_truth.images.at(image_id).cam_from_world);
+    const Eigen::Vector3d center =
+        CameraCenter(scene.ground_truth.images.at(image_id).cam_from_world);
     image.prior_translation = center + Eigen::Vector3d(5000, -3000, 250);
     image.prior_coordinate_system = PriorCoordinateSystem::kCartesian;
     image.prior_position_covariance = Eigen::Matrix3d::Identity() * 0.25;

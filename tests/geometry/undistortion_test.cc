@@ -23,8 +23,8 @@ namespace fs = std::filesystem;
 
 // A phone-like OPENCV camera with barrel distortion and an off-centre principal point.
 Camera OpenCVCamera() {
-  return Camera{3, CameraModel::kOpenCV, 640, 480,
-                {520.0, 515.0, 318.0, 243.0, -0.12, 0.03, 0.001, -0.0005}};
+  return Camera{
+      3, CameraModel::kOpenCV, 640, 480, {520.0, 515.0, 318.0, 243.0, -0.12, 0.03, 0.001, -0.0005}};
 }
 
 TEST(Undistortion, PointsReprojectToTheSamePixelThroughThePinholeCamera) {
@@ -91,7 +91,8 @@ TEST(ImageUndistortion, ImagesAndModelInColmapsLayout) {
   cv::Mat image(480, 640, CV_8UC1);
   for (int row = 0; row < 480; ++row) {
     for (int col = 0; col < 640; ++col) {
-      const Eigen::Vector2d p = UndistortPixel(distorted, ideal, Eigen::Vector2d(col + 0.5, row + 0.5));
+      const Eigen::Vector2d p =
+          UndistortPixel(distorted, ideal, Eigen::Vector2d(col + 0.5, row + 0.5));
       image.at<uint8_t>(row, col) = cv::saturate_cast<uint8_t>(Pattern(p.x(), p.y()));
     }
   }
@@ -124,8 +125,8 @@ TEST(ImageUndistortion, ImagesAndModelInColmapsLayout) {
   int count = 0;
   for (int row = 10; row < out.rows - 10; row += 3) {
     for (int col = 10; col < out.cols - 10; col += 3) {
-      const Eigen::Vector2d p = ProjectToPixel(
-          ideal, PixelToBearing(pinhole, Eigen::Vector2d(col + 0.5, row + 0.5)));
+      const Eigen::Vector2d p =
+          ProjectToPixel(ideal, PixelToBearing(pinhole, Eigen::Vector2d(col + 0.5, row + 0.5)));
       error += std::abs(out.at<uint8_t>(row, col) - Pattern(p.x(), p.y()));
       ++count;
     }

@@ -50,7 +50,8 @@ TEST(Colmap4Database, ReadAsColmapMadeIt) {
 // The same features as a 3.8 database give the same model, and it is the true one.
 TEST(Colmap4Database, MapsAsTheSameFeaturesIn38) {
   test::TempDir dir;
-  const FeatureDatabase database = ReadColmapDatabase(kData + "/database.db", MapperDatabaseReadOptions());
+  const FeatureDatabase database =
+      ReadColmapDatabase(kData + "/database.db", MapperDatabaseReadOptions());
   WriteColmapDatabase(database, dir / "38.db", DatabaseGeneration::kColmap38);
   const FeatureDatabase as38 = ReadColmapDatabase(dir / "38.db", MapperDatabaseReadOptions());
   // One thread: Ceres' multi-threaded bundle adjustment differs in the last digits from run to
@@ -64,7 +65,8 @@ TEST(Colmap4Database, MapsAsTheSameFeaturesIn38) {
   const PoseEvaluation evaluation38 = Evaluate(from38, as38);
   ASSERT_EQ(evaluation4.auc.size(), evaluation38.auc.size());
   for (size_t k = 0; k < evaluation4.auc.size(); ++k) {
-    EXPECT_EQ(evaluation4.auc[k], evaluation38.auc[k]) << "AUC@" << evaluation4.auc_thresholds_deg[k];
+    EXPECT_EQ(evaluation4.auc[k], evaluation38.auc[k])
+        << "AUC@" << evaluation4.auc_thresholds_deg[k];
   }
   // Half a pixel of noise on 10 images: every image registered, AUC@3 well above 90.
   EXPECT_EQ(from4.reconstructions.front().images.size(), 10u);
@@ -111,9 +113,9 @@ TEST(Colmap4Model, ReadAndWrittenBack) {
 
   const std::string colmap4 = test::Colmap4Binary();
   if (colmap4.empty()) GTEST_SKIP() << "no COLMAP 4.1.1 build (scripts/peers.sh): not run on it";
-  const test::CommandResult converted = test::RunCommand(
-      "'" + colmap4 + "' model_converter --input_path '" + (dir / "model") + "' --output_path '" +
-      (dir / "model") + "' --output_type TXT 2>&1");
+  const test::CommandResult converted =
+      test::RunCommand("'" + colmap4 + "' model_converter --input_path '" + (dir / "model") +
+                       "' --output_path '" + (dir / "model") + "' --output_type TXT 2>&1");
   ASSERT_EQ(converted.exit_code, 0) << converted.output;
   EXPECT_TRUE(fs::exists(dir / "model/frames.txt"));
 }

@@ -144,7 +144,8 @@ TEST(ColmapDatabase310, PosePriorsByImageFromColmapsSchema) {
   ASSERT_TRUE(read.images.at(2).prior_translation.has_value());
   EXPECT_EQ(*read.images.at(2).prior_translation, Eigen::Vector3d(10, 20, 30));
   EXPECT_EQ(read.images.at(2).prior_coordinate_system, PriorCoordinateSystem::kCartesian);
-  EXPECT_EQ(read.images.at(2).prior_position_covariance->diagonal(), Eigen::Vector3d(0.25, 0.25, 1));
+  EXPECT_EQ(read.images.at(2).prior_position_covariance->diagonal(),
+            Eigen::Vector3d(0.25, 0.25, 1));
 }
 
 // Reading a defective database throws InputError naming each of `parts`, and leaves the file as
@@ -224,8 +225,9 @@ TEST(ColmapDatabase4, MatchesUpdatedInPlaceKeepTheGeneration) {
   const DatabaseLayout layout = DetectDatabaseLayout(db);
   EXPECT_EQ(layout.generation, DatabaseGeneration::kColmap4);
   EXPECT_EQ(layout.user_version, 4010100);
-  sqlite::Statement row(db, "SELECT F IS NULL, qvec IS NULL, E IS NULL FROM two_view_geometries "
-                            "WHERE pair_id = ?");
+  sqlite::Statement row(db,
+                        "SELECT F IS NULL, qvec IS NULL, E IS NULL FROM two_view_geometries "
+                        "WHERE pair_id = ?");
   row.BindInt64(1, static_cast<int64_t>(database.two_view_geometries.begin()->first));
   ASSERT_TRUE(row.Step());
   EXPECT_EQ(row.ColumnInt64(0), 1);

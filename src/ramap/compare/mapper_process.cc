@@ -1,6 +1,5 @@
 #include "ramap/compare/mapper_process.h"
 
-
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>

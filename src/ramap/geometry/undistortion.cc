@@ -75,8 +75,7 @@ BorderRange UndistortedBorders(const Camera& camera, const Camera& pinhole,
 }  // namespace
 
 void UndistortionOptions::Check() const {
-  CheckOption(blank_pixels >= 0 && blank_pixels <= 1, "--blank_pixels", "in [0, 1]",
-              blank_pixels);
+  CheckOption(blank_pixels >= 0 && blank_pixels <= 1, "--blank_pixels", "in [0, 1]", blank_pixels);
   CheckOption(min_scale > 0, "--min_scale", "> 0", min_scale);
   CheckOption(max_scale >= min_scale, "--max_scale", ">= --min_scale", max_scale);
 }
@@ -97,10 +96,14 @@ Camera UndistortedCamera(const Camera& camera, const UndistortionOptions& option
     const double h = static_cast<double>(height);
     // Scales at which the pinhole image reaches every distorted border pixel (no pixel lost) and
     // at which it stays inside all of them (no blank pixel), per axis.
-    const double keep_all_x = std::min(p.cx / (p.cx - r.left_min), (w - 0.5 - p.cx) / (r.right_max - p.cx));
-    const double keep_all_y = std::min(p.cy / (p.cy - r.top_min), (h - 0.5 - p.cy) / (r.bottom_max - p.cy));
-    const double no_blank_x = std::max(p.cx / (p.cx - r.left_max), (w - 0.5 - p.cx) / (r.right_min - p.cx));
-    const double no_blank_y = std::max(p.cy / (p.cy - r.top_max), (h - 0.5 - p.cy) / (r.bottom_min - p.cy));
+    const double keep_all_x =
+        std::min(p.cx / (p.cx - r.left_min), (w - 0.5 - p.cx) / (r.right_max - p.cx));
+    const double keep_all_y =
+        std::min(p.cy / (p.cy - r.top_min), (h - 0.5 - p.cy) / (r.bottom_max - p.cy));
+    const double no_blank_x =
+        std::max(p.cx / (p.cx - r.left_max), (w - 0.5 - p.cx) / (r.right_min - p.cx));
+    const double no_blank_y =
+        std::max(p.cy / (p.cy - r.top_max), (h - 0.5 - p.cy) / (r.bottom_min - p.cy));
     const double b = options.blank_pixels;
     const double scale_x = std::clamp(1.0 / (keep_all_x * b + no_blank_x * (1 - b)),
                                       options.min_scale, options.max_scale);

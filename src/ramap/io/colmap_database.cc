@@ -758,7 +758,8 @@ FeatureDatabase ReadColmapDatabase(const std::string& path, const DatabaseReadOp
 
 DatabaseGeneration ReadDatabaseGeneration(const std::string& path) {
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw InputError(path, "no such file (expected a COLMAP database)");
+  if (!fs::is_regular_file(path, ec))
+    throw InputError(path, "no such file (expected a COLMAP database)");
   Connection db(path, Connection::OpenExisting(), path);
   db.SetQueryOnly();
   return DetectDatabaseLayout(db).generation;

@@ -125,8 +125,8 @@ void DetectPosePriorTable(sqlite::Connection& db, DatabaseLayout* layout) {
   std::string missing;
   if (columns.count("corr_data_id") != 0) {
     if (!HasAll(columns,
-                {"pose_prior_id", "corr_data_id", "corr_sensor_id", "corr_sensor_type",
-                 "position", "coordinate_system"},
+                {"pose_prior_id", "corr_data_id", "corr_sensor_id", "corr_sensor_type", "position",
+                 "coordinate_system"},
                 &missing)) {
       throw InputError(db.source(), "table 'pose_priors': missing column '" + missing +
                                         "' (COLMAP 4 keys priors by sensor data)");
@@ -206,9 +206,7 @@ const GenerationInfo& Info(DatabaseGeneration generation) {
 
 }  // namespace
 
-std::string DatabaseGenerationName(DatabaseGeneration generation) {
-  return Info(generation).name;
-}
+std::string DatabaseGenerationName(DatabaseGeneration generation) { return Info(generation).name; }
 
 DatabaseGeneration DatabaseGenerationFromName(const std::string& name, const std::string& option) {
   std::string lower = name;

@@ -37,8 +37,8 @@ void CheckRigsAndFrames(const Reconstruction& model, const std::string& rigs_pat
     const std::string what = "frame " + std::to_string(frame_id);
     const auto rig = model.rigs.find(frame.rig_id);
     if (rig == model.rigs.end()) {
-      throw InputError(frames_path, what + ": rig " + std::to_string(frame.rig_id) +
-                                        " is not in " + rigs_path);
+      throw InputError(frames_path,
+                       what + ": rig " + std::to_string(frame.rig_id) + " is not in " + rigs_path);
     }
     for (const FrameData& data : frame.data) {
       if (!RigHasSensor(rig->second, data.sensor)) {
@@ -49,9 +49,8 @@ void CheckRigsAndFrames(const Reconstruction& model, const std::string& rigs_pat
       if (data.sensor.type != SensorType::kCamera) continue;
       const auto image = model.images.find(static_cast<uint32_t>(data.data_id));
       if (image == model.images.end() || image->second.camera_id != data.sensor.id) {
-        throw InputError(frames_path, what + ": image " + std::to_string(data.data_id) +
-                                          " of " + SensorLabel(data.sensor) +
-                                          " is not in the model");
+        throw InputError(frames_path, what + ": image " + std::to_string(data.data_id) + " of " +
+                                          SensorLabel(data.sensor) + " is not in the model");
       }
     }
   }
@@ -286,18 +285,16 @@ void WriteSensorBinary(BinaryWriter& out, const SensorId& sensor) {
 }
 
 void WritePoseBinary(BinaryWriter& out, const Rigid3d& pose) {
-  for (const double v : {pose.rotation.w(), pose.rotation.x(), pose.rotation.y(),
-                         pose.rotation.z(), pose.translation.x(), pose.translation.y(),
-                         pose.translation.z()}) {
+  for (const double v : {pose.rotation.w(), pose.rotation.x(), pose.rotation.y(), pose.rotation.z(),
+                         pose.translation.x(), pose.translation.y(), pose.translation.z()}) {
     out.WriteDouble(v);
   }
 }
 
 std::string PoseText(const Rigid3d& pose) {
   std::string text;
-  for (const double v : {pose.rotation.w(), pose.rotation.x(), pose.rotation.y(),
-                         pose.rotation.z(), pose.translation.x(), pose.translation.y(),
-                         pose.translation.z()}) {
+  for (const double v : {pose.rotation.w(), pose.rotation.x(), pose.rotation.y(), pose.rotation.z(),
+                         pose.translation.x(), pose.translation.y(), pose.translation.z()}) {
     text += " " + FormatDouble(v);
   }
   return text;
@@ -340,9 +337,9 @@ ModelRigsAndFrames RigsAndFramesToWrite(const Reconstruction& model) {
   for (const auto& [frame_id, frame] : model.frames) {
     const std::optional<Frame> posed = FrameFromImages(model, out.rigs.at(frame.rig_id), frame);
     if (!posed) return OneRigPerCamera(model);
-    const size_t num_frame_images =
-        std::count_if(posed->data.begin(), posed->data.end(),
-                      [](const FrameData& data) { return data.sensor.type == SensorType::kCamera; });
+    const size_t num_frame_images = std::count_if(
+        posed->data.begin(), posed->data.end(),
+        [](const FrameData& data) { return data.sensor.type == SensorType::kCamera; });
     if (num_frame_images == 0) continue;  // no image of this frame was registered
     num_images += num_frame_images;
     out.frames.emplace(frame_id, *posed);

@@ -159,15 +159,16 @@ void ReadRigs(Connection& db, FeatureDatabase* database) {
                                    what + ", its reference sensor");
     database->rigs.emplace(rig.rig_id, rig);
   }
-  Statement sensor_row(db, "SELECT rig_id, sensor_id, sensor_type, sensor_from_rig FROM rig_sensors");
+  Statement sensor_row(db,
+                       "SELECT rig_id, sensor_id, sensor_type, sensor_from_rig FROM rig_sensors");
   while (sensor_row.Step()) {
     const int64_t rig_id = sensor_row.ColumnInt64(0);
     const std::string what = "rig_sensors, rig " + std::to_string(rig_id);
     const auto rig = database->rigs.find(static_cast<uint32_t>(rig_id));
     if (rig == database->rigs.end()) Fail(db, what + ": the rig is not in table rigs");
     RigSensor sensor;
-    sensor.sensor = CheckedSensor(db, *database, sensor_row.ColumnInt64(1),
-                                  sensor_row.ColumnInt64(2), what);
+    sensor.sensor =
+        CheckedSensor(db, *database, sensor_row.ColumnInt64(1), sensor_row.ColumnInt64(2), what);
     sensor.sensor_from_rig = SensorFromRig(db, sensor_row, 3, what);
     rig->second.sensors.push_back(sensor);
   }
@@ -200,8 +201,8 @@ FrameData CheckedFrameData(const Connection& db, const FeatureDatabase& database
   }
   if (image->second.camera_id != data.sensor.id) {
     Fail(db, what + ": image " + std::to_string(data.data_id) + " '" + image->second.name +
-                 "' was taken by camera " + std::to_string(image->second.camera_id) +
-                 ", not by " + SensorLabel(data.sensor));
+                 "' was taken by camera " + std::to_string(image->second.camera_id) + ", not by " +
+                 SensorLabel(data.sensor));
   }
   return data;
 }
@@ -320,9 +321,8 @@ void WriteDatabasePosePriors(const FeatureDatabase& database, DatabaseGeneration
     row.BindInt64(column++, static_cast<int>(image.prior_coordinate_system));
     BindVector(row, column++, covariance.data(), 9);
     if (!by_image) {
-      BindVector(row, column++, image.prior_gravity ? image.prior_gravity->data()
-                                                    : unknown_gravity.data(),
-                 3);
+      BindVector(row, column++,
+                 image.prior_gravity ? image.prior_gravity->data() : unknown_gravity.data(), 3);
     }
     row.Run();
   }
@@ -344,8 +344,8 @@ void WriteDatabaseRigsAndFrames(const FeatureDatabase& database, Connection& db)
       sensor_row.BindInt64(3, static_cast<int>(sensor.sensor.type));
       if (sensor.sensor_from_rig) {
         const Rigid3d& pose = *sensor.sensor_from_rig;
-        const double values[7] = {pose.rotation.w(),    pose.rotation.x(),    pose.rotation.y(),
-                                  pose.rotation.z(),    pose.translation.x(), pose.translation.y(),
+        const double values[7] = {pose.rotation.w(),   pose.rotation.x(),    pose.rotation.y(),
+                                  pose.rotation.z(),   pose.translation.x(), pose.translation.y(),
                                   pose.translation.z()};
         BindVector(sensor_row, 4, values, 7);
       } else {

@@ -66,17 +66,16 @@ struct CameraRemap {
 
 // Undistorts one image into a staged file beside its final path.
 std::unique_ptr<StagedPath> UndistortImageFile(const std::string& source_path,
-                                               const std::string& final_path,
-                                               const Camera& camera, const CameraRemap& remap) {
+                                               const std::string& final_path, const Camera& camera,
+                                               const CameraRemap& remap) {
   const cv::Mat image = cv::imread(source_path, cv::IMREAD_UNCHANGED);
   if (image.empty()) throw InputError(source_path, "cannot read the image");
   if (image.cols != static_cast<int>(camera.width) ||
       image.rows != static_cast<int>(camera.height)) {
-    throw InputError(source_path, "is " + std::to_string(image.cols) + " x " +
-                                      std::to_string(image.rows) + " pixels, its camera " +
-                                      std::to_string(camera.camera_id) + " " +
-                                      std::to_string(camera.width) + " x " +
-                                      std::to_string(camera.height));
+    throw InputError(source_path,
+                     "is " + std::to_string(image.cols) + " x " + std::to_string(image.rows) +
+                         " pixels, its camera " + std::to_string(camera.camera_id) + " " +
+                         std::to_string(camera.width) + " x " + std::to_string(camera.height));
   }
   cv::Mat undistorted;
   cv::remap(image, undistorted, remap.map_x, remap.map_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
@@ -90,7 +89,8 @@ std::unique_ptr<StagedPath> UndistortImageFile(const std::string& source_path,
   if (ec) throw InputError(final_path, "cannot create its folder: " + ec.message());
   auto staged = std::make_unique<StagedPath>(final_path);
   std::ofstream file(staged->path(), std::ios::binary);
-  file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  file.write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
   file.flush();
   if (!file) throw InputError(final_path, "write failed (disk full?)");
   return staged;
@@ -125,8 +125,7 @@ Reconstruction UndistortReconstruction(const Reconstruction& model,
   return undistorted;
 }
 
-ImageUndistortionSummary UndistortImages(const Reconstruction& model,
-                                         const std::string& image_path,
+ImageUndistortionSummary UndistortImages(const Reconstruction& model, const std::string& image_path,
                                          const std::string& output_path,
                                          const UndistortionOptions& options, ModelFormat format,
                                          int num_threads, std::ostream* progress) {
@@ -136,8 +135,9 @@ ImageUndistortionSummary UndistortImages(const Reconstruction& model,
   std::error_code ec;
   if (fs::exists(images_out, ec) && fs::exists(image_path, ec) &&
       fs::equivalent(images_out, image_path, ec)) {
-    throw InputError(images_out.string(), "is --image_path itself; the undistorted images would "
-                                          "replace the originals: choose another --output_path");
+    throw InputError(images_out.string(),
+                     "is --image_path itself; the undistorted images would "
+                     "replace the originals: choose another --output_path");
   }
   for (const auto& [image_id, image] : model.images) {
     const fs::path source = fs::path(image_path) / image.name;
@@ -156,10 +156,9 @@ ImageUndistortionSummary UndistortImages(const Reconstruction& model,
       images.size(), num_threads,
       [&](size_t k) {
         const Image& image = *images[k];
-        staged[k] = UndistortImageFile((fs::path(image_path) / image.name).string(),
-                                       (images_out / image.name).string(),
-                                       model.cameras.at(image.camera_id),
-                                       remaps.at(image.camera_id));
+        staged[k] = UndistortImageFile(
+            (fs::path(image_path) / image.name).string(), (images_out / image.name).string(),
+            model.cameras.at(image.camera_id), remaps.at(image.camera_id));
       },
       progress, "undistorting", "images");
   // Everything is written before anything appears under its final name.

@@ -32,8 +32,7 @@ struct ImageUndistortionSummary {
 // under those names are replaced, nothing else is touched. Throws InputError when output_path's
 // images folder is image_path itself (the originals would be overwritten), an image is missing,
 // unreadable or not of its camera's size, or a file cannot be written: then nothing appears.
-ImageUndistortionSummary UndistortImages(const Reconstruction& model,
-                                         const std::string& image_path,
+ImageUndistortionSummary UndistortImages(const Reconstruction& model, const std::string& image_path,
                                          const std::string& output_path,
                                          const UndistortionOptions& options, ModelFormat format,
                                          int num_threads, std::ostream* progress);

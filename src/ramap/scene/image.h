@@ -1,13 +1,12 @@
 // An image: its name, camera, pose and 2D observations, as in a COLMAP database / model.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "ramap/scene/rigid3.h"
 

@@ -1,11 +1,10 @@
 // A sparse model as COLMAP writes it: cameras, registered images and 3D points with tracks.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <map>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "ramap/scene/camera.h"
 #include "ramap/scene/image.h"

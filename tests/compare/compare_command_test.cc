@@ -63,16 +63,23 @@ const nlohmann::json& RunNamed(const nlohmann::json& report, const std::string& 
   return none;
 }
 
+// The database of a synthetic orbit in dir/scene, made by `ramap synthesize` with `options`; empty
+// (and a test failure) when that fails.
+std::string SynthesizeCircle(const TempDir& dir, const std::string& options) {
+  const CommandResult result = RunCommand("'" + RamapBinary() + "' synthesize --output_path '" +
+                                          (dir / "scene") + "' --Synthetic.path circle " + options);
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  return result.exit_code == 0 ? dir / "scene/database.db" : "";
+}
+
 TEST(CompareCommand, ReportAgreesWithEvaluateAndColmapModelComparer) {
   RAMAP_REQUIRE_COLMAP();
   TempDir dir;
   const std::string ramap = "'" + RamapBinary() + "' ";
-  ASSERT_EQ(RunCommand(ramap + "synthesize --output_path '" + (dir / "scene") +
-                       "' --Synthetic.path circle --Synthetic.num_images 16 "
-                       "--Synthetic.num_points 1500 --Synthetic.pixel_noise 0.5 --Synthetic.seed 2")
-                .exit_code,
-            0);
-  const std::string db = dir / "scene/database.db";
+  const std::string db = SynthesizeCircle(dir,
+                                          "--Synthetic.num_images 16 --Synthetic.num_points 1500 "
+                                          "--Synthetic.pixel_noise 0.5 --Synthetic.seed 2");
+  ASSERT_FALSE(db.empty());
 
   // Without ground truth: the ramap models are scored against COLMAP's.
   const CommandResult compare = RunCommand(ramap + "compare --database_path '" + db +
@@ -168,12 +175,10 @@ TEST(CompareCommand, ColmapMapsA38CopyOfA4xDatabase) {
   RAMAP_REQUIRE_COLMAP();
   TempDir dir;
   const std::string ramap = "'" + RamapBinary() + "' ";
-  ASSERT_EQ(RunCommand(ramap + "synthesize --output_path '" + (dir / "scene") +
-                       "' --Synthetic.path circle --Synthetic.num_images 8 "
-                       "--Synthetic.num_points 800 --Synthetic.seed 5 --Database.generation 4")
-                .exit_code,
-            0);
-  const std::string db = dir / "scene/database.db";
+  const std::string db = SynthesizeCircle(dir,
+                                          "--Synthetic.num_images 8 --Synthetic.num_points 800 "
+                                          "--Synthetic.seed 5 --Database.generation 4");
+  ASSERT_FALSE(db.empty());
   std::ifstream before_file(db, std::ios::binary);
   const std::string before((std::istreambuf_iterator<char>(before_file)),
                            std::istreambuf_iterator<char>());

@@ -200,17 +200,11 @@ bool SamePose(const Rigid3d& a, const Rigid3d& b) {
 ModelRigsAndFrames OneRigPerCamera(const Reconstruction& model) {
   ModelRigsAndFrames out;
   for (const auto& [camera_id, camera] : model.cameras) {
-    Rig rig;
-    rig.rig_id = camera_id;
-    rig.ref_sensor = SensorId{SensorType::kCamera, camera_id};
-    out.rigs.emplace(camera_id, rig);
+    out.rigs.emplace(camera_id, OneCameraRig(camera_id));
   }
   for (const auto& [image_id, image] : model.images) {
-    Frame frame;
-    frame.frame_id = image_id;
-    frame.rig_id = image.camera_id;
+    Frame frame = OneImageFrame(image_id, image.camera_id);
     frame.rig_from_world = image.cam_from_world;
-    frame.data.push_back(FrameData{SensorId{SensorType::kCamera, image.camera_id}, image_id});
     out.frames.emplace(image_id, frame);
   }
   return out;

@@ -258,10 +258,7 @@ Rigs RigsOrOnePerCamera(const FeatureDatabase& database) {
   if (!database.rigs.empty()) return database.rigs;
   Rigs rigs;
   for (const auto& [camera_id, camera] : database.cameras) {
-    Rig rig;
-    rig.rig_id = camera_id;
-    rig.ref_sensor = SensorId{SensorType::kCamera, camera_id};
-    rigs.emplace(camera_id, rig);
+    rigs.emplace(camera_id, OneCameraRig(camera_id));
   }
   return rigs;
 }
@@ -270,11 +267,7 @@ Frames FramesOrOnePerImage(const FeatureDatabase& database) {
   if (!database.frames.empty()) return database.frames;
   Frames frames;
   for (const auto& [image_id, image] : database.images) {
-    Frame frame;
-    frame.frame_id = image_id;
-    frame.rig_id = image.camera_id;
-    frame.data.push_back(FrameData{SensorId{SensorType::kCamera, image.camera_id}, image_id});
-    frames.emplace(image_id, frame);
+    frames.emplace(image_id, OneImageFrame(image_id, image.camera_id));
   }
   return frames;
 }

@@ -42,4 +42,19 @@ std::string SensorLabel(const SensorId& sensor) {
          " " + std::to_string(sensor.id);
 }
 
+Rig OneCameraRig(uint32_t camera_id) {
+  Rig rig;
+  rig.rig_id = camera_id;
+  rig.ref_sensor = SensorId{SensorType::kCamera, camera_id};
+  return rig;
+}
+
+Frame OneImageFrame(uint32_t image_id, uint32_t camera_id) {
+  Frame frame;
+  frame.frame_id = image_id;
+  frame.rig_id = camera_id;
+  frame.data.push_back(FrameData{SensorId{SensorType::kCamera, camera_id}, image_id});
+  return frame;
+}
+
 }  // namespace ramap

@@ -71,4 +71,9 @@ struct Frame {
 using Rigs = std::map<uint32_t, Rig>;
 using Frames = std::map<uint32_t, Frame>;
 
+// The trivial rig of a camera (rig id = camera id, the camera its only sensor) and the frame of one
+// image in it (frame id = image id): what COLMAP 4 makes where it was given no rigs.
+Rig OneCameraRig(uint32_t camera_id);
+Frame OneImageFrame(uint32_t image_id, uint32_t camera_id);
+
 }  // namespace ramap

@@ -6,7 +6,6 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
-#include <memory>
 #include <set>
 #include <sstream>
 #include <string>
@@ -162,14 +161,7 @@ class Reader {
   }
 
   void CheckColumns(const std::string& table, const std::vector<std::string>& columns) {
-    if (!table_info_) {
-      table_info_ = std::make_unique<Statement>(db_, "SELECT name FROM pragma_table_info(?)");
-    }
-    Statement& info = *table_info_;
-    info.Reset();
-    info.BindText(1, table);
-    std::set<std::string> present;
-    while (info.Step()) present.insert(info.ColumnText(0));
+    const std::set<std::string> present = TableColumns(db_, table);
     if (present.empty()) {
       Fail("missing table '" + table + "' (not a COLMAP database, or one from another version?)");
     }
@@ -480,7 +472,6 @@ class Reader {
   const std::string path_;
   const DatabaseReadOptions options_;
   Connection db_;
-  std::unique_ptr<Statement> table_info_;  // prepared once, for every table
   FeatureDatabase database_;
   std::map<std::string, uint32_t> names_;  // image name -> id, to refuse duplicates
 };

@@ -329,7 +329,9 @@ ModelRigsAndFrames RigsAndFramesToWrite(const Reconstruction& model) {
   out.rigs = RigsFromImages(model);
   size_t num_images = 0;
   for (const auto& [frame_id, frame] : model.frames) {
-    const std::optional<Frame> posed = FrameFromImages(model, out.rigs.at(frame.rig_id), frame);
+    const auto rig = out.rigs.find(frame.rig_id);
+    if (rig == out.rigs.end()) return OneRigPerCamera(model);
+    const std::optional<Frame> posed = FrameFromImages(model, rig->second, frame);
     if (!posed) return OneRigPerCamera(model);
     const size_t num_frame_images = std::count_if(
         posed->data.begin(), posed->data.end(),

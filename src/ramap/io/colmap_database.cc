@@ -737,20 +737,27 @@ void WriteMatchRows(const FeatureDatabase& database, DatabaseGeneration generati
 
 }  // namespace
 
-FeatureDatabase ReadColmapDatabase(const std::string& path, const DatabaseReadOptions& options) {
+namespace {
+
+// A database path names a file: missing or a folder is said before SQLite is asked.
+void CheckDatabaseFile(const std::string& path) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (!fs::exists(status)) throw InputError(path, "no such file (expected a COLMAP database)");
   if (fs::is_directory(status)) {
     throw InputError(path, "is a folder; expected a COLMAP database file");
   }
+}
+
+}  // namespace
+
+FeatureDatabase ReadColmapDatabase(const std::string& path, const DatabaseReadOptions& options) {
+  CheckDatabaseFile(path);
   return Reader(path, options).Read();
 }
 
 DatabaseGeneration ReadDatabaseGeneration(const std::string& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec))
-    throw InputError(path, "no such file (expected a COLMAP database)");
+  CheckDatabaseFile(path);
   Connection db(path, Connection::OpenExisting(), path);
   db.SetQueryOnly();
   return DetectDatabaseLayout(db).generation;

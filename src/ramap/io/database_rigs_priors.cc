@@ -233,6 +233,12 @@ void BindVector(Statement& statement, int index, const double* values, size_t co
   statement.BindBlob(index, values, count * sizeof(double));
 }
 
+// A sensor as COLMAP's tables hold it: its id at `index`, its type at `index + 1`.
+void BindSensor(Statement& statement, int index, const SensorId& sensor) {
+  statement.BindInt64(index, sensor.id);
+  statement.BindInt64(index + 1, static_cast<int>(sensor.type));
+}
+
 }  // namespace
 
 void ReadDatabasePosePriors(Connection& db, const DatabaseLayout& layout,
@@ -307,8 +313,8 @@ void WriteDatabasePosePriors(const FeatureDatabase& database, DatabaseGeneration
     row.BindInt64(column++, image_id);
     if (!by_image) {
       row.BindInt64(column++, image_id);
-      row.BindInt64(column++, image.camera_id);
-      row.BindInt64(column++, static_cast<int>(SensorType::kCamera));
+      BindSensor(row, column, SensorId{SensorType::kCamera, image.camera_id});
+      column += 2;
     }
     BindVector(row, column++, image.prior_translation->data(), 3);
     row.BindInt64(column++, static_cast<int>(image.prior_coordinate_system));
@@ -328,13 +334,11 @@ void WriteDatabaseRigsAndFrames(const FeatureDatabase& database, Connection& db)
                        "VALUES(?, ?, ?, ?)");
   for (const auto& [rig_id, rig] : RigsOrOnePerCamera(database)) {
     rig_row.BindInt64(1, rig_id);
-    rig_row.BindInt64(2, rig.ref_sensor.id);
-    rig_row.BindInt64(3, static_cast<int>(rig.ref_sensor.type));
+    BindSensor(rig_row, 2, rig.ref_sensor);
     rig_row.Run();
     for (const RigSensor& sensor : rig.sensors) {
       sensor_row.BindInt64(1, rig_id);
-      sensor_row.BindInt64(2, sensor.sensor.id);
-      sensor_row.BindInt64(3, static_cast<int>(sensor.sensor.type));
+      BindSensor(sensor_row, 2, sensor.sensor);
       if (sensor.sensor_from_rig) {
         const Rigid3d& pose = *sensor.sensor_from_rig;
         const double values[7] = {pose.rotation.w(),   pose.rotation.x(),    pose.rotation.y(),
@@ -358,8 +362,7 @@ void WriteDatabaseRigsAndFrames(const FeatureDatabase& database, Connection& db)
     for (const FrameData& data : frame.data) {
       data_row.BindInt64(1, frame_id);
       data_row.BindInt64(2, static_cast<int64_t>(data.data_id));
-      data_row.BindInt64(3, data.sensor.id);
-      data_row.BindInt64(4, static_cast<int>(data.sensor.type));
+      BindSensor(data_row, 3, data.sensor);
       data_row.Run();
     }
   }

@@ -28,8 +28,28 @@ void AddDriveOptions(CLI::App& app, SyntheticSceneOptions* options) {
                  "thousands of frames fast)")
       ->capture_default_str();
   app.add_option("--Synthetic.num_aliased_pairs", options->num_aliased_pairs,
-                 "pairs with consistent matches of a relative pose rotated 12-40 deg off, as "
-                 "repetitive structure gives")
+                 "pairs with consistent matches of a relative pose rotated off by an angle in "
+                 "[aliased_min_angle_deg, aliased_max_angle_deg], as repetitive structure gives")
+      ->capture_default_str();
+  app.add_option("--Synthetic.aliased_min_angle_deg", options->aliased_min_angle_deg,
+                 "aliased pairs' rotations are off by at least this angle")
+      ->capture_default_str();
+  app.add_option("--Synthetic.aliased_max_angle_deg", options->aliased_max_angle_deg,
+                 "and by at most this one (drawn uniformly between)")
+      ->capture_default_str();
+  app.add_option("--Synthetic.num_aliased_pair_matches", options->num_aliased_pair_matches,
+                 "matches drawn per aliased pair (those leaving the second image are dropped)")
+      ->capture_default_str();
+  app.add_option("--Synthetic.aliased_max_frame_gap", options->aliased_max_frame_gap,
+                 "aliased pairs are at most this many frames apart (0: any two frames)")
+      ->capture_default_str();
+  app.add_option("--Synthetic.aliased_shift_m", options->aliased_shift_m,
+                 "aliased poses also move the second camera this far in a random direction, as "
+                 "a repeated facade gives (0: the true translation)")
+      ->capture_default_str();
+  app.add_option("--Synthetic.aliased_matches_on_tracks", options->aliased_matches_on_tracks,
+                 "1: aliased matches start from the first image's own observations, so they join "
+                 "its points' tracks (0: new keypoints on no track)")
       ->capture_default_str();
   app.add_option("--Synthetic.aliased_pair_ratio", options->aliased_pair_ratio,
                  "the same as a fraction of the matched pairs (the larger count is used)")

@@ -278,6 +278,12 @@ void CheckViewAndAliasingOptions(const SyntheticSceneOptions& o) {
     throw InputError("Synthetic.aliased_min_angle_deg",
                      "must satisfy 0 <= aliased_min_angle_deg <= aliased_max_angle_deg <= 180");
   }
+  if (o.aliased_max_frame_gap < 0) {
+    throw InputError("Synthetic.aliased_max_frame_gap", "must be >= 0 (0: any two frames)");
+  }
+  if (!(o.aliased_shift_m >= 0.0 && std::isfinite(o.aliased_shift_m))) {
+    throw InputError("Synthetic.aliased_shift_m", "must be a finite distance >= 0");
+  }
   if (o.num_aliased_pair_matches < 8) {
     throw InputError("Synthetic.num_aliased_pair_matches", "must be at least 8");
   }
@@ -622,12 +628,65 @@ void AddOutlierPairs(const SyntheticSceneOptions& options, size_t num_images, Rn
   }
 }
 
-// Aliased pairs: random pairs not matched yet, with matches consistent with the true relative pose
-// turned by a rotation of aliased_min_angle_deg to aliased_max_angle_deg about a random axis:
-// points at random depths in front of the first camera, seen through the wrong pose.
+// An aliased pair's two images: any two, or on a sequence two at most aliased_max_frame_gap apart
+// (repeated structure is seen again from nearby places).
+std::optional<std::pair<size_t, size_t>> RandomAliasedPair(const SyntheticSceneOptions& options,
+                                                           size_t num_images, Rng& rng) {
+  if (options.aliased_max_frame_gap <= 0) return RandomImagePair(num_images, rng);
+  std::uniform_int_distribution<size_t> random_image(0, num_images - 1);
+  std::uniform_int_distribution<size_t> random_gap(1, options.aliased_max_frame_gap);
+  const size_t i = random_image(rng);
+  const size_t k = i + random_gap(rng);
+  if (k >= num_images) return std::nullopt;
+  return std::make_pair(i, k);
+}
+
+// The pose an aliased pair's matches obey: the true relative pose turned by a rotation of
+// aliased_min_angle_deg to aliased_max_angle_deg about a random axis, and its second camera
+// displaced by aliased_shift_m in a random direction (a facade's repeat seen from elsewhere).
+Rigid3d AliasedRelativePose(const SyntheticSceneOptions& options, const Rigid3d& truth, Rng& rng) {
+  const double angle =
+      Uniform(rng, options.aliased_min_angle_deg, options.aliased_max_angle_deg) * kDegToRad;
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(angle, RandomUnitVector(rng)));
+  return Rigid3d((turn * truth.rotation).normalized(),
+                 truth.translation + options.aliased_shift_m * RandomUnitVector(rng));
+}
+
+// The points of an aliased pair in the first camera's frame with their keypoints there: distinct
+// observations of the image's own scene points when aliased_matches_on_tracks (each wrong match
+// then joins that point's track), else new keypoints at random pixels and depths.
+std::vector<std::pair<Eigen::Vector3d, uint32_t>> AliasedFirstViews(
+    const SyntheticSceneOptions& options, const Rigid3d& pose,
+    const std::vector<Eigen::Vector3d>& points, size_t i, Rng& rng, SceneObservations* seen) {
+  std::vector<std::pair<Eigen::Vector3d, uint32_t>> views;
+  if (options.aliased_matches_on_tracks) {
+    std::vector<Observation> observed = seen->observations[i];
+    std::shuffle(observed.begin(), observed.end(), rng);
+    observed.resize(std::min<size_t>(observed.size(), options.num_aliased_pair_matches));
+    for (const Observation& observation : observed) {
+      views.emplace_back(pose * points[observation.point_idx], observation.point2D_idx);
+    }
+    return views;
+  }
+  const Camera& camera = CameraOf(options, i);
+  for (int m = 0; m < options.num_aliased_pair_matches; ++m) {
+    Point2D point;
+    point.xy = Eigen::Vector2d(Uniform(rng, 0.0, camera.width - 0.01),
+                               Uniform(rng, 0.0, camera.height - 0.01));
+    seen->points2D[i].push_back(point);
+    views.emplace_back(
+        Uniform(rng, options.min_depth, options.max_depth) * PixelToBearing(camera, point.xy),
+        static_cast<uint32_t>(seen->points2D[i].size() - 1));
+  }
+  return views;
+}
+
+// Aliased pairs: pairs not matched yet whose verified matches obey a wrong relative pose
+// (AliasedRelativePose), as repetitive structure gives.
 void AddAliasedPairs(const SyntheticSceneOptions& options, const std::vector<Rigid3d>& poses,
-                     Rng& rng, std::set<std::pair<size_t, size_t>>* matched_pairs,
-                     SceneObservations* seen, SyntheticScene* scene) {
+                     const std::vector<Eigen::Vector3d>& points, Rng& rng,
+                     std::set<std::pair<size_t, size_t>>* matched_pairs, SceneObservations* seen,
+                     SyntheticScene* scene) {
   const size_t num_images = poses.size();
   const size_t wanted = std::max<size_t>(
       options.num_aliased_pairs,
@@ -637,37 +696,26 @@ void AddAliasedPairs(const SyntheticSceneOptions& options, const std::vector<Rig
        attempt < 100 * wanted + 100 && scene->aliased_pair_ids.size() < wanted &&
        matched_pairs->size() < max_pairs;
        ++attempt) {
-    const std::optional<std::pair<size_t, size_t>> drawn = RandomImagePair(num_images, rng);
+    const std::optional<std::pair<size_t, size_t>> drawn =
+        RandomAliasedPair(options, num_images, rng);
     if (!drawn || matched_pairs->count(*drawn)) continue;
     const auto [i, k] = *drawn;
-    const double angle =
-        Uniform(rng, options.aliased_min_angle_deg, options.aliased_max_angle_deg) * kDegToRad;
-    const Rigid3d truth = poses[k] * poses[i].Inverse();
-    const Rigid3d aliased(
-        (Eigen::Quaterniond(Eigen::AngleAxisd(angle, RandomUnitVector(rng))) * truth.rotation)
-            .normalized(),
-        truth.translation);
+    const Rigid3d aliased = AliasedRelativePose(options, poses[k] * poses[i].Inverse(), rng);
     const Camera& camera1 = CameraOf(options, i);
     const Camera& camera2 = CameraOf(options, k);
     std::vector<FeatureMatch> matches;
-    for (int m = 0; m < options.num_aliased_pair_matches; ++m) {
-      const Eigen::Vector2d xy1(Uniform(rng, 0.0, camera1.width - 0.01),
-                                Uniform(rng, 0.0, camera1.height - 0.01));
-      const Eigen::Vector3d in_camera1 =
-          Uniform(rng, options.min_depth, options.max_depth) * PixelToBearing(camera1, xy1);
+    for (const auto& [in_camera1, point2D_idx1] :
+         AliasedFirstViews(options, poses[i], points, i, rng, seen)) {
       const Eigen::Vector3d in_camera2 = aliased * in_camera1;
-      if (in_camera2.z() <= 0.0) continue;
+      if (in_camera2.z() <= 0.0 || !in_camera1.allFinite()) continue;
       const Eigen::Vector2d xy2 = ProjectToPixel(camera2, in_camera2) +
                                   Eigen::Vector2d(Gaussian(rng, options.pixel_noise_sigma),
                                                   Gaussian(rng, options.pixel_noise_sigma));
-      if (!InsideImage(camera2, xy2) || !in_camera1.allFinite()) continue;
-      Point2D point1, point2;
-      point1.xy = xy1;
+      if (!InsideImage(camera2, xy2)) continue;
+      Point2D point2;
       point2.xy = xy2;
-      seen->points2D[i].push_back(point1);
       seen->points2D[k].push_back(point2);
-      matches.push_back({static_cast<uint32_t>(seen->points2D[i].size() - 1),
-                         static_cast<uint32_t>(seen->points2D[k].size() - 1)});
+      matches.push_back({point2D_idx1, static_cast<uint32_t>(seen->points2D[k].size() - 1)});
     }
     if (matches.size() < static_cast<size_t>(std::max(options.min_num_inliers, 8))) continue;
     matched_pairs->insert({i, k});
@@ -771,7 +819,7 @@ SyntheticScene BuildSyntheticScene(const SyntheticSceneOptions& options) {
   std::set<std::pair<size_t, size_t>> matched_pairs = AddMatchedPairs(
       options, CandidatePairs(options, poses, centers), poses, rng, &seen, &scene.database);
   AddOutlierPairs(options, num_images, rng, &matched_pairs, &seen, &scene);
-  AddAliasedPairs(options, poses, rng, &matched_pairs, &seen, &scene);
+  AddAliasedPairs(options, poses, points, rng, &matched_pairs, &seen, &scene);
   scene.ground_truth.cameras = scene.database.cameras;
   AddGroundTruthPoints(points, &seen, &scene.ground_truth);
   AddImages(options, poses, &seen, &scene);

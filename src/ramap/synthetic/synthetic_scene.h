@@ -109,10 +109,19 @@ struct SyntheticSceneOptions {
   // larger (listed in SyntheticScene::aliased_pair_ids).
   int num_aliased_pairs = 0;
   double aliased_pair_ratio = 0.0;
-  double aliased_min_angle_deg = 12.0;
+  double aliased_min_angle_deg = 0.0;
   double aliased_max_angle_deg = 40.0;
   // Matches of an aliased pair (before those falling outside the second image are left out).
   int num_aliased_pair_matches = 100;
+  // Aliased pairs of a sequence are at most this many frames apart (0: any two frames).
+  int aliased_max_frame_gap = 0;
+  // The aliased pose's second camera is also displaced by this distance in a random direction,
+  // as a facade's repeat seen from elsewhere gives (0: the true translation).
+  double aliased_shift_m = 0.0;
+  // The first image's side of each aliased match is one of its own observations of a scene point,
+  // so the wrong match joins that point's track, as real repeated features do (false: new
+  // keypoints at random pixels and depths, on no track).
+  bool aliased_matches_on_tracks = false;
   // Unordered: pairs sharing at least this many points are matched.
   int min_shared_points = 30;
   // A matched pair gets a two-view geometry when it has at least this many true matches (COLMAP's

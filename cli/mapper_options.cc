@@ -85,12 +85,20 @@ void AddRotationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptionTe
       ->capture_default_str()
       ->check(Above(0));
   app.add_option("--RotationAveraging.pruning", text->pruning,
-                 "fixed|duality: alpha_max as a fixed angle "
-                 "or the strong-duality bound")
+                 "fixed|duality|adaptive: prune above alpha_max as a fixed angle, the "
+                 "strong-duality bound, or adaptive_multiplier times the median residual")
       ->capture_default_str();
   app.add_option("--RotationAveraging.alpha_max_deg", ra.alpha_max_deg)
       ->capture_default_str()
       ->check(NumberCheck(0, true, 180, false));
+  app.add_option("--RotationAveraging.adaptive_multiplier", ra.adaptive_multiplier,
+                 "adaptive pruning: the threshold in median residuals")
+      ->capture_default_str()
+      ->check(Above(0));
+  app.add_option("--RotationAveraging.adaptive_min_deg", ra.adaptive_min_deg,
+                 "adaptive pruning: the threshold's floor (its ceiling: alpha_max_deg)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--RotationAveraging.max_pruning_rounds", ra.max_pruning_rounds)
       ->capture_default_str()
       ->check(AtLeast(0));
@@ -108,12 +116,52 @@ void AddRotationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptionTe
 namespace {
 
 // Translation averaging (stage 4).
+// Which pair directions translation averaging uses (averaging/direction_consistency.h).
+void AddDirectionCheckOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
+  DirectionConsistencyOptions& check = o->direction_consistency;
+  app.add_option("--TranslationAveraging.direction_check", text->direction_check,
+                 "off|fixed|adaptive: reject pair directions their short cycles do not support, "
+                 "above direction_max_residual_deg (fixed) or above direction_threshold_multiplier "
+                 "times the median cycle residual (adaptive)")
+      ->capture_default_str();
+  app.add_option("--TranslationAveraging.direction_threshold_multiplier",
+                 check.threshold_multiplier, "adaptive: the threshold in median residuals")
+      ->capture_default_str()
+      ->check(Above(0));
+  app.add_option("--TranslationAveraging.direction_min_threshold_deg", check.min_threshold_deg,
+                 "adaptive: the threshold's floor")
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--TranslationAveraging.direction_max_residual_deg", check.max_residual_deg,
+                 "fixed: the threshold; adaptive: its ceiling")
+      ->capture_default_str()
+      ->check(NumberCheck(0, true, 180, false));
+  app.add_option("--TranslationAveraging.direction_min_num_cycles", check.min_num_cycles,
+                 "pairs closing fewer cycles are not tested")
+      ->capture_default_str()
+      ->check(AtLeast(1));
+}
+
 void AddTranslationAveragingOptions(CLI::App& app, MapperOptions* o, MapperOptionText* text) {
   TranslationAveragingOptions& ta = o->translation_averaging;
   app.add_option("--TranslationAveraging.min_triangulation_angle_deg",
                  ta.min_triangulation_angle_deg)
       ->capture_default_str()
       ->check(Above(0, 90));
+  AddDirectionCheckOptions(app, o, text);
+  app.add_option("--TranslationAveraging.max_rejection_rounds", ta.max_rejection_rounds,
+                 "solve again without the rows the solution marks as outliers, this many times "
+                 "(0: never)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--TranslationAveraging.rejection_multiplier", ta.rejection_multiplier,
+                 "outliers: residuals above this many times the system's median residual")
+      ->capture_default_str()
+      ->check(Above(1));
+  app.add_option("--TranslationAveraging.rejection_min_angle_deg", ta.rejection_min_angle_deg,
+                 "a pair row is an outlier only when its direction is missed by more than this")
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--TranslationAveraging.max_num_tracks", ta.max_num_tracks)
       ->capture_default_str()
       ->check(AtLeast(1));
@@ -348,13 +396,25 @@ void FinishMapperOptions(const MapperOptionText& text, MapperOptions* options) {
     options->rotation_averaging.pruning_mode = PruningThresholdMode::kFixedAngle;
   } else if (text.pruning == "duality") {
     options->rotation_averaging.pruning_mode = PruningThresholdMode::kStrongDualityBound;
+  } else if (text.pruning == "adaptive") {
+    options->rotation_averaging.pruning_mode = PruningThresholdMode::kAdaptive;
   } else {
     throw InputError("--RotationAveraging.pruning",
-                     "'" + text.pruning + "' is not fixed or duality");
+                     "'" + text.pruning + "' is not fixed, duality or adaptive");
   }
   options->rotation_edge_weights =
       AutoOnOff("--RotationAveraging.edge_weights", text.edge_weights, EdgeWeighting::kAuto,
                 EdgeWeighting::kOn, EdgeWeighting::kOff);
+  if (text.direction_check == "off") {
+    options->direction_consistency.mode = DirectionCheckMode::kOff;
+  } else if (text.direction_check == "fixed") {
+    options->direction_consistency.mode = DirectionCheckMode::kFixed;
+  } else if (text.direction_check == "adaptive") {
+    options->direction_consistency.mode = DirectionCheckMode::kAdaptive;
+  } else {
+    throw InputError("--TranslationAveraging.direction_check",
+                     "'" + text.direction_check + "' is not off, fixed or adaptive");
+  }
   if (text.translation_solver == "irls") {
     options->translation_averaging.solver = TranslationSolver::kIrls;
   } else if (text.translation_solver == "admm") {
@@ -377,7 +437,19 @@ namespace {
 nlohmann::json TranslationAveragingToJson(const MapperOptions& o) {
   const TranslationAveragingOptions& ta = o.translation_averaging;
   const WindowedTranslationOptions& windows = o.translation_windows;
-  return {{"min_triangulation_angle_deg", ta.min_triangulation_angle_deg},
+  const DirectionConsistencyOptions& check = o.direction_consistency;
+  const char* check_mode = check.mode == DirectionCheckMode::kOff     ? "off"
+                           : check.mode == DirectionCheckMode::kFixed ? "fixed"
+                                                                      : "adaptive";
+  return {{"direction_check", check_mode},
+          {"direction_threshold_multiplier", check.threshold_multiplier},
+          {"direction_min_threshold_deg", check.min_threshold_deg},
+          {"direction_max_residual_deg", check.max_residual_deg},
+          {"direction_min_num_cycles", check.min_num_cycles},
+          {"max_rejection_rounds", ta.max_rejection_rounds},
+          {"rejection_multiplier", ta.rejection_multiplier},
+          {"rejection_min_angle_deg", ta.rejection_min_angle_deg},
+          {"min_triangulation_angle_deg", ta.min_triangulation_angle_deg},
           {"max_num_tracks", ta.max_num_tracks},
           {"min_tracks_per_image", ta.min_tracks_per_image},
           {"solver", ta.solver == TranslationSolver::kIrls ? "irls" : "admm"},
@@ -428,8 +500,12 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"max_pcg_iterations", ra.max_pcg_iterations},
         {"loss", ra.loss == RobustLoss::kGemanMcClure ? "geman_mcclure" : "l1_half"},
         {"sigma_deg", ra.sigma_deg},
-        {"pruning", ra.pruning_mode == PruningThresholdMode::kFixedAngle ? "fixed" : "duality"},
+        {"pruning", ra.pruning_mode == PruningThresholdMode::kFixedAngle   ? "fixed"
+                    : ra.pruning_mode == PruningThresholdMode::kAdaptive ? "adaptive"
+                                                                         : "duality"},
         {"alpha_max_deg", ra.alpha_max_deg},
+        {"adaptive_multiplier", ra.adaptive_multiplier},
+        {"adaptive_min_deg", ra.adaptive_min_deg},
         {"max_pruning_rounds", ra.max_pruning_rounds},
         {"certificate", ra.compute_certificate},
         {"certificate_cycle_check", ra.certificate_cycle_check},

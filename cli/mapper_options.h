@@ -16,9 +16,10 @@ struct MapperOptionText {
   std::string sequential = "auto";
   std::string sampler = "grid";
   std::string loss = "geman_mcclure";
-  std::string pruning = "fixed";
+  std::string pruning = "adaptive";
   std::string translation_solver = "irls";
   std::string edge_weights = "auto";
+  std::string direction_check = "adaptive";
 };
 
 // Stage 1: --RelativePose.* and --Mapper.num_threads.

@@ -384,6 +384,8 @@ void RotationAveragingOptions::Check() const {
   CheckOption(alpha_max_deg > 0.0 && alpha_max_deg <= 180.0, prefix + "alpha_max_deg",
               "in (0, 180]", alpha_max_deg);
   CheckOption(max_pruning_rounds >= 0, prefix + "max_pruning_rounds", ">= 0", max_pruning_rounds);
+  CheckOption(adaptive_multiplier > 0, prefix + "adaptive_multiplier", "> 0", adaptive_multiplier);
+  CheckOption(adaptive_min_deg >= 0, prefix + "adaptive_min_deg", ">= 0", adaptive_min_deg);
   CheckOption(max_certificate_iterations >= 0, prefix + "max_certificate_iterations", ">= 0",
               max_certificate_iterations);
   CheckOption(certificate_step_tolerance_deg >= 0.0, prefix + "certificate_step_tolerance_deg",
@@ -513,6 +515,23 @@ bool PruneEdgesAbove(double threshold_deg, int round, const IndexedEdges& indexe
   return changed;
 }
 
+// kAdaptive's threshold: adaptive_multiplier times the kept edges' median residual, within
+// [adaptive_min_deg, alpha_max_deg].
+double AdaptiveThresholdDeg(const std::vector<bool>& keep, const RotationAveragingResult& result,
+                            const RotationAveragingOptions& options) {
+  std::vector<double> residuals;
+  for (size_t e = 0; e < keep.size(); ++e) {
+    if (keep[e] && std::isfinite(result.edge_residuals_deg[e])) {
+      residuals.push_back(result.edge_residuals_deg[e]);
+    }
+  }
+  if (residuals.empty()) return options.alpha_max_deg;
+  const auto middle = residuals.begin() + residuals.size() / 2;
+  std::nth_element(residuals.begin(), middle, residuals.end());
+  return std::clamp(options.adaptive_multiplier * *middle, options.adaptive_min_deg,
+                    options.alpha_max_deg);
+}
+
 // The robust weights' IRLS, as the pruning rounds and the first run use it.
 struct RobustIrls {
   std::function<double(double)> weight;
@@ -528,6 +547,7 @@ void RunPruningRounds(const RotationGraph& graph, const IndexedEdges& indexed,
                       const RotationAveragingOptions& options, const RobustIrls& irls,
                       std::vector<bool>* keep, RotationAveragingResult* result) {
   const size_t n = graph.node_ids.size();
+  double adaptive_deg = -1.0;  // kAdaptive: from the first round's residuals, then held
   for (int round = 1; round <= options.max_pruning_rounds; ++round) {
     ComputeEdgeResiduals(graph, indexed, result);
     double threshold_deg = options.alpha_max_deg;
@@ -536,10 +556,13 @@ void RunPruningRounds(const RotationGraph& graph, const IndexedEdges& indexed,
       int max_degree = 0;
       threshold_deg =
           KeptGraphBound(graph, *keep, result->estimated, &lambda2, &max_degree) * kRadToDeg;
+    } else if (options.pruning_mode == PruningThresholdMode::kAdaptive) {
+      if (adaptive_deg < 0) adaptive_deg = AdaptiveThresholdDeg(*keep, *result, options);
+      threshold_deg = adaptive_deg;
     }
     std::vector<bool> suspect(n, false);
     if (options.reinitialize_suspect_nodes &&
-        options.pruning_mode == PruningThresholdMode::kFixedAngle) {
+        options.pruning_mode != PruningThresholdMode::kStrongDualityBound) {
       suspect = SuspectNodes(graph, indexed, *keep, *result, threshold_deg);
     }
     bool changed = false;

@@ -4,9 +4,11 @@
 //   2. L1RA: a bounded number of iteratively reweighted L1 steps on the Lie-algebra linearisation
 //      w_j - w_i = log(R_j^T R_ij R_i) (Chatterjee & Govindu, ICCV 2013 / TPAMI 2018);
 //   3. IRLS with a robust loss (Geman-McClure by default) on the same linearisation;
-//   4. pruning: edges whose residual angle exceeds alpha_max are removed and IRLS re-runs, at most
-//      max_pruning_rounds times; alpha_max is a fixed angle (paper: 45 deg) or the strong-duality
-//      bound of Eriksson, Olsson, Kahl, Chin ("Rotation averaging and strong duality", CVPR 2018);
+//   4. pruning: edges whose residual angle exceeds a threshold are removed and IRLS re-runs, at
+//      most max_pruning_rounds times; the threshold is a multiple of the kept edges' median
+//      residual within [adaptive_min_deg, alpha_max_deg] (the default), the paper's fixed angle
+//      alpha_max (45 deg) or the strong-duality bound of Eriksson, Olsson, Kahl, Chin ("Rotation
+//      averaging and strong duality", CVPR 2018);
 //   5. certificate: on the kept graph, the chordal cost sum ||R_j - R_ij R_i||_F^2 is brought to a
 //      stationary point from the robust solution, and the solution is certified globally optimal
 //      (for that chordal problem on the kept edges) when every kept residual is below the bound
@@ -43,6 +45,7 @@ enum class RobustLoss {
 enum class PruningThresholdMode {
   kFixedAngle,          // alpha_max_deg
   kStrongDualityBound,  // the Eriksson et al. bound of the current kept graph
+  kAdaptive,            // adaptive_multiplier times the kept edges' median residual, clamped
 };
 
 struct RotationAveragingOptions {
@@ -69,15 +72,22 @@ struct RotationAveragingOptions {
   RobustLoss loss = RobustLoss::kGemanMcClure;
   // Scale of the robust loss (degrees); Chatterjee & Govindu (TPAMI 2018) use 5 deg.
   double sigma_deg = 5.0;
-  PruningThresholdMode pruning_mode = PruningThresholdMode::kFixedAngle;
-  // Residual angle above which an edge is pruned in kFixedAngle mode (paper: 45 deg).
+  PruningThresholdMode pruning_mode = PruningThresholdMode::kAdaptive;
+  // Residual angle above which an edge is pruned in kFixedAngle mode (paper: 45 deg); the
+  // ceiling of the kAdaptive threshold.
   double alpha_max_deg = 45.0;
+  // kAdaptive: edges are pruned above adaptive_multiplier times the median residual of the kept
+  // edges (what noise gives in this graph), but never below adaptive_min_deg: a pair aliased by
+  // repeated structure a few degrees off is an inlier to a fixed 45 deg and to the robust loss
+  // alike, and bends a long sequence.
+  double adaptive_multiplier = 6.0;
+  double adaptive_min_deg = 1.0;
   // Pruning rounds, each followed by an IRLS run (paper: 3). 0 disables pruning.
   int max_pruning_rounds = 3;
-  // In kFixedAngle mode, a node with at least 3 kept edges of which a strict majority exceed
-  // alpha_max is taken as mis-estimated rather than surrounded by outliers: its edges are not
-  // pruned in that round and it is re-initialised from the neighbour prediction that most other
-  // predictions agree with (within alpha_max). Without this, an L1 start that left a node far off
+  // In kFixedAngle and kAdaptive modes, a node with at least 3 kept edges of which a strict
+  // majority exceed the threshold is taken as mis-estimated rather than surrounded by outliers:
+  // its edges are not pruned in that round and it is re-initialised from the neighbour prediction that most other
+  // predictions agree with (within the threshold). Without this, an L1 start that left a node far off
   // strands it on an outlier edge once its inlier edges are pruned (seen at 30% outliers).
   bool reinitialize_suspect_nodes = true;
   // Scale IRLS weights by the edges' own weights (inlier counts). Off here as in Chatterjee &

@@ -600,6 +600,10 @@ void TranslationAveragingOptions::Check() const {
   CheckOption(max_admm_iterations >= 0, s + "max_admm_iterations", ">= 0", max_admm_iterations);
   CheckOption(admm_tolerance > 0, s + "admm_tolerance", "> 0", admm_tolerance);
   CheckOption(admm_cost_tolerance >= 0, s + "admm_cost_tolerance", ">= 0", admm_cost_tolerance);
+  CheckOption(max_rejection_rounds >= 0, s + "max_rejection_rounds", ">= 0", max_rejection_rounds);
+  CheckOption(rejection_multiplier > 1, s + "rejection_multiplier", "> 1", rejection_multiplier);
+  CheckOption(rejection_min_angle_deg >= 0, s + "rejection_min_angle_deg", ">= 0",
+              rejection_min_angle_deg);
   CheckOption(admm_relative_tolerance >= 0, s + "admm_relative_tolerance", ">= 0",
               admm_relative_tolerance);
 }
@@ -779,6 +783,101 @@ Eigen::VectorXd LeastSquaresStart(const StackedSystem& system, const std::vector
 
 }  // namespace
 
+namespace {
+
+// Solves the largest connected set of `constraints` and `pairs` in the L1 sense; the images it
+// leaves out go to result->unconstrained_images. Its gauge and scale are those of the header.
+// `x` and `column` are the solution and each image's camera index in it.
+void SolveConnected(const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+                    std::vector<Constraint>* constraints, std::vector<PairRow>* pairs,
+                    const std::vector<CenterPrior>& priors,
+                    const TranslationAveragingOptions& options, TranslationAveragingResult* result,
+                    Eigen::VectorXd* x, std::map<uint32_t, int>* column) {
+  result->unconstrained_images.clear();
+  const std::vector<uint32_t> solved =
+      LargestConnectedImages(rotations, *constraints, *pairs, &result->unconstrained_images);
+  if (solved.size() < 2)
+    throw StageFailure("translation averaging: fewer than two cameras connected");
+  // Priors of positioned cameras; with any, they fix the gauge and no camera is held.
+  const std::vector<CenterPrior> used_priors = PriorsOfSolvedImages(solved, priors);
+  const bool has_priors = !used_priors.empty();
+  column->clear();
+  result->gauge_image_id = has_priors ? 0 : solved.front();
+  for (size_t i = 0; i < solved.size(); ++i) {
+    (*column)[solved[i]] = static_cast<int>(i) - (has_priors ? 0 : 1);
+  }
+  constraints->erase(
+      std::remove_if(constraints->begin(), constraints->end(),
+                     [&](const Constraint& c) { return !column->count(c.a.from); }),
+      constraints->end());
+  pairs->erase(std::remove_if(pairs->begin(), pairs->end(),
+                              [&](const PairRow& pair) { return !column->count(pair.i); }),
+               pairs->end());
+  const int num_cameras = static_cast<int>(solved.size()) - (has_priors ? 0 : 1);
+  const StackedSystem system =
+      AssembleSystem(*constraints, *pairs, used_priors, *column, num_cameras, options);
+  int iterations = 0;
+  PositionSolver solver(system, options);
+  *x = LeastSquaresStart(system, *pairs, *column, &solver);
+  *x = options.solver == TranslationSolver::kIrls
+           ? SolveByIrls(system, *x, options, &solver, &iterations)
+           : SolveByAdmm(system, *x, options, &iterations);
+  result->num_solver_iterations += iterations;
+  result->num_factorizations += solver.num_factorizations();
+  result->l1_cost = (system.B * *x).lpNorm<1>();
+  result->num_priors_used = static_cast<int>(used_priors.size());
+}
+
+double MedianOf(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// Removes the pair rows whose direction the solution misses by more than the threshold (an angle
+// from their median: what noise gives here) and the track constraints whose residual exceeds
+// theirs; returns how many were removed. An L1 solution leaves wrong rows with large residuals
+// and the others near zero, so after removal the rest decide alone: a wrong direction then moves
+// the solution no more than a missing one would.
+int RejectOutlierRows(const Eigen::VectorXd& x, const std::map<uint32_t, int>& column,
+                      const TranslationAveragingOptions& options,
+                      std::vector<Constraint>* constraints, std::vector<PairRow>* pairs) {
+  std::vector<double> angles(pairs->size());
+  for (size_t k = 0; k < pairs->size(); ++k) {
+    const PairRow& pair = (*pairs)[k];
+    const Eigen::Vector3d baseline = CenterIn(x, column, pair.j) - CenterIn(x, column, pair.i);
+    angles[k] = std::atan2(baseline.cross(pair.direction).norm(), baseline.dot(pair.direction));
+  }
+  const double max_angle =
+      std::max(options.rejection_min_angle_deg * kDegToRad,
+               options.rejection_multiplier * MedianOf(angles));
+  std::vector<double> residuals(constraints->size());
+  for (size_t k = 0; k < constraints->size(); ++k) {
+    const Constraint& c = (*constraints)[k];
+    const auto predicted = [&](const PointPrediction& p) {
+      const Eigen::Vector3d from = CenterIn(x, column, p.from);
+      return Eigen::Vector3d(from + p.M * (CenterIn(x, column, p.to) - from));
+    };
+    residuals[k] = c.weight * (predicted(c.a) - predicted(c.b)).norm();
+  }
+  const double max_residual = options.rejection_multiplier * MedianOf(residuals);
+  const size_t num_before = pairs->size() + constraints->size();
+  size_t k = 0;
+  pairs->erase(std::remove_if(pairs->begin(), pairs->end(),
+                              [&](const PairRow&) { return angles[k++] > max_angle; }),
+               pairs->end());
+  k = 0;
+  constraints->erase(std::remove_if(constraints->begin(), constraints->end(),
+                                    [&](const Constraint&) {
+                                      return max_residual > 0 && residuals[k++] > max_residual;
+                                    }),
+                     constraints->end());
+  return static_cast<int>(num_before - pairs->size() - constraints->size());
+}
+
+}  // namespace
+
 TranslationAveragingResult AverageTranslations(
     const std::map<uint32_t, Eigen::Quaterniond>& rotations,
     const std::vector<PairDirection>& pair_directions, const std::vector<Track>& tracks,
@@ -794,37 +893,15 @@ TranslationAveragingResult AverageTranslations(
   if (pairs.empty()) {
     throw StageFailure("translation averaging: no pair direction (every pair is a pure rotation?)");
   }
-  // Solve the largest set of cameras that the constraints connect.
-  const std::vector<uint32_t> solved =
-      LargestConnectedImages(rotations, constraints, pairs, &result.unconstrained_images);
-  if (solved.size() < 2)
-    throw StageFailure("translation averaging: fewer than two cameras connected");
-  // Priors of positioned cameras; with any, they fix the gauge and no camera is held.
-  const std::vector<CenterPrior> used_priors = PriorsOfSolvedImages(solved, priors);
-  const bool has_priors = !used_priors.empty();
+  Eigen::VectorXd x;
   std::map<uint32_t, int> column;  // image id -> camera index (the gauge camera: -1)
-  result.gauge_image_id = has_priors ? 0 : solved.front();
-  for (size_t i = 0; i < solved.size(); ++i) {
-    column[solved[i]] = static_cast<int>(i) - (has_priors ? 0 : 1);
+  SolveConnected(rotations, &constraints, &pairs, priors, options, &result, &x, &column);
+  for (int round = 0; round < options.max_rejection_rounds; ++round) {
+    const int rejected = RejectOutlierRows(x, column, options, &constraints, &pairs);
+    if (rejected == 0 || pairs.empty()) break;
+    result.num_rejected_rows += rejected;
+    SolveConnected(rotations, &constraints, &pairs, priors, options, &result, &x, &column);
   }
-  constraints.erase(std::remove_if(constraints.begin(), constraints.end(),
-                                   [&](const Constraint& c) { return !column.count(c.a.from); }),
-                    constraints.end());
-  pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
-                             [&](const PairRow& pair) { return !column.count(pair.i); }),
-              pairs.end());
-  const int num_cameras = static_cast<int>(solved.size()) - (has_priors ? 0 : 1);
-  const StackedSystem system =
-      AssembleSystem(constraints, pairs, used_priors, column, num_cameras, options);
-
-  int iterations = 0;
-  PositionSolver solver(system, options);
-  Eigen::VectorXd x = LeastSquaresStart(system, pairs, column, &solver);
-  x = options.solver == TranslationSolver::kIrls
-          ? SolveByIrls(system, x, options, &solver, &iterations)
-          : SolveByAdmm(system, x, options, &iterations);
-  result.num_solver_iterations = iterations;
-  result.num_factorizations = solver.num_factorizations();
 
   // The documented scale: mean projected pair baseline = 1.
   double projected = 0.0;
@@ -834,13 +911,14 @@ TranslationAveragingResult AverageTranslations(
   if (!(projected > 0)) {
     throw StageFailure("translation averaging: the solution does not fit the pair directions");
   }
-  result.l1_cost = (system.B * x).lpNorm<1>();
   result.num_constraints = static_cast<int>(constraints.size() + pairs.size());
-  result.num_priors_used = static_cast<int>(used_priors.size());
   // With priors the solution is already in their frame and units.
+  const bool has_priors = result.num_priors_used > 0;
   const double scale = has_priors ? 1.0 : static_cast<double>(pairs.size()) / projected;
-  for (const uint32_t image_id : solved)
+  for (const auto& [image_id, camera] : column) {
+    (void)camera;
     result.centers[image_id] = scale * CenterIn(x, column, image_id);
+  }
   result.seconds = timer.ElapsedSeconds();
   return result;
 }

@@ -113,6 +113,14 @@ struct TranslationAveragingOptions {
   // kitti07_first160's ATE goes from 1.55 m to 1.93 m at 1e-3, 1.66 m at 1e-4 (31 steps) and
   // 1.57 m at 1e-5 (43 steps). 0: the steps stop on irls_tolerance or the cap alone.
   double irls_cost_tolerance = 0;
+  // After the solve, pair rows whose direction the solution misses by more than
+  // rejection_multiplier times the median miss (at least rejection_min_angle_deg), and track
+  // constraints whose residual exceeds rejection_multiplier times the median residual, are removed
+  // and the system solved again, at most max_rejection_rounds times (0: never). The threshold
+  // follows each system's own residuals (a window's, a component's) rather than a fixed angle.
+  int max_rejection_rounds = 1;
+  double rejection_multiplier = 5.0;
+  double rejection_min_angle_deg = 2.0;
   double irls_min_residual = 1e-4;
   // IRLS step extrapolation: the step to the reweighted solution is taken this many times over
   // (scales projected onto their bound) when that lowers the objective more than the plain step
@@ -171,6 +179,7 @@ struct TranslationAveragingResult {
   int num_factorizations = 0;  // of the camera system (the others reused one: max_pcg_iterations)
   int num_priors_used = 0;
   int num_windows = 0;  // solved in this many windows (windowed_translation_averaging.h); 0: one
+  int num_rejected_rows = 0;  // pair rows and track constraints removed as outliers
   double l1_cost = 0.0;
   double seconds = 0.0;
 };

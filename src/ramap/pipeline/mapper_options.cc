@@ -13,6 +13,7 @@ void MapperOptions::Check() const {
   pose_graph.Check();
   rotation_averaging.Check();
   pair_direction.Check();
+  direction_consistency.Check();
   translation_averaging.Check();
   translation_windows.Check();
   structure.Check();

@@ -1,6 +1,7 @@
 // Every option of the mapper's stages, with their defaults (`ramap mapper --help` lists them).
 #pragma once
 
+#include "ramap/averaging/direction_consistency.h"
 #include "ramap/averaging/pair_directions.h"
 #include "ramap/averaging/rotation_averaging.h"
 #include "ramap/averaging/translation_averaging.h"
@@ -39,6 +40,8 @@ struct MapperOptions {
   // Resolved into rotation_averaging.use_edge_weights per run (UseRotationEdgeWeights).
   EdgeWeighting rotation_edge_weights = EdgeWeighting::kAuto;
   PairDirectionOptions pair_direction;
+  // Which pair directions translation averaging may use: those their triangles support.
+  DirectionConsistencyOptions direction_consistency;
   TranslationAveragingOptions translation_averaging;
   // Long sequences: translation averaging window by window, joined by shared frames and loops.
   WindowedTranslationOptions translation_windows;

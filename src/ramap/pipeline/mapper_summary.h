@@ -40,6 +40,11 @@ struct MapperComponentSummary {
   double max_rotation_residual_deg = 0.0;
   int num_rotation_factorizations = 0;  // RotationAveragingResult::factorizations
   RotationAveragingTimings rotation_seconds;
+  // Pair directions their triangles did not support (averaging/direction_consistency.h), the
+  // tested pairs' median triangle residual and the threshold it gave.
+  int num_rejected_directions = 0;
+  double direction_median_residual_deg = 0.0;
+  double direction_threshold_deg = 0.0;
   int num_translation_constraints = 0;
   int num_solver_iterations = 0;
   int num_factorizations = 0;

@@ -72,7 +72,7 @@ RotationStageResult AverageComponentRotations(
     context.summary.dropped_edges.push_back(
         {PairName(context.database, edge.i, edge.j),
          pruned.reason == EdgeStatus::kPrunedResidual
-             ? "rotation residual " + FormatDegrees(pruned.residual_deg) + " > alpha_max " +
+             ? "rotation residual " + FormatDegrees(pruned.residual_deg) + " > threshold " +
                    FormatDegrees(pruned.threshold_deg) + " (pruning round " +
                    std::to_string(pruned.round) + ")"
              : "outside the largest connected component after pruning"});

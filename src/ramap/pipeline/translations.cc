@@ -1,14 +1,18 @@
 #include "ramap/pipeline/translations.h"
 
+#include <algorithm>
 #include <future>
+#include <iterator>
 #include <map>
 #include <set>
 #include <utility>
 
+#include "ramap/averaging/direction_consistency.h"
 #include "ramap/averaging/windowed_translation_averaging.h"
 #include "ramap/graph/tracks.h"
 #include "ramap/pipeline/mapper_options.h"
 #include "ramap/pipeline/mapper_summary.h"
+#include "ramap/pipeline/stage_log.h"
 #include "ramap/util/error.h"
 #include "ramap/util/even_subset.h"
 #include "ramap/util/parallel.h"
@@ -74,6 +78,29 @@ std::vector<PairDirection> KeptPairDirections(
     if (found[k]) directions.push_back({kept[k]->image_id1, kept[k]->image_id2, *found[k]});
   }
   return directions;
+}
+
+// The directions their short cycles support (averaging/direction_consistency.h); each rejected one is
+// listed with its reason among the summary's dropped edges, and its pair id added to `rejected`.
+std::vector<PairDirection> ConsistentDirections(const MapperContext& context,
+                                                const std::vector<PairDirection>& directions,
+                                                std::set<uint64_t>* rejected_pair_ids,
+                                                MapperComponentSummary* component) {
+  DirectionConsistencyResult checked =
+      CheckDirectionTriangles(directions, context.options.direction_consistency);
+  for (const RejectedDirection& rejected : checked.rejected) {
+    rejected_pair_ids->insert(ImagePairToPairId(rejected.image_id1, rejected.image_id2));
+    context.summary.dropped_edges.push_back(
+        {PairName(context.database, rejected.image_id1, rejected.image_id2),
+         "pair direction off its cycles by " + FormatDegrees(rejected.consistency_deg) +
+             " (median of " + std::to_string(rejected.num_cycles) + ") > " +
+             FormatDegrees(rejected.threshold_deg) + " (direction check round " +
+             std::to_string(rejected.round) + ")"});
+  }
+  component->num_rejected_directions = static_cast<int>(checked.rejected.size());
+  component->direction_median_residual_deg = checked.median_consistency_deg;
+  component->direction_threshold_deg = checked.threshold_deg;
+  return std::move(checked.kept);
 }
 
 // Tracks are built on a thread of their own with more than one mapper thread, otherwise when first
@@ -210,9 +237,21 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
   const bool early_fits = EarlyTracksFit(*early, kept);
   std::future<std::vector<Track>> tracks =
       early_fits ? std::move(early->built) : TracksOfKeptEdges(context, kept, early);
-  result.directions = KeptPairDirections(context, kept.with_translation, world_rotations);
+  std::set<uint64_t> rejected;
+  result.directions = ConsistentDirections(
+      context, KeptPairDirections(context, kept.with_translation, world_rotations), &rejected,
+      component);
   result.tracks = tracks.get();
   result.tracks_built_early = early_fits;
+  if (!rejected.empty()) {
+    // A rejected pair's matches are as wrong as its direction: where they join a track they would
+    // give every prediction from that camera a wrong ray, and triangulation a wrong observation.
+    std::set<uint64_t> pair_ids;
+    std::set_difference(kept.pair_ids.begin(), kept.pair_ids.end(), rejected.begin(),
+                        rejected.end(), std::inserter(pair_ids, pair_ids.end()));
+    result.tracks = BuildTracks(context.database.two_view_geometries, pair_ids);
+    result.tracks_built_early = false;
+  }
   const std::vector<PairDirection>& directions = result.directions;
   TranslationAveragingResult& positions = result.positions;
   std::string how;
@@ -235,7 +274,9 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
   component->num_translation_windows = positions.num_windows;
   context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(),
                      std::to_string(positions.centers.size()) + " positions from " +
-                         std::to_string(directions.size()) + " pair directions and " +
+                         std::to_string(directions.size()) + " pair directions (" +
+                         std::to_string(component->num_rejected_directions) +
+                         " rejected by their cycles) and " +
                          std::to_string(positions.num_tracks_used) + " tracks, " +
                          std::to_string(positions.num_solver_iterations) + " solver iterations (" +
                          std::to_string(positions.num_factorizations) + " factorisations)" + how +

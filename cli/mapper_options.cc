@@ -46,6 +46,11 @@ void AddRelativePoseOptions(CLI::App& app, MapperOptions* o, MapperOptionText* t
       ->capture_default_str();
   app.add_option("--RelativePose.confident_min_matches", o->relative_pose.confident_min_matches)
       ->capture_default_str();
+  app.add_option("--RelativePose.confident_noise_sample", o->relative_pose.confident_noise_sample,
+                 "pairs estimated first with every candidate to scale the confident error bound "
+                 "to the keypoints' noise (0: the bound as given)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--RelativePose.max_epipolar_error_px", o->relative_pose.max_epipolar_error_px,
                  "pixels")
       ->capture_default_str()
@@ -488,6 +493,7 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"confident_narrow_view_deg", o.relative_pose.confident_narrow_view_deg},
         {"confident_narrow_view_rms_error_px", o.relative_pose.confident_narrow_view_rms_error_px},
         {"confident_min_matches", o.relative_pose.confident_min_matches},
+        {"confident_noise_sample", o.relative_pose.confident_noise_sample},
         {"pure_rotation_parallax_px", o.relative_pose.pure_rotation_parallax_px}}},
       {"PoseGraph",
        {{"sequential", o.order == InputOrder::kAuto         ? "auto"

@@ -3,14 +3,17 @@
 # trajectories (../shared/data/gt_trajectories), built by `ramap synthesize` the way issue #15
 # describes them (each frame matched with its next 10 and with every frame within 8 m that is
 # more than 100 frames away; 3% of the pairs aliased, i.e. verified matches of a relative pose
-# 12-40 deg off; 2% outlier matches; landmarks on facades 8 m left and right of the road, seen
+# 0-40 deg off; 2% outlier matches; landmarks on facades 8 m left and right of the road, seen
 # within 40 m; 4-column keypoints), then `ramap mapper`
 # (averaging alone, --Mapper.refine 0) and `ramap evaluate` against the drive's ground truth.
 # Prints one markdown table row per drive (stage times from summary.json, peak memory, ATE as a
 # share of the path, rotation error) and the log-log slopes of time and memory against frames.
 #
 #   scripts/bench_scale.sh                       KITTI 00: 500, 1000, 2000, 4541 frames; KITTI 06
-#   scripts/bench_scale.sh 00:500 06:1101 ...    SEQUENCE:FRAMES (FRAMES 0: the whole sequence)
+#   scripts/bench_scale.sh 00:500 06:1101 ...    SEQUENCE:FRAMES[:SEED[:LAYOUT]] (FRAMES 0: the
+#                                                whole sequence; SEED 1 by default; LAYOUT facades,
+#                                                the default, or anywhere: landmarks anywhere in
+#                                                view instead of on two facades)
 #
 # Scenes are cached under build/bench-scale (RAMAP_SCALE_DIR); RAMAP_DATA_DIR as elsewhere;
 # RAMAP_THREADS (default 2) is --Mapper.num_threads; RAMAP_MAPPER_ARGS, more mapper options (e.g.
@@ -31,9 +34,14 @@ mkdir -p "$scale_dir"
 
 rows=()
 for run in "${runs[@]}"; do
-  sequence=${run%%:*}
-  frames=${run##*:}
-  scene=$scale_dir/kitti${sequence}_${frames}_facades
+  IFS=: read -r sequence frames seed layout <<<"$run"
+  seed=${seed:-1}
+  layout=${layout:-facades}
+  facade_distance=8
+  [[ $layout == anywhere ]] && facade_distance=0
+  # Aliased pairs rotated 0-40 deg off (the synthesize default since the robustness work; the
+  # scenes cached before drew 12-40 deg and had no seed or layout in their names).
+  scene=$scale_dir/kitti${sequence}_${frames}_${layout}_s${seed}_a0-40
   if [[ ! -f $scene/scene.done ]]; then
     rm -rf "$scene"
     # 20 landmarks per frame; KITTI's camera (image 0 of the odometry calibration).
@@ -45,8 +53,8 @@ for run in "${runs[@]}"; do
       --Synthetic.num_points "$num_points" --Synthetic.max_view_distance 40 \
       --Synthetic.overlap 10 --Synthetic.loop_radius_m 8 --Synthetic.loop_min_frame_gap 100 \
       --Synthetic.loop_max_angle_deg 180 --Synthetic.aliased_pair_ratio 0.03 \
-      --Synthetic.outlier_ratio 0.02 --Synthetic.facade_distance_m 8 \
-      --Synthetic.keypoint_columns 4 >&2
+      --Synthetic.outlier_ratio 0.02 --Synthetic.facade_distance_m "$facade_distance" \
+      --Synthetic.keypoint_columns 4 --Synthetic.seed "$seed" >&2
     touch "$scene/scene.done"
   fi
   rm -rf "$scene/sparse" "$scene/eval.json"
@@ -55,7 +63,7 @@ for run in "${runs[@]}"; do
   "$ramap" evaluate --model_path "$scene/sparse/0" --ground_truth "$scene/ground_truth.txt" \
     --ground_truth_format tum --database_path "$scene/database.db" \
     --output_path "$scene/eval.json" > /dev/null
-  rows+=("KITTI $sequence|$scene")
+  rows+=("KITTI $sequence s$seed $layout|$scene")
 done
 
 python3 - "${rows[@]}" <<'PY'

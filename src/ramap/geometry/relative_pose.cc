@@ -405,6 +405,7 @@ void RelativePoseOptions::Check() const {
     throw InputError(source, "confident_inlier_ratio must be >= 0");
   }
   if (confident_min_matches < 0) throw InputError(source, "confident_min_matches must be >= 0");
+  if (confident_noise_sample < 0) throw InputError(source, "confident_noise_sample must be >= 0");
   if (!(confident_max_rms_error_px >= 0) || !(confident_narrow_view_rms_error_px >= 0)) {
     throw InputError(
         source, "confident_max_rms_error_px and confident_narrow_view_rms_error_px must be >= 0");

@@ -111,6 +111,10 @@ struct RelativePoseOptions {
   double confident_narrow_view_deg = 8.0;
   double confident_narrow_view_rms_error_px = 0.6;
   int confident_min_matches = 100;
+  // The mapper first estimates this many evenly spaced strong pairs with every candidate and
+  // raises confident_max_rms_error_px to what their epipolar errors say the keypoints' noise gives
+  // (pipeline/relative_poses.cc; never lowers it); 0: the bound as given.
+  int confident_noise_sample = 32;
   // RANSAC (sampler = ransac5): iterations cap and success probability.
   int ransac_max_iterations = 1000;
   double ransac_probability = 0.999;

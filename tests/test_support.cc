@@ -187,6 +187,17 @@ std::string CachedColmapModel(const ColmapRun& run) {
   return model;
 }
 
+SyntheticSceneOptions WithFacadeRepeats(SyntheticSceneOptions options, int num_pairs,
+                                        double shift_m) {
+  options.num_aliased_pairs = num_pairs;
+  options.aliased_min_angle_deg = 0.0;
+  options.aliased_max_angle_deg = 0.0;
+  options.aliased_max_frame_gap = 8;
+  options.aliased_shift_m = shift_m;
+  options.aliased_matches_on_tracks = true;
+  return options;
+}
+
 MapperOptions AveragingOnly() {
   MapperOptions options;
   options.refine = false;

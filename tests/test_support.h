@@ -64,6 +64,12 @@ Camera VgaPinholeCamera(double fx = 500, double fy = 500);
 // A scene without keypoint noise or wrong matches: 1500 points, seed 11.
 SyntheticSceneOptions NoiseFree(SyntheticLayout layout, SyntheticPath path, int num_images);
 
+// `options` with `num_pairs` pairs aliased as a facade's repeat gives them: at most 8 frames
+// apart, the true rotation with the second camera moved by `shift_m`, matches starting from the
+// first image's observations (so that they join its points' tracks).
+SyntheticSceneOptions WithFacadeRepeats(SyntheticSceneOptions options, int num_pairs,
+                                        double shift_m);
+
 // A car waiting at a light: a noise-free 30-frame line (images 1-30) in which images 10-12 share
 // one centre and turn a little, and image 11's only verified pairs are its pure rotations to 10
 // and 12, so that it has no direction to any camera.

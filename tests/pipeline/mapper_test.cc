@@ -92,15 +92,9 @@ TEST(Mapper, PairsAliasedInTranslationAreRejectedWithTheirReasons) {
   options.num_images = 60;
   options.num_points = 3000;
   options.pixel_noise_sigma = 0.5;
-  options.num_aliased_pairs = 6;
-  options.aliased_min_angle_deg = 0.0;
-  options.aliased_max_angle_deg = 0.0;
-  options.aliased_shift_m = 3.0;
-  options.aliased_max_frame_gap = 8;
-  options.aliased_matches_on_tracks = true;
   options.num_aliased_pair_matches = 300;
   options.seed = 11;
-  const SyntheticScene scene = BuildSyntheticScene(options);
+  const SyntheticScene scene = BuildSyntheticScene(test::WithFacadeRepeats(options, 6, 3.0));
   ASSERT_EQ(scene.aliased_pair_ids.size(), 6u);
   MapperResult result;
   const PoseEvaluation checked = MapAndEvaluate(scene, &result);

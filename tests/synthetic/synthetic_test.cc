@@ -322,13 +322,7 @@ TEST(Synthetic, AliasedPairsAreConsistentWithARotationOffByTheGivenAngles) {
 TEST(Synthetic, AliasedPairsNearbyShiftedAndOnTracks) {
   SyntheticSceneOptions options = SmallOptions();
   options.num_images = 40;
-  options.num_aliased_pairs = 5;
-  options.aliased_min_angle_deg = 0.0;
-  options.aliased_max_angle_deg = 0.0;
-  options.aliased_max_frame_gap = 8;
-  options.aliased_shift_m = 2.0;
-  options.aliased_matches_on_tracks = true;
-  const SyntheticScene scene = BuildSyntheticScene(options);
+  const SyntheticScene scene = BuildSyntheticScene(test::WithFacadeRepeats(options, 5, 2.0));
   ASSERT_EQ(scene.aliased_pair_ids.size(), 5u);
   for (const uint64_t pair_id : scene.aliased_pair_ids) {
     const TwoViewGeometry& geometry = scene.database.two_view_geometries.at(pair_id);

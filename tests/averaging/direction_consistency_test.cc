@@ -221,6 +221,17 @@ TEST(TranslationRowRejection, RemovesWrongDirectionsTheSolutionDoesNotFit) {
       AverageTranslations(scene.rotations, right, tracks.tracks, tracks.bearings);
   EXPECT_GE(with.num_rejected_rows, static_cast<int>(directions.size() / 5) * 9 / 10);
   EXPECT_EQ(without.num_rejected_rows, 0);
+  // The pair rows dropped are named, each a wrong one, missed by more than its threshold.
+  std::set<std::pair<uint32_t, uint32_t>> wrong;
+  for (size_t k = 0; k < directions.size(); k += 5) {
+    wrong.insert({directions[k].image_id1, directions[k].image_id2});
+  }
+  EXPECT_GE(with.rejected_pair_rows.size(), wrong.size() * 8 / 10);
+  for (const RejectedPairRow& row : with.rejected_pair_rows) {
+    EXPECT_TRUE(wrong.count({row.image_id1, row.image_id2}))
+        << row.image_id1 << " " << row.image_id2;
+    EXPECT_GT(row.miss_deg, row.threshold_deg);
+  }
   EXPECT_LT(RelativeCenterError(scene, with), 1.5 * RelativeCenterError(scene, truth_only) + 1e-3);
   EXPECT_LT(RelativeCenterError(scene, with), RelativeCenterError(scene, without));
 }

@@ -842,7 +842,8 @@ double MedianOf(std::vector<double> values) {
 // the solution no more than a missing one would.
 int RejectOutlierRows(const Eigen::VectorXd& x, const std::map<uint32_t, int>& column,
                       const TranslationAveragingOptions& options,
-                      std::vector<Constraint>* constraints, std::vector<PairRow>* pairs) {
+                      std::vector<Constraint>* constraints, std::vector<PairRow>* pairs,
+                      std::vector<RejectedPairRow>* rejected_pairs) {
   std::vector<double> angles(pairs->size());
   for (size_t k = 0; k < pairs->size(); ++k) {
     const PairRow& pair = (*pairs)[k];
@@ -863,6 +864,12 @@ int RejectOutlierRows(const Eigen::VectorXd& x, const std::map<uint32_t, int>& c
   }
   const double max_residual = options.rejection_multiplier * MedianOf(residuals);
   const size_t num_before = pairs->size() + constraints->size();
+  for (size_t p = 0; p < pairs->size(); ++p) {
+    if (angles[p] > max_angle) {
+      rejected_pairs->push_back({(*pairs)[p].i, (*pairs)[p].j, angles[p] * kRadToDeg,
+                                 max_angle * kRadToDeg});
+    }
+  }
   size_t k = 0;
   pairs->erase(std::remove_if(pairs->begin(), pairs->end(),
                               [&](const PairRow&) { return angles[k++] > max_angle; }),
@@ -897,7 +904,8 @@ TranslationAveragingResult AverageTranslations(
   std::map<uint32_t, int> column;  // image id -> camera index (the gauge camera: -1)
   SolveConnected(rotations, &constraints, &pairs, priors, options, &result, &x, &column);
   for (int round = 0; round < options.max_rejection_rounds; ++round) {
-    const int rejected = RejectOutlierRows(x, column, options, &constraints, &pairs);
+    const int rejected =
+        RejectOutlierRows(x, column, options, &constraints, &pairs, &result.rejected_pair_rows);
     if (rejected == 0 || pairs.empty()) break;
     result.num_rejected_rows += rejected;
     SolveConnected(rotations, &constraints, &pairs, priors, options, &result, &x, &column);

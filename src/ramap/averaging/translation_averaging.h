@@ -166,6 +166,15 @@ struct TranslationAveragingOptions {
   void Check() const;
 };
 
+// A pair row that translation averaging dropped as an outlier (TranslationAveragingOptions::
+// max_rejection_rounds): the angle by which its solution missed the pair's direction.
+struct RejectedPairRow {
+  uint32_t image_id1 = 0;
+  uint32_t image_id2 = 0;
+  double miss_deg = 0.0;
+  double threshold_deg = 0.0;
+};
+
 struct TranslationAveragingResult {
   // Camera centres in world coordinates (the gauge: `gauge_image_id` at the origin, mean projected
   // pair baseline = 1; with priors, theirs).
@@ -180,6 +189,7 @@ struct TranslationAveragingResult {
   int num_priors_used = 0;
   int num_windows = 0;  // solved in this many windows (windowed_translation_averaging.h); 0: one
   int num_rejected_rows = 0;  // pair rows and track constraints removed as outliers
+  std::vector<RejectedPairRow> rejected_pair_rows;  // the pair rows among them
   double l1_cost = 0.0;
   double seconds = 0.0;
 };

@@ -183,6 +183,10 @@ void AddWindowCounts(const TranslationAveragingResult& window, TranslationAverag
   result->num_solver_iterations += window.num_solver_iterations;
   result->num_factorizations += window.num_factorizations;
   result->l1_cost += window.l1_cost;
+  result->num_rejected_rows += window.num_rejected_rows;
+  result->rejected_pair_rows.insert(result->rejected_pair_rows.end(),
+                                    window.rejected_pair_rows.begin(),
+                                    window.rejected_pair_rows.end());
 }
 
 // Each image's centre: the mean of its placed windows' centres.

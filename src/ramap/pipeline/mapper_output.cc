@@ -66,6 +66,7 @@ nlohmann::json ComponentToJson(const MapperComponentSummary& c) {
        {{"num_rejected_directions", c.num_rejected_directions},
         {"direction_median_residual_deg", c.direction_median_residual_deg},
         {"direction_threshold_deg", c.direction_threshold_deg},
+        {"num_rejected_rows", c.num_rejected_translation_rows},
         {"num_constraints", c.num_translation_constraints},
         {"num_solver_iterations", c.num_solver_iterations},
         {"num_factorizations", c.num_factorizations},

@@ -45,6 +45,8 @@ struct MapperComponentSummary {
   int num_rejected_directions = 0;
   double direction_median_residual_deg = 0.0;
   double direction_threshold_deg = 0.0;
+  // Pair rows and track constraints translation averaging dropped as outliers.
+  int num_rejected_translation_rows = 0;
   int num_translation_constraints = 0;
   int num_solver_iterations = 0;
   int num_factorizations = 0;

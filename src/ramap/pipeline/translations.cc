@@ -103,6 +103,22 @@ std::vector<PairDirection> ConsistentDirections(const MapperContext& context,
   return std::move(checked.kept);
 }
 
+// The pair rows translation averaging dropped as outliers, each once (a pair two windows share may
+// be dropped by both), among the summary's dropped edges with the solution's miss.
+void ListRejectedPairRows(const MapperContext& context, const TranslationAveragingResult& positions,
+                          MapperComponentSummary* component) {
+  std::set<std::pair<uint32_t, uint32_t>> listed;
+  for (const RejectedPairRow& row : positions.rejected_pair_rows) {
+    if (!listed.insert({row.image_id1, row.image_id2}).second) continue;
+    context.summary.dropped_edges.push_back(
+        {PairName(context.database, row.image_id1, row.image_id2),
+         "translation averaging's solution misses the pair direction by " +
+             FormatDegrees(row.miss_deg) + " > " + FormatDegrees(row.threshold_deg) +
+             " (an outlier row, solved again without it)"});
+  }
+  component->num_rejected_translation_rows = positions.num_rejected_rows;
+}
+
 // Tracks are built on a thread of their own with more than one mapper thread, otherwise when first
 // asked for.
 std::launch TracksLaunch(const MapperContext& context) {
@@ -262,6 +278,7 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
     context.log.Record(stage::kTranslationAveraging, timer.ElapsedSeconds(), error.what());
     return std::nullopt;
   }
+  ListRejectedPairRows(context, positions, component);
   result.pure_rotation_neighbours = std::move(kept.pure_rotation_neighbours);
   const int num_standstill = PlaceStandstillImages(result.pure_rotation_neighbours, &positions);
   for (const uint32_t id : positions.unconstrained_images) {

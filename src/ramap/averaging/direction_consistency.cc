@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "ramap/util/option_check.h"
+#include "ramap/util/statistics.h"
 
 namespace ramap {
 
@@ -173,13 +174,6 @@ Tested Test(const std::vector<PairDirection>& directions, size_t k, const Adjace
   return tested;
 }
 
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 // The active directions' tests and the pair index they look cycles up in.
 std::vector<Tested> TestActive(const std::vector<PairDirection>& directions,
                                const std::vector<bool>& active,
@@ -206,7 +200,7 @@ double Threshold(const std::vector<Tested>& tests, const std::vector<bool>& acti
     }
   }
   result->num_tested = static_cast<int>(tested.size());
-  result->median_consistency_deg = Median(tested);
+  result->median_consistency_deg = tested.empty() ? 0.0 : Median(tested);
   double threshold = options.max_residual_deg;
   if (options.mode == DirectionCheckMode::kAdaptive) {
     threshold = std::clamp(options.threshold_multiplier * result->median_consistency_deg,

@@ -15,6 +15,7 @@
 #include "ramap/graph/cycle_consistency.h"
 #include "ramap/graph/fiedler.h"
 #include "ramap/util/option_check.h"
+#include "ramap/util/statistics.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
@@ -526,10 +527,8 @@ double AdaptiveThresholdDeg(const std::vector<bool>& keep, const RotationAveragi
     }
   }
   if (residuals.empty()) return options.alpha_max_deg;
-  const auto middle = residuals.begin() + residuals.size() / 2;
-  std::nth_element(residuals.begin(), middle, residuals.end());
-  return std::clamp(options.adaptive_multiplier * *middle, options.adaptive_min_deg,
-                    options.alpha_max_deg);
+  return std::clamp(options.adaptive_multiplier * Median(std::move(residuals)),
+                    options.adaptive_min_deg, options.alpha_max_deg);
 }
 
 // The robust weights' IRLS, as the pruning rounds and the first run use it.

@@ -18,6 +18,7 @@
 #include "ramap/util/disjoint_sets.h"
 #include "ramap/util/error.h"
 #include "ramap/util/option_check.h"
+#include "ramap/util/statistics.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
@@ -828,13 +829,6 @@ void SolveConnected(const std::map<uint32_t, Eigen::Quaterniond>& rotations,
   result->num_priors_used = static_cast<int>(used_priors.size());
 }
 
-double MedianOf(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 // Removes the pair rows whose direction the solution misses by more than the threshold (an angle
 // from their median: what noise gives here) and the track constraints whose residual exceeds
 // theirs; returns how many were removed. An L1 solution leaves wrong rows with large residuals
@@ -850,9 +844,8 @@ int RejectOutlierRows(const Eigen::VectorXd& x, const std::map<uint32_t, int>& c
     const Eigen::Vector3d baseline = CenterIn(x, column, pair.j) - CenterIn(x, column, pair.i);
     angles[k] = std::atan2(baseline.cross(pair.direction).norm(), baseline.dot(pair.direction));
   }
-  const double max_angle =
-      std::max(options.rejection_min_angle_deg * kDegToRad,
-               options.rejection_multiplier * MedianOf(angles));
+  const double max_angle = std::max(options.rejection_min_angle_deg * kDegToRad,
+                                    options.rejection_multiplier * Median(angles));
   std::vector<double> residuals(constraints->size());
   for (size_t k = 0; k < constraints->size(); ++k) {
     const Constraint& c = (*constraints)[k];
@@ -862,24 +855,26 @@ int RejectOutlierRows(const Eigen::VectorXd& x, const std::map<uint32_t, int>& c
     };
     residuals[k] = c.weight * (predicted(c.a) - predicted(c.b)).norm();
   }
-  const double max_residual = options.rejection_multiplier * MedianOf(residuals);
+  const double max_residual =
+      residuals.empty() ? 0.0 : options.rejection_multiplier * Median(residuals);
   const size_t num_before = pairs->size() + constraints->size();
-  for (size_t p = 0; p < pairs->size(); ++p) {
-    if (angles[p] > max_angle) {
-      rejected_pairs->push_back({(*pairs)[p].i, (*pairs)[p].j, angles[p] * kRadToDeg,
-                                 max_angle * kRadToDeg});
+  std::vector<PairRow> kept_pairs;
+  for (size_t k = 0; k < pairs->size(); ++k) {
+    const PairRow& pair = (*pairs)[k];
+    if (angles[k] <= max_angle) {
+      kept_pairs.push_back(pair);
+    } else {
+      rejected_pairs->push_back({pair.i, pair.j, angles[k] * kRadToDeg, max_angle * kRadToDeg});
     }
   }
-  size_t k = 0;
-  pairs->erase(std::remove_if(pairs->begin(), pairs->end(),
-                              [&](const PairRow&) { return angles[k++] > max_angle; }),
-               pairs->end());
-  k = 0;
-  constraints->erase(std::remove_if(constraints->begin(), constraints->end(),
-                                    [&](const Constraint&) {
-                                      return max_residual > 0 && residuals[k++] > max_residual;
-                                    }),
-                     constraints->end());
+  std::vector<Constraint> kept_constraints;
+  for (size_t k = 0; k < constraints->size(); ++k) {
+    if (!(max_residual > 0 && residuals[k] > max_residual)) {
+      kept_constraints.push_back((*constraints)[k]);
+    }
+  }
+  *pairs = std::move(kept_pairs);
+  *constraints = std::move(kept_constraints);
   return static_cast<int>(num_before - pairs->size() - constraints->size());
 }
 

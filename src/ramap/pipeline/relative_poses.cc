@@ -6,6 +6,7 @@
 #include "ramap/pipeline/stage_log.h"
 #include "ramap/util/even_subset.h"
 #include "ramap/util/parallel.h"
+#include "ramap/util/statistics.h"
 
 namespace ramap {
 
@@ -94,9 +95,7 @@ double NoiseScaledConfidentBound(const FeatureDatabase& database, const ImageBea
   });
   errors_px.erase(std::remove(errors_px.begin(), errors_px.end(), -1.0), errors_px.end());
   if (errors_px.empty()) return options.confident_max_rms_error_px;
-  const auto middle = errors_px.begin() + errors_px.size() / 2;
-  std::nth_element(errors_px.begin(), middle, errors_px.end());
-  return std::max(options.confident_max_rms_error_px, 1.25 * 1.48 * *middle);
+  return std::max(options.confident_max_rms_error_px, 1.25 * 1.48 * Median(std::move(errors_px)));
 }
 
 }  // namespace

@@ -100,7 +100,7 @@ TEST(DirectionConsistency, AWindowWithTenPercentAliasedPairsIsSolvedWithinNoise)
   ASSERT_GE(aliased.size(), 20u);
 
   const DirectionConsistencyResult checked =
-      CheckDirectionTriangles(directions, DirectionConsistencyOptions());
+      CheckDirectionCycles(directions, DirectionConsistencyOptions());
   const std::set<std::pair<uint32_t, uint32_t>> rejected = RejectedPairs(checked);
   // Neighbouring frames close no cycle whose legs point the same way (no frame between them):
   // those are left to translation averaging's own rejection.
@@ -129,7 +129,7 @@ TEST(DirectionConsistency, APairDirectionOppositeToItsTracksIsRejected) {
   ASSERT_NE(flipped, directions.end());
   flipped->direction = -flipped->direction;
   const DirectionConsistencyResult checked =
-      CheckDirectionTriangles(directions, DirectionConsistencyOptions());
+      CheckDirectionCycles(directions, DirectionConsistencyOptions());
   ASSERT_EQ(checked.rejected.size(), 1u);
   EXPECT_EQ(checked.rejected[0].image_id1, 8u);
   EXPECT_EQ(checked.rejected[0].image_id2, 12u);
@@ -138,7 +138,7 @@ TEST(DirectionConsistency, APairDirectionOppositeToItsTracksIsRejected) {
   // Switched off, nothing is rejected.
   DirectionConsistencyOptions off;
   off.mode = DirectionCheckMode::kOff;
-  EXPECT_EQ(CheckDirectionTriangles(directions, off).kept.size(), directions.size());
+  EXPECT_EQ(CheckDirectionCycles(directions, off).kept.size(), directions.size());
 }
 
 // A ring closes its loop between its last and first cameras; a loop pair's direction turned by
@@ -156,7 +156,7 @@ TEST(DirectionConsistency, ALoopEdgeThatBreaksItsCyclesIsRejectedWithItsReason) 
   const Eigen::Vector3d axis = loop->direction.cross(Eigen::Vector3d::UnitY()).normalized();
   loop->direction = Eigen::AngleAxisd(20 * kDeg, axis) * loop->direction;
   const DirectionConsistencyResult checked =
-      CheckDirectionTriangles(directions, DirectionConsistencyOptions());
+      CheckDirectionCycles(directions, DirectionConsistencyOptions());
   ASSERT_EQ(checked.rejected.size(), 1u);
   const RejectedDirection& rejected = checked.rejected[0];
   EXPECT_EQ(rejected.image_id1, loop->image_id1);
@@ -188,7 +188,7 @@ TEST(DirectionConsistency, TheAdaptiveThresholdFollowsTheNoise) {
       pair.direction =
           Eigen::AngleAxisd(angle, Eigen::AngleAxisd(turn, pair.direction) * axis) * pair.direction;
     }
-    const DirectionConsistencyResult checked = CheckDirectionTriangles(directions, options);
+    const DirectionConsistencyResult checked = CheckDirectionCycles(directions, options);
     thresholds.push_back(checked.threshold_deg);
     EXPECT_LT(checked.rejected.size(), directions.size() / 20) << noise_deg << " deg";
   }

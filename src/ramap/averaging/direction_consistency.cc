@@ -244,7 +244,7 @@ bool RejectRound(const std::vector<PairDirection>& directions, const std::vector
 
 }  // namespace
 
-DirectionConsistencyResult CheckDirectionTriangles(const std::vector<PairDirection>& directions,
+DirectionConsistencyResult CheckDirectionCycles(const std::vector<PairDirection>& directions,
                                                    const DirectionConsistencyOptions& options) {
   options.Check();
   DirectionConsistencyResult result;

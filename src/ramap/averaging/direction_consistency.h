@@ -76,7 +76,7 @@ double AngleToCone(const Eigen::Vector3d& direction, const Eigen::Vector3d& u,
                    const Eigen::Vector3d& v);
 
 // Splits `directions` (world-frame unit directions of c2 - c1) into the kept and the rejected.
-DirectionConsistencyResult CheckDirectionTriangles(const std::vector<PairDirection>& directions,
+DirectionConsistencyResult CheckDirectionCycles(const std::vector<PairDirection>& directions,
                                                    const DirectionConsistencyOptions& options);
 
 }  // namespace ramap

@@ -87,13 +87,13 @@ std::vector<PairDirection> ConsistentDirections(const MapperContext& context,
                                                 std::set<uint64_t>* rejected_pair_ids,
                                                 MapperComponentSummary* component) {
   DirectionConsistencyResult checked =
-      CheckDirectionTriangles(directions, context.options.direction_consistency);
+      CheckDirectionCycles(directions, context.options.direction_consistency);
   for (const RejectedDirection& rejected : checked.rejected) {
     rejected_pair_ids->insert(ImagePairToPairId(rejected.image_id1, rejected.image_id2));
     context.summary.dropped_edges.push_back(
         {PairName(context.database, rejected.image_id1, rejected.image_id2),
          "pair direction off its cycles by " + FormatDegrees(rejected.consistency_deg) +
-             " (median of " + std::to_string(rejected.num_cycles) + ") > " +
+             " (lower quartile of " + std::to_string(rejected.num_cycles) + " cycles) > " +
              FormatDegrees(rejected.threshold_deg) + " (direction check round " +
              std::to_string(rejected.round) + ")"});
   }

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # How ramap scales with the number of frames: synthetic drives along KITTI odometry ground-truth
-# trajectories (../shared/data/gt_trajectories), built by `ramap synthesize` the way issue #15
-# describes them (each frame matched with its next 10 and with every frame within 8 m that is
+# trajectories (../shared/data/gt_trajectories), built by `ramap synthesize` as the scale
+# benchmark specifies them (each frame matched with its next 10 and with every frame within 8 m that is
 # more than 100 frames away; 3% of the pairs aliased, i.e. verified matches of a relative pose
 # 0-40 deg off; 2% outlier matches; landmarks on facades 8 m left and right of the road, seen
 # within 40 m; 4-column keypoints), then `ramap mapper`
@@ -39,7 +39,7 @@ for run in "${runs[@]}"; do
   layout=${layout:-facades}
   facade_distance=8
   [[ $layout == anywhere ]] && facade_distance=0
-  # Aliased pairs rotated 0-40 deg off (the synthesize default since the robustness work; the
+  # Aliased pairs rotated 0-40 deg off (the synthesize default since 2026-12-05; the
   # scenes cached before drew 12-40 deg and had no seed or layout in their names).
   scene=$scale_dir/kitti${sequence}_${frames}_${layout}_s${seed}_a0-40
   if [[ ! -f $scene/scene.done ]]; then

@@ -293,11 +293,43 @@ void AddTriangulationOptions(CLI::App& app, MapperOptions* o) {
 }
 
 // Refinement (stage 6): bundle adjustment, with the intrinsics.
+// What bundle adjustment does with the intrinsics a user gave.
+void AddGivenIntrinsicsOptions(CLI::App& app, MapperOptions* o) {
+  BundleAdjustmentOptions& ba = o->bundle_adjustment;
+  app.add_option("--BundleAdjustment.keep_prior_intrinsics", ba.keep_prior_intrinsics,
+                 "1: cameras with a known focal length (prior_focal_length 1) keep their "
+                 "focal length and principal point unless the data prove them wrong")
+      ->capture_default_str();
+  app.add_option("--BundleAdjustment.share_identical_intrinsics", ba.share_identical_intrinsics,
+                 "1: cameras with the same model, size, parameters and prior flag are refined as "
+                 "one")
+      ->capture_default_str();
+  GivenIntrinsicsTestOptions& test = o->given_intrinsics_test;
+  app.add_option("--BundleAdjustment.given_intrinsics_test", test.enable,
+                 "1: after BA, free given focal lengths (and add distortion to pinhole cameras) "
+                 "on a subset of the points; keep a change only if it lowers the reprojection "
+                 "RMSE clearly")
+      ->capture_default_str();
+  app.add_option("--BundleAdjustment.given_intrinsics_test_min_rmse_decrease",
+                 test.min_rmse_decrease, "the fraction a change must lower its cameras' RMSE by")
+      ->capture_default_str()
+      ->check(NumberCheck(0, false, 1, true));
+  app.add_option("--BundleAdjustment.given_intrinsics_test_focal_tolerance", test.focal_tolerance,
+                 "a freed focal length within this fraction of the given one confirms it")
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--BundleAdjustment.given_intrinsics_test_num_points", test.num_points,
+                 "points adjusted in each step of the test (0: all)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
+}
+
 void AddBundleAdjustmentOptions(CLI::App& app, MapperOptions* o) {
   app.add_option("--Mapper.refine", o->refine,
                  "1: bundle adjustment after averaging; 0: averaging alone (faster)")
       ->capture_default_str();
   AddBundleAdjusterOptions(app, &o->bundle_adjustment);
+  AddGivenIntrinsicsOptions(app, o);
 }
 
 }  // namespace
@@ -506,7 +538,7 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
         {"max_pcg_iterations", ra.max_pcg_iterations},
         {"loss", ra.loss == RobustLoss::kGemanMcClure ? "geman_mcclure" : "l1_half"},
         {"sigma_deg", ra.sigma_deg},
-        {"pruning", ra.pruning_mode == PruningThresholdMode::kFixedAngle   ? "fixed"
+        {"pruning", ra.pruning_mode == PruningThresholdMode::kFixedAngle ? "fixed"
                     : ra.pruning_mode == PruningThresholdMode::kAdaptive ? "adaptive"
                                                                          : "duality"},
         {"alpha_max_deg", ra.alpha_max_deg},
@@ -545,6 +577,12 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
        {{"refine_focal_length", o.bundle_adjustment.refine_focal_length},
         {"refine_principal_point", o.bundle_adjustment.refine_principal_point},
         {"refine_extra_params", o.bundle_adjustment.refine_extra_params},
+        {"keep_prior_intrinsics", o.bundle_adjustment.keep_prior_intrinsics},
+        {"share_identical_intrinsics", o.bundle_adjustment.share_identical_intrinsics},
+        {"given_intrinsics_test", o.given_intrinsics_test.enable},
+        {"given_intrinsics_test_min_rmse_decrease", o.given_intrinsics_test.min_rmse_decrease},
+        {"given_intrinsics_test_focal_tolerance", o.given_intrinsics_test.focal_tolerance},
+        {"given_intrinsics_test_num_points", o.given_intrinsics_test.num_points},
         {"max_num_iterations", o.bundle_adjustment.max_num_iterations},
         {"loss_scale_px", o.bundle_adjustment.loss_scale_px},
         {"max_num_points", o.bundle_adjustment.max_num_points},

@@ -18,6 +18,7 @@ void MapperOptions::Check() const {
   translation_windows.Check();
   structure.Check();
   bundle_adjustment.Check();
+  given_intrinsics_test.Check();
   CheckOption(min_component_size >= 2, "--Mapper.min_component_size", ">= 2", min_component_size);
   CheckOption(num_threads >= 1, "--Mapper.num_threads", ">= 1", num_threads);
   CheckOption(max_focal_change_in_bundle_adjustment >= 0,

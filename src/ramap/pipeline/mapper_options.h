@@ -12,6 +12,7 @@
 #include "ramap/pipeline/structure.h"
 #include "ramap/pipeline/view_graph_calibration.h"
 #include "ramap/refine/bundle_adjustment.h"
+#include "ramap/refine/given_intrinsics_test.h"
 #include "ramap/scene/image_order.h"
 
 namespace ramap {
@@ -54,6 +55,8 @@ struct MapperOptions {
   // is the fast option, 3-10x quicker.
   bool refine = true;
   BundleAdjustmentOptions bundle_adjustment;
+  // After it, whether the data prove given intrinsics wrong (refine/given_intrinsics_test.h).
+  GivenIntrinsicsTestOptions given_intrinsics_test;
   // When bundle adjustment moves a focal length by more than this fraction from the value
   // averaging used (a guess the view graph could not correct: forward motion, a turntable), the
   // whole pipeline runs again through the refined intrinsics: averaging through a focal length 2x

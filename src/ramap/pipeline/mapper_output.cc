@@ -47,6 +47,28 @@ nlohmann::json RotationSecondsJson(const RotationAveragingTimings& seconds) {
 
 // One component: its model, how its rotations and positions were averaged, its bundle
 // adjustment and georegistration when run.
+// Each group of cameras with given intrinsics: what each step of the test measured and kept.
+nlohmann::json GivenIntrinsicsTestJson(const GivenIntrinsicsTestSummary& test) {
+  nlohmann::json groups = nlohmann::json::array();
+  for (const GivenIntrinsicsTest& g : test.groups) {
+    nlohmann::json group = {{"camera_ids", g.camera_ids},
+                            {"num_images", g.num_images},
+                            {"num_observations", g.num_observations},
+                            {"given_model", g.given_model},
+                            {"given_focal_px", g.given_focal_px},
+                            {"held_rmse_px", g.held_rmse_px},
+                            {"distortion_tried", g.distortion_tried},
+                            {"freed_focal_px", g.freed_focal_px},
+                            {"freed_rmse_px", g.freed_rmse_px},
+                            {"focal_accepted", g.focal_accepted},
+                            {"distortion_accepted", g.distortion_accepted},
+                            {"final_model", g.final_model}};
+    if (g.focal_only_rmse_px > 0) group["focal_only_rmse_px"] = g.focal_only_rmse_px;
+    groups.push_back(group);
+  }
+  return {{"groups", groups}, {"seconds", test.seconds}};
+}
+
 nlohmann::json ComponentToJson(const MapperComponentSummary& c) {
   nlohmann::json component = {
       {"num_images", c.num_images},
@@ -81,6 +103,8 @@ nlohmann::json ComponentToJson(const MapperComponentSummary& c) {
                                       {"converged", ba.converged},
                                       {"seconds", ba.seconds}};
   }
+  if (!c.given_intrinsics_test.groups.empty())
+    component["given_intrinsics_test"] = GivenIntrinsicsTestJson(c.given_intrinsics_test);
   const GeoregistrationSummary& geo = c.georegistration;
   if (geo.num_priors > 0 || !geo.problem.empty()) {
     nlohmann::json outliers = nlohmann::json::array();

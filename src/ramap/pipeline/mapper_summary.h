@@ -11,6 +11,7 @@
 #include "ramap/pipeline/georegistration.h"
 #include "ramap/pipeline/view_graph_calibration.h"
 #include "ramap/refine/bundle_adjustment.h"
+#include "ramap/refine/given_intrinsics_test.h"
 #include "ramap/scene/features.h"
 #include "ramap/scene/reconstruction.h"
 
@@ -52,6 +53,7 @@ struct MapperComponentSummary {
   int num_factorizations = 0;
   int num_translation_windows = 0;            // 0: translation averaging in one system
   BundleAdjustmentSummary bundle_adjustment;  // zeros when not refined
+  GivenIntrinsicsTestSummary given_intrinsics_test;  // no groups when nothing given was tested
   GeoregistrationSummary georegistration;     // num_priors 0 when run without priors
 };
 

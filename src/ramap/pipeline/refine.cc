@@ -1,7 +1,9 @@
 #include "ramap/pipeline/refine.h"
 
 #include <algorithm>
+#include <iomanip>
 #include <map>
+#include <sstream>
 
 #include "ramap/pipeline/bearings.h"
 #include "ramap/pipeline/mapper_options.h"
@@ -10,6 +12,68 @@
 
 namespace ramap {
 
+namespace {
+
+void LogBundleAdjustment(const MapperContext& context, const BundleAdjustmentSummary& ba,
+                         const std::string& what) {
+  context.log.Record(stage::kBundleAdjustment, ba.seconds,
+                     what + std::to_string(ba.num_points) + " points, RMSE " +
+                         std::to_string(ba.initial_rmse_px) + " -> " +
+                         std::to_string(ba.final_rmse_px) + " px, " +
+                         std::to_string(ba.num_iterations) + " iterations");
+}
+
+// One line per group of cameras with given intrinsics: what the data said of them.
+void LogGivenIntrinsicsTest(const MapperContext& context, const GivenIntrinsicsTestSummary& test) {
+  for (const GivenIntrinsicsTest& group : test.groups) {
+    std::ostringstream line;
+    line << std::fixed << std::setprecision(3) << "given " << group.given_model << " camera "
+         << group.camera_ids.front() << (group.camera_ids.size() > 1 ? " and its copies" : "")
+         << " (" << group.num_images << " images), RMSE " << group.held_rmse_px << " px";
+    line << "; focal length " << (group.distortion_tried ? "and radial distortion " : "")
+         << "freed " << group.freed_rmse_px << " px (" << std::setprecision(1)
+         << group.given_focal_px << " -> " << group.freed_focal_px << " px)";
+    if (group.focal_only_rmse_px > 0)
+      line << std::setprecision(3) << ", focal length alone " << group.focal_only_rmse_px << " px";
+    line << ": " << (group.focal_accepted ? "focal length wrong" : "focal length kept")
+         << (group.distortion_accepted ? ", distortion added (" + group.final_model + ")" : "");
+    context.log.Record(stage::kBundleAdjustment, &group == &test.groups.front() ? test.seconds : 0,
+                       line.str());
+  }
+}
+
+// Bundle adjustment, the test of the given intrinsics, and (when the data proved some wrong)
+// bundle adjustment again, from where it stopped, through the intrinsics the test found.
+void AdjustComponent(const MapperContext& context, const std::map<uint32_t, PositionPrior>& priors,
+                     MapperComponentSummary* component, Reconstruction* adjusted) {
+  const MapperOptions& options = context.options;
+  BundleAdjustmentSummary& ba = component->bundle_adjustment;
+  ba = BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, adjusted,
+                    options.bundle_adjustment, priors);
+  LogBundleAdjustment(context, ba, "");
+  GivenIntrinsicsTestSummary& test = component->given_intrinsics_test;
+  test = TestGivenIntrinsics(context.bearings.bearings, context.bearings.focal_lengths_px,
+                             options.bundle_adjustment, options.given_intrinsics_test, adjusted);
+  LogGivenIntrinsicsTest(context, test);
+  if (std::none_of(test.groups.begin(), test.groups.end(), ChangesIntrinsics)) return;
+  // The cameras the test changed have new bearings.
+  std::map<uint32_t, Camera> cameras = context.cameras;
+  std::vector<uint32_t> image_ids;
+  for (const auto& [camera_id, camera] : adjusted->cameras) cameras[camera_id] = camera;
+  for (const auto& [image_id, image] : adjusted->images) image_ids.push_back(image_id);
+  const ImageBearings bearings =
+      ComputeBearings(context.database, cameras, "bundle adjustment", image_ids);
+  const double seconds = ba.seconds + test.seconds;
+  const int num_filtered = ba.num_filtered_observations;
+  ba = BundleAdjust(bearings.bearings, bearings.focal_lengths_px, adjusted,
+                    options.bundle_adjustment, priors);
+  LogBundleAdjustment(context, ba, "again through the tested intrinsics: ");
+  ba.seconds += seconds;
+  ba.num_filtered_observations += num_filtered;
+}
+
+}  // namespace
+
 void RefineComponent(const MapperContext& context, const std::vector<Track>& tracks,
                      PriorAlignment* georegistration, MapperComponentSummary* component,
                      Reconstruction* reconstruction) {
@@ -17,26 +81,21 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
   Reconstruction adjusted = PointsForBundleAdjustment(*reconstruction, options.bundle_adjustment);
   const bool use_priors =
       georegistration->summary.georegistered && options.georegistration.use_in_bundle_adjustment;
-  component->bundle_adjustment =
-      BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, &adjusted,
-                   options.bundle_adjustment,
-                   use_priors ? georegistration->inliers : std::map<uint32_t, PositionPrior>());
+  AdjustComponent(context,
+                  use_priors ? georegistration->inliers : std::map<uint32_t, PositionPrior>(),
+                  component, &adjusted);
   georegistration->summary.used_in_bundle_adjustment = use_priors;
-  const BundleAdjustmentSummary& ba = component->bundle_adjustment;
-  context.log.Record(stage::kBundleAdjustment, ba.seconds,
-                     std::to_string(ba.num_points) + " points, RMSE " +
-                         std::to_string(ba.initial_rmse_px) + " -> " +
-                         std::to_string(ba.final_rmse_px) + " px, " +
-                         std::to_string(ba.num_iterations) + " iterations");
   std::map<uint32_t, Rigid3d> refined;
   std::vector<uint32_t> image_ids;
   for (const auto& [id, image] : adjusted.images) {
     refined[id] = image.cam_from_world;
     image_ids.push_back(id);
   }
+  // Intrinsics BA refined, or given ones the data proved wrong.
   const bool intrinsics_refined =
       std::any_of(adjusted.cameras.begin(), adjusted.cameras.end(), [&](const auto& entry) {
-        return RefinesIntrinsics(options.bundle_adjustment, entry.second.model);
+        const auto given = context.cameras.find(entry.first);
+        return given == context.cameras.end() || given->second.params != entry.second.params;
       });
   if (!intrinsics_refined) {
     *reconstruction =

@@ -9,6 +9,7 @@
 #include <memory>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 
 #include "ramap/geometry/camera_distortion.h"
 #include "ramap/util/option_check.h"
@@ -86,16 +87,23 @@ ceres::CostFunction* PixelErrorFor(CameraModel model, const Eigen::Vector2d& key
   return nullptr;
 }
 
-// The parameters of `model` that `options` keeps fixed, by index into COLMAP's order.
-std::vector<int> FixedIntrinsics(const BundleAdjustmentOptions& options, CameraModel model) {
-  const bool single = HasSingleFocalLength(model);
+// Whether `camera` arrived with values the user or EXIF gave (see keep_prior_intrinsics).
+bool HeldAsGiven(const BundleAdjustmentOptions& options, const Camera& camera) {
+  return options.keep_prior_intrinsics && camera.has_prior_focal_length;
+}
+
+// The parameters of `camera` that `options` keeps fixed, by index into COLMAP's order.
+std::vector<int> FixedIntrinsics(const BundleAdjustmentOptions& options, const Camera& camera) {
+  const bool single = HasSingleFocalLength(camera.model);
   const int first_extra = single ? 3 : 4;
+  const int num_params = NumCameraParams(camera.model);
+  const bool held = HeldAsGiven(options, camera);
   std::vector<int> fixed;
-  for (int k = 0; k < NumCameraParams(model); ++k) {
+  for (int k = 0; k < num_params; ++k) {
     const bool focal = k < (single ? 1 : 2);
     const bool principal_point = !focal && k < first_extra;
-    const bool refined = focal             ? options.refine_focal_length
-                         : principal_point ? options.refine_principal_point
+    const bool refined = focal             ? options.refine_focal_length && !held
+                         : principal_point ? options.refine_principal_point && !held
                                            : options.refine_extra_params;
     if (!refined) fixed.push_back(k);
   }
@@ -150,7 +158,7 @@ std::vector<Observation> UsableObservations(const KeypointBearings& bearings,
       const uint32_t camera_id = image->second.camera_id;
       const auto camera = reconstruction.cameras.find(camera_id);
       const bool in_pixels = camera != reconstruction.cameras.end() &&
-                             RefinesIntrinsics(options, camera->second.model) &&
+                             RefinesIntrinsics(options, camera->second) &&
                              element.point2D_idx < image->second.points2D.size();
       observations.push_back({element.image_id, element.point2D_idx, point3D_id, &bearing,
                               focal_lengths_px.at(camera_id), in_pixels});
@@ -189,7 +197,7 @@ void HoldFixedIntrinsics(const BundleAdjustmentOptions& options, Reconstruction*
   for (auto& [camera_id, camera] : reconstruction->cameras) {
     double* params = camera.params.data();
     if (!problem->HasParameterBlock(params)) continue;
-    const std::vector<int> fixed = FixedIntrinsics(options, camera.model);
+    const std::vector<int> fixed = FixedIntrinsics(options, camera);
     if (fixed.size() == camera.params.size()) {
       problem->SetParameterBlockConstant(params);
     } else if (!fixed.empty()) {
@@ -201,11 +209,11 @@ void HoldFixedIntrinsics(const BundleAdjustmentOptions& options, Reconstruction*
 }
 
 ceres::Solver::Options SolverOptions(const BundleAdjustmentOptions& options,
-                                     bool refines_intrinsics, size_t num_images) {
+                                     bool refines_focal_length, size_t num_images) {
   ceres::Solver::Options solver_options;
   solver_options.max_num_iterations = options.max_num_iterations;
   solver_options.function_tolerance = options.function_tolerance;
-  if (refines_intrinsics) {
+  if (refines_focal_length) {
     solver_options.max_num_iterations =
         std::max(options.max_num_iterations, options.intrinsics_max_num_iterations);
     solver_options.function_tolerance =
@@ -230,6 +238,7 @@ ceres::Solver::Options SolverOptions(const BundleAdjustmentOptions& options,
 ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
                              const std::map<uint32_t, PositionPrior>& priors,
                              const BundleAdjustmentOptions& options,
+                             const std::map<uint32_t, uint32_t>& shared,
                              Reconstruction* reconstruction) {
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -243,7 +252,7 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
     Rigid3d& pose = image.cam_from_world;
     double* point = reconstruction->points3D.at(o.point3D_id).xyz.data();
     if (o.in_pixels) {
-      Camera& camera = reconstruction->cameras.at(image.camera_id);
+      Camera& camera = reconstruction->cameras.at(shared.at(image.camera_id));
       problem.AddResidualBlock(PixelErrorFor(camera.model, image.points2D[o.point2D_idx].xy), &loss,
                                pose.rotation.coeffs().data(), pose.translation.data(), point,
                                camera.params.data());
@@ -277,13 +286,20 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
       gauge_fixed = true;
     }
   }
-  const bool refines_intrinsics = std::any_of(observations.begin(), observations.end(),
-                                              [](const Observation& o) { return o.in_pixels; });
+  // The slow valley is the focal length's: distortion alone converges at the ordinary tolerance.
+  const bool refines_focal_length = std::any_of(
+      reconstruction->cameras.begin(), reconstruction->cameras.end(), [&](const auto& entry) {
+        const std::vector<int> fixed = FixedIntrinsics(options, entry.second);
+        return problem.HasParameterBlock(entry.second.params.data()) &&
+               (fixed.empty() || fixed.front() != 0);
+      });
   const ceres::Solver::Options solver_options =
-      SolverOptions(options, refines_intrinsics, reconstruction->images.size());
+      SolverOptions(options, refines_focal_length, reconstruction->images.size());
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options, &problem, &summary);
   for (auto& [image_id, image] : reconstruction->images) image.cam_from_world.rotation.normalize();
+  for (auto& [camera_id, camera] : reconstruction->cameras)
+    camera.params = reconstruction->cameras.at(shared.at(camera_id)).params;
   return summary;
 }
 
@@ -346,21 +362,37 @@ void BundleAdjustmentOptions::Check() const {
               intrinsics_max_num_iterations);
 }
 
-bool RefinesIntrinsics(const BundleAdjustmentOptions& options, CameraModel model) {
+bool RefinesIntrinsics(const BundleAdjustmentOptions& options, const Camera& camera) {
   const bool any =
       options.refine_focal_length || options.refine_principal_point || options.refine_extra_params;
-  switch (model) {
+  switch (camera.model) {
     case CameraModel::kSimplePinhole:
     case CameraModel::kPinhole:
     case CameraModel::kSimpleRadial:
     case CameraModel::kRadial:
     case CameraModel::kOpenCV:
     case CameraModel::kFullOpenCV:
-      return any &&
-             static_cast<int>(FixedIntrinsics(options, model).size()) < NumCameraParams(model);
+      return any && static_cast<int>(FixedIntrinsics(options, camera).size()) <
+                        NumCameraParams(camera.model);
     default:
       return false;
   }
+}
+
+std::map<uint32_t, uint32_t> SharedIntrinsics(const BundleAdjustmentOptions& options,
+                                              const Reconstruction& reconstruction) {
+  std::map<uint32_t, uint32_t> shared;
+  std::map<std::tuple<int, uint64_t, uint64_t, std::vector<double>, bool>, uint32_t> first_of;
+  for (const auto& [camera_id, camera] : reconstruction.cameras) {
+    if (!options.share_identical_intrinsics) {
+      shared[camera_id] = camera_id;
+      continue;
+    }
+    const auto key = std::make_tuple(static_cast<int>(camera.model), camera.width, camera.height,
+                                     camera.params, camera.has_prior_focal_length);
+    shared[camera_id] = first_of.emplace(key, camera_id).first->second;
+  }
+  return shared;
 }
 
 Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
@@ -414,9 +446,11 @@ BundleAdjustmentSummary BundleAdjust(const KeypointBearings& bearings,
       UsableObservations(bearings, focal_lengths_px, *reconstruction, options);
   summary.num_observations = static_cast<int>(observations.size());
   summary.initial_rmse_px = RmsePx(observations, *reconstruction);
+  const std::map<uint32_t, uint32_t> shared = SharedIntrinsics(options, *reconstruction);
   // Solve, detach what still disagrees, and solve once more without it (as COLMAP's global BA).
   for (int round = 0; round < 2 && !observations.empty(); ++round) {
-    const ceres::Solver::Summary solve = Solve(observations, priors, options, reconstruction);
+    const ceres::Solver::Summary solve =
+        Solve(observations, priors, options, shared, reconstruction);
     summary.num_iterations += static_cast<int>(solve.iterations.size());
     summary.converged = solve.termination_type == ceres::CONVERGENCE;
     const int filtered =

@@ -53,7 +53,17 @@ struct BundleAdjustmentOptions {
   bool refine_focal_length = true;
   bool refine_principal_point = false;
   bool refine_extra_params = true;
-  // function_tolerance while some camera's intrinsics are refined: the focal length couples with
+  // A camera whose focal length the database marks known (prior_focal_length 1: the user's
+  // calibration, or EXIF) keeps its focal length and principal point; its distortion is refined as
+  // refine_extra_params says (EXIF gives none, and the data determine it well).
+  // refine/prior_focal_test.h then decides whether the data prove the focal length wrong. Refining
+  // such a focal length from averaging's poses chased their errors instead (true calibrations given
+  // one camera per image: templeRing +8%, kitti07_first160 -5%).
+  bool keep_prior_intrinsics = true;
+  // Cameras with the same model, size, parameters and prior flag (one EXIF value, one user
+  // calibration, or one guess: COLMAP's one camera per image) share one set of intrinsics.
+  bool share_identical_intrinsics = true;
+  // function_tolerance while some camera's focal length is refined: it couples with
   // depth and moves slowly. Measured on templeRing from COLMAP's 2x-too-short guess: 1e-4 stops
   // at 1389 px, 1e-7 reaches 1556 px in 167 iterations (truth 1520; ATE 11.6% -> 0.96% of the
   // extent).
@@ -82,8 +92,13 @@ struct BundleAdjustmentSummary {
 Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
                                          const BundleAdjustmentOptions& options);
 
-// Whether BundleAdjust refines the intrinsics of a camera of this model under `options`.
-bool RefinesIntrinsics(const BundleAdjustmentOptions& options, CameraModel model);
+// Whether BundleAdjust refines some intrinsic parameter of `camera` under `options`.
+bool RefinesIntrinsics(const BundleAdjustmentOptions& options, const Camera& camera);
+
+// Each camera of `reconstruction` mapped to the one whose intrinsics it shares in BA (itself, or
+// the lowest id with the same model, size, parameters and prior flag), under `options`.
+std::map<uint32_t, uint32_t> SharedIntrinsics(const BundleAdjustmentOptions& options,
+                                              const Reconstruction& reconstruction);
 
 // Refines `reconstruction` in place. `bearings` holds, per image id, the undistorted unit bearing
 // of each of its points2D (same order). `focal_lengths_px` holds each camera's mean focal length.

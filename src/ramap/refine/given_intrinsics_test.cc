@@ -1,0 +1,258 @@
+#include "ramap/refine/given_intrinsics_test.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "ramap/geometry/camera_distortion.h"
+#include "ramap/geometry/camera_projection.h"
+#include "ramap/util/option_check.h"
+#include "ramap/util/timer.h"
+
+namespace ramap {
+namespace {
+
+bool HasNoDistortion(CameraModel model) {
+  return model == CameraModel::kSimplePinhole || model == CameraModel::kPinhole;
+}
+
+// `camera` with radial distortion added, still projecting as before (k1 = 0).
+Camera WithRadialDistortion(const Camera& camera) {
+  Camera distorted = camera;
+  const std::vector<double>& p = camera.params;
+  if (camera.model == CameraModel::kSimplePinhole) {
+    distorted.model = CameraModel::kSimpleRadial;
+    distorted.params = {p[0], p[1], p[2], 0.0};
+  } else if (p[0] == p[1]) {
+    distorted.model = CameraModel::kSimpleRadial;
+    distorted.params = {p[0], p[2], p[3], 0.0};
+  } else {
+    distorted.model = CameraModel::kOpenCV;
+    distorted.params = {p[0], p[1], p[2], p[3], 0.0, 0.0, 0.0, 0.0};
+  }
+  return distorted;
+}
+
+// `camera` (a distortion model added to `given`) with the focal length and principal point given.
+Camera WithGivenFocalLength(Camera camera, const Camera& given) {
+  const int num_given = NumCameraParams(given.model);
+  const int num_shared = std::min(num_given, 4);
+  if (HasSingleFocalLength(given.model) == HasSingleFocalLength(camera.model)) {
+    for (int k = 0; k < num_shared; ++k) camera.params[k] = given.params[k];
+  } else {
+    // PINHOLE given with fx == fy, promoted to SIMPLE_RADIAL.
+    camera.params[0] = given.params[0];
+    camera.params[1] = given.params[2];
+    camera.params[2] = given.params[3];
+  }
+  return camera;
+}
+
+// The groups of cameras BA shares intrinsics between whose given intrinsics it held, keyed by the
+// camera that represents each.
+std::map<uint32_t, std::vector<uint32_t>> HeldGroups(const BundleAdjustmentOptions& ba,
+                                                     const Reconstruction& reconstruction) {
+  BundleAdjustmentOptions every = ba;
+  every.keep_prior_intrinsics = false;
+  every.refine_focal_length = true;
+  std::map<uint32_t, std::vector<uint32_t>> groups;
+  if (!ba.keep_prior_intrinsics || !(ba.refine_focal_length || ba.refine_extra_params))
+    return groups;
+  for (const auto& [camera_id, shared_with] : SharedIntrinsics(ba, reconstruction)) {
+    const Camera& camera = reconstruction.cameras.at(camera_id);
+    if (camera.has_prior_focal_length && RefinesIntrinsics(every, camera))
+      groups[shared_with].push_back(camera_id);
+  }
+  return groups;
+}
+
+struct GroupError {
+  double sum_squared_px = 0.0;
+  int num_observations = 0;
+  std::set<uint32_t> images;
+
+  double Rmse() const {
+    return num_observations == 0 ? 0.0 : std::sqrt(sum_squared_px / num_observations);
+  }
+};
+
+// Reprojection error through each camera's model, per group, over the points of `reconstruction`.
+std::map<uint32_t, GroupError> GroupErrors(const Reconstruction& reconstruction,
+                                           const std::map<uint32_t, uint32_t>& group_of_camera) {
+  std::map<uint32_t, GroupError> errors;
+  for (const auto& [point3D_id, point] : reconstruction.points3D) {
+    for (const TrackElement& element : point.track) {
+      const Image& image = reconstruction.images.at(element.image_id);
+      const auto group = group_of_camera.find(image.camera_id);
+      if (group == group_of_camera.end()) continue;
+      const Eigen::Vector3d x = image.cam_from_world * point.xyz;
+      if (x.z() <= 0) continue;
+      const Eigen::Vector2d residual =
+          ProjectToPixel(reconstruction.cameras.at(image.camera_id), x) -
+          image.points2D[element.point2D_idx].xy;
+      GroupError& error = errors[group->second];
+      error.sum_squared_px += residual.squaredNorm();
+      ++error.num_observations;
+      error.images.insert(element.image_id);
+    }
+  }
+  return errors;
+}
+
+double RmseOf(const std::map<uint32_t, GroupError>& errors, uint32_t group, double otherwise) {
+  const auto found = errors.find(group);
+  return found == errors.end() ? otherwise : found->second.Rmse();
+}
+
+// Every camera of `group` as `camera` is (its id aside).
+void SetGroup(const std::vector<uint32_t>& group, const Camera& camera,
+              Reconstruction* reconstruction) {
+  for (const uint32_t camera_id : group) {
+    Camera& member = reconstruction->cameras.at(camera_id);
+    member.model = camera.model;
+    member.params = camera.params;
+  }
+}
+
+// The subset of the points every step adjusts, and how the groups of cameras are laid out.
+struct Trials {
+  const KeypointBearings& bearings;
+  const std::map<uint32_t, double>& focal_lengths_px;
+  const std::map<uint32_t, std::vector<uint32_t>>& groups;
+  std::map<uint32_t, uint32_t> group_of_camera;
+  Reconstruction start;
+
+  // The subset adjusted with the cameras of each group of `cameras` as it has them (the others as
+  // in `start`), under `options`: the errors per group afterwards, the adjusted intrinsics in
+  // `cameras`.
+  std::map<uint32_t, GroupError> Adjust(const BundleAdjustmentOptions& options,
+                                        std::map<uint32_t, Camera>* cameras) const {
+    Reconstruction trial = start;
+    for (const auto& [group, camera] : *cameras) SetGroup(groups.at(group), camera, &trial);
+    BundleAdjust(bearings, focal_lengths_px, &trial, options);
+    for (auto& [group, camera] : *cameras) camera = trial.cameras.at(group);
+    return GroupErrors(trial, group_of_camera);
+  }
+};
+
+bool ClearlyLower(double rmse, double reference, const GivenIntrinsicsTestOptions& options) {
+  return rmse <= (1.0 - options.min_rmse_decrease) * reference;
+}
+
+// Steps 1 and 2 of one group (keyed by `group`), judged: `freed` is its camera after step 2.
+GivenIntrinsicsTest JudgeFreedIntrinsics(uint32_t group, const std::vector<uint32_t>& camera_ids,
+                                         const GroupError& held, const Camera& given,
+                                         const Camera& freed, double freed_rmse_px,
+                                         const BundleAdjustmentOptions& ba,
+                                         const GivenIntrinsicsTestOptions& options) {
+  GivenIntrinsicsTest test;
+  test.camera_ids = camera_ids;
+  test.num_images = static_cast<int>(held.images.size());
+  test.num_observations = held.num_observations;
+  test.given_model = CameraModelName(given.model);
+  test.given_focal_px = MeanFocalLength(given);
+  test.held_rmse_px = held.Rmse();
+  test.distortion_tried = freed.model != given.model;
+  test.freed_focal_px = MeanFocalLength(freed);
+  test.freed_rmse_px = freed_rmse_px;
+  const bool gained = ClearlyLower(test.freed_rmse_px, test.held_rmse_px, options);
+  const bool moved = ba.refine_focal_length && std::abs(test.freed_focal_px / test.given_focal_px -
+                                                        1.0) > options.focal_tolerance;
+  test.distortion_accepted = gained && test.distortion_tried;
+  test.focal_accepted = gained && moved;
+  return test;
+}
+
+// The camera a judged test keeps: `given`, `freed` (step 2), or `focal_only` (step 3, when run).
+Camera KeptCamera(const GivenIntrinsicsTest& test, const Camera& given, const Camera& freed,
+                  const Camera* focal_only) {
+  if (test.distortion_accepted) {
+    // A confirmed focal length keeps its given value (and principal point).
+    return test.focal_accepted ? freed : WithGivenFocalLength(freed, given);
+  }
+  if (test.focal_accepted) return focal_only != nullptr ? *focal_only : freed;
+  return given;
+}
+
+}  // namespace
+
+void GivenIntrinsicsTestOptions::Check() const {
+  const std::string s = "--BundleAdjustment.given_intrinsics_test_";
+  CheckOption(min_rmse_decrease >= 0 && min_rmse_decrease < 1, s + "min_rmse_decrease", "in [0, 1)",
+              min_rmse_decrease);
+  CheckOption(focal_tolerance >= 0, s + "focal_tolerance", ">= 0", focal_tolerance);
+  CheckOption(num_points >= 0, s + "num_points", ">= 0", num_points);
+}
+
+bool ChangesIntrinsics(const GivenIntrinsicsTest& test) {
+  return test.distortion_accepted || test.focal_accepted;
+}
+
+GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
+                                               const std::map<uint32_t, double>& focal_lengths_px,
+                                               const BundleAdjustmentOptions& ba,
+                                               const GivenIntrinsicsTestOptions& options,
+                                               Reconstruction* reconstruction) {
+  options.Check();
+  Timer timer;
+  GivenIntrinsicsTestSummary summary;
+  const std::map<uint32_t, std::vector<uint32_t>> groups = HeldGroups(ba, *reconstruction);
+  if (!options.enable || groups.empty()) return summary;
+  // 1. The control, with nothing filtered, so that every step is measured on the same
+  // observations.
+  BundleAdjustmentOptions held = ba;
+  held.max_num_points = options.num_points;
+  held.min_observations_per_image = std::min(held.min_observations_per_image, 50);
+  held.max_reprojection_error_px = 1e9;
+  Trials trials{
+      bearings, focal_lengths_px, groups, {}, PointsForBundleAdjustment(*reconstruction, held)};
+  std::map<uint32_t, Camera> given;
+  for (const auto& [group, camera_ids] : groups) {
+    given[group] = trials.start.cameras.at(group);
+    for (const uint32_t camera_id : camera_ids) trials.group_of_camera[camera_id] = group;
+  }
+  std::map<uint32_t, Camera> control = given;
+  const std::map<uint32_t, GroupError> held_errors = trials.Adjust(held, &control);
+
+  // 2. Distortion added and the focal length freed.
+  BundleAdjustmentOptions freed = held;
+  freed.keep_prior_intrinsics = false;
+  freed.refine_principal_point = false;
+  std::map<uint32_t, Camera> distorted = given;
+  for (auto& [group, camera] : distorted) {
+    if (ba.refine_extra_params && HasNoDistortion(camera.model))
+      camera = WithRadialDistortion(camera);
+  }
+  const std::map<uint32_t, GroupError> freed_errors = trials.Adjust(freed, &distorted);
+  std::map<uint32_t, Camera> focal_only;  // 3: the groups whose focal length moved too far
+  for (const auto& [group, camera_ids] : groups) {
+    const auto before = held_errors.find(group);
+    if (before == held_errors.end()) continue;
+    summary.groups.push_back(JudgeFreedIntrinsics(
+        group, camera_ids, before->second, given.at(group), distorted.at(group),
+        RmseOf(freed_errors, group, before->second.Rmse()), ba, options));
+    const GivenIntrinsicsTest& test = summary.groups.back();
+    if (test.focal_accepted && test.distortion_accepted) focal_only[group] = given.at(group);
+  }
+
+  // 3. The focal length alone, where step 2 proved it wrong and added distortion too: the
+  // distortion stays only if it adds a clear margin.
+  const std::map<uint32_t, GroupError> focal_only_errors =
+      focal_only.empty() ? std::map<uint32_t, GroupError>() : trials.Adjust(freed, &focal_only);
+  for (GivenIntrinsicsTest& test : summary.groups) {
+    const uint32_t group = test.camera_ids.front();
+    const auto alone = focal_only.find(group);
+    if (alone != focal_only.end()) {
+      test.focal_only_rmse_px = RmseOf(focal_only_errors, group, test.freed_rmse_px);
+      test.distortion_accepted = ClearlyLower(test.freed_rmse_px, test.focal_only_rmse_px, options);
+    }
+    const Camera kept = KeptCamera(test, given.at(group), distorted.at(group),
+                                   alone != focal_only.end() ? &alone->second : nullptr);
+    test.final_model = CameraModelName(kept.model);
+    if (ChangesIntrinsics(test)) SetGroup(test.camera_ids, kept, reconstruction);
+  }
+  summary.seconds = timer.ElapsedSeconds();
+  return summary;
+}
+
+}  // namespace ramap

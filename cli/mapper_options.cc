@@ -290,9 +290,21 @@ void AddTriangulationOptions(CLI::App& app, MapperOptions* o) {
                  o->structure.min_triangulation_angle_deg)
       ->capture_default_str()
       ->check(AtLeast(0, 90));
+  ReregistrationOptions& again = o->reregistration;
+  app.add_option("--Reregistration.enable", again.enable,
+                 "1: images the triangulated points leave out are placed again from them (P3P)")
+      ->capture_default_str();
+  app.add_option("--Reregistration.max_inlier_ratio", again.max_inlier_ratio,
+                 "an image is tried when fewer of its keypoints on triangulated tracks are "
+                 "observations of their points")
+      ->capture_default_str()
+      ->check(AtLeast(0, 1));
+  app.add_option("--Reregistration.min_inlier_gain", again.min_inlier_gain,
+                 "the new pose must have this many times the averaged pose's inliers")
+      ->capture_default_str()
+      ->check(AtLeast(1));
 }
 
-// Refinement (stage 6): bundle adjustment, with the intrinsics.
 // What bundle adjustment does with the intrinsics a user gave.
 void AddGivenIntrinsicsOptions(CLI::App& app, MapperOptions* o) {
   BundleAdjustmentOptions& ba = o->bundle_adjustment;
@@ -324,6 +336,7 @@ void AddGivenIntrinsicsOptions(CLI::App& app, MapperOptions* o) {
       ->check(AtLeast(0));
 }
 
+// Refinement (stage 6): bundle adjustment, with the intrinsics.
 void AddBundleAdjustmentOptions(CLI::App& app, MapperOptions* o) {
   app.add_option("--Mapper.refine", o->refine,
                  "1: bundle adjustment after averaging; 0: averaging alone (faster)")
@@ -507,6 +520,23 @@ nlohmann::json TranslationAveragingToJson(const MapperOptions& o) {
           {"window_max_directions_per_pair", windows.alignment.max_directions_per_window_pair}};
 }
 
+nlohmann::json BundleAdjustmentToJson(const MapperOptions& o) {
+  const BundleAdjustmentOptions& ba = o.bundle_adjustment;
+  return {{"refine_focal_length", ba.refine_focal_length},
+          {"refine_principal_point", ba.refine_principal_point},
+          {"refine_extra_params", ba.refine_extra_params},
+          {"keep_prior_intrinsics", ba.keep_prior_intrinsics},
+          {"share_identical_intrinsics", ba.share_identical_intrinsics},
+          {"given_intrinsics_test", o.given_intrinsics_test.enable},
+          {"given_intrinsics_test_min_rmse_decrease", o.given_intrinsics_test.min_rmse_decrease},
+          {"given_intrinsics_test_focal_tolerance", o.given_intrinsics_test.focal_tolerance},
+          {"given_intrinsics_test_num_points", o.given_intrinsics_test.num_points},
+          {"max_num_iterations", ba.max_num_iterations},
+          {"loss_scale_px", ba.loss_scale_px},
+          {"max_num_points", ba.max_num_points},
+          {"function_tolerance", ba.function_tolerance}};
+}
+
 }  // namespace
 
 nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
@@ -563,6 +593,11 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
       {"Triangulation",
        {{"max_reprojection_error_px", o.structure.max_reprojection_error_px},
         {"min_triangulation_angle_deg", o.structure.min_triangulation_angle_deg}}},
+      {"Reregistration",
+       {{"enable", o.reregistration.enable},
+        {"max_inlier_ratio", o.reregistration.max_inlier_ratio},
+        {"min_num_correspondences", o.reregistration.min_num_correspondences},
+        {"min_inlier_gain", o.reregistration.min_inlier_gain}}},
       {"Mapper",
        {{"refine", o.refine},
         {"min_component_size", o.min_component_size},
@@ -573,20 +608,7 @@ nlohmann::json MapperOptionsToJson(const MapperOptions& o) {
        {{"enable", o.view_graph_calibration.enable},
         {"min_num_pairs", o.view_graph_calibration.min_num_pairs},
         {"max_median_cost", o.view_graph_calibration.max_median_cost}}},
-      {"BundleAdjustment",
-       {{"refine_focal_length", o.bundle_adjustment.refine_focal_length},
-        {"refine_principal_point", o.bundle_adjustment.refine_principal_point},
-        {"refine_extra_params", o.bundle_adjustment.refine_extra_params},
-        {"keep_prior_intrinsics", o.bundle_adjustment.keep_prior_intrinsics},
-        {"share_identical_intrinsics", o.bundle_adjustment.share_identical_intrinsics},
-        {"given_intrinsics_test", o.given_intrinsics_test.enable},
-        {"given_intrinsics_test_min_rmse_decrease", o.given_intrinsics_test.min_rmse_decrease},
-        {"given_intrinsics_test_focal_tolerance", o.given_intrinsics_test.focal_tolerance},
-        {"given_intrinsics_test_num_points", o.given_intrinsics_test.num_points},
-        {"max_num_iterations", o.bundle_adjustment.max_num_iterations},
-        {"loss_scale_px", o.bundle_adjustment.loss_scale_px},
-        {"max_num_points", o.bundle_adjustment.max_num_points},
-        {"function_tolerance", o.bundle_adjustment.function_tolerance}}},
+      {"BundleAdjustment", BundleAdjustmentToJson(o)},
   };
 }
 

@@ -10,8 +10,12 @@
 # RAMAP_INTRINSICS=unknown: as a user without a calibration runs them, one camera per data set and
 # nothing else: COLMAP's defaults (SIMPLE_RADIAL, focal guessed, refined by its mapper) and
 # ramap's defaults (`ramap reconstruct --image_path --output_path`, + the fast options); the table
-# gains the focal length error against the calibration. Both match as the data set says
-# (exhaustive, or sequential for kitti07_first160).
+# gains the focal length error against the calibration.
+# RAMAP_INTRINSICS=given: as a user with a calibrated camera runs them, the data set's camera
+# model and parameters given and nothing else: one camera per image, each tool's defaults (COLMAP's
+# mapper refines every focal length), ramap with its defaults only; the focal length column gives
+# the written focal length furthest from the calibration.
+# Every mode matches as the data set says (exhaustive, or sequential for kitti07_first160).
 # Settings: RAMAP_DATA_DIR (default ../shared/data), RAMAP_BENCH_DIR (default build/bench),
 # RAMAP_MAX_IMAGE_SIZE (COLMAP's SIFT, default 1600, ramap's default too),
 # RAMAP_MAX_NUM_FEATURES (ramap with known intrinsics, default 4000).
@@ -19,10 +23,10 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 data_dir=${RAMAP_DATA_DIR:-$root/../shared/data}
 intrinsics=${RAMAP_INTRINSICS:-known}
-[[ $intrinsics == known || $intrinsics == unknown ]] ||
-  { echo "bench_image_input: RAMAP_INTRINSICS must be known or unknown" >&2; exit 2; }
+[[ $intrinsics == known || $intrinsics == unknown || $intrinsics == given ]] ||
+  { echo "bench_image_input: RAMAP_INTRINSICS must be known, unknown or given" >&2; exit 2; }
 suffix=""
-[[ $intrinsics == unknown ]] && suffix="-unknown-intrinsics"
+[[ $intrinsics == known ]] || suffix="-$intrinsics-intrinsics"
 bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench}/image_input$suffix
 ramap=$root/build/ramap
 max_image_size=${RAMAP_MAX_IMAGE_SIZE:-1600}
@@ -54,17 +58,21 @@ report, name, variant, seconds, cameras, known, known_model, intrinsics = sys.ar
 r = json.load(open(report))
 auc = r["relative"]["auc_by_threshold_deg"]
 cells = [name, variant]
-if intrinsics == "unknown":
-    # cameras.bin: the first camera's first parameter(s) are its focal length(s)
-    # (SIMPLE_* and RADIAL: f; PINHOLE, OPENCV: fx, fy).
-    with open(cameras, "rb") as f:
-        f.read(8)
-        _, model_id, _, _ = struct.unpack("<iiQQ", f.read(24))
-        first = struct.unpack("<dd", f.read(16))
-    focal = (first[0] + first[1]) / 2 if model_id in (1, 4, 5, 6) else first[0]
+if intrinsics != "known":
+    # cameras.bin: each camera's first parameter(s) are its focal length(s) (SIMPLE_* and RADIAL:
+    # f; PINHOLE, OPENCV and the like: fx, fy); the one furthest from the calibration is given.
+    num_params = {0: 3, 1: 4, 2: 4, 3: 5, 4: 8, 5: 8, 6: 12, 7: 5, 8: 4, 9: 5, 10: 12}
     p = [float(v) for v in known.split(",")]
     truth = (p[0] + p[1]) / 2 if known_model in ("PINHOLE", "OPENCV", "FULL_OPENCV") else p[0]
-    cells.append(f"{100 * (focal / truth - 1):+.2f}%")
+    errors = []
+    with open(cameras, "rb") as f:
+        for _ in range(struct.unpack("<Q", f.read(8))[0]):
+            _, model_id, _, _ = struct.unpack("<iiQQ", f.read(24))
+            params = struct.unpack(f"<{num_params[model_id]}d", f.read(8 * num_params[model_id]))
+            single = model_id in (0, 2, 3, 8, 9)
+            focal = params[0] if single else (params[0] + params[1]) / 2
+            errors.append(focal / truth - 1)
+    cells.append(f"{100 * max(errors, key=abs):+.2f}%")
 cells += [f"{r['num_registered']} / {r['num_images']}", f"{100 * auc['1']:.1f}",
           f"{100 * auc['3']:.1f}", f"{100 * auc['5']:.1f}",
           f"{r['rotation_error_deg']['median']:.3f}",
@@ -74,7 +82,7 @@ PY
 }
 
 focal_header="" && focal_rule=""
-[[ $intrinsics == unknown ]] && focal_header=" focal error |" && focal_rule=" --- |"
+[[ $intrinsics == known ]] || { focal_header=" focal error |" && focal_rule=" --- |"; }
 echo "| data set | pipeline |$focal_header registered | AUC@1 | AUC@3 | AUC@5 | rot. err. median (deg) | ATE / path | images to model (s) |"
 echo "| --- | --- |$focal_rule --- | --- | --- | --- | --- | --- | --- |"
 for entry in "${RAMAP_DATASETS[@]}"; do
@@ -92,7 +100,10 @@ for entry in "${RAMAP_DATASETS[@]}"; do
   colmap_camera=(--ImageReader.single_camera 1)
   colmap_fixed=()
   ramap_camera=(--ImageReader.single_camera 1)
-  if [[ $intrinsics == known ]]; then
+  if [[ $intrinsics == given ]]; then
+    colmap_camera=(--ImageReader.camera_model "$camera_model" --ImageReader.camera_params "$params")
+    ramap_camera=("${colmap_camera[@]}")
+  elif [[ $intrinsics == known ]]; then
     colmap_camera+=(--ImageReader.camera_model "$camera_model" --ImageReader.camera_params "$params")
     colmap_fixed=(--Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0
       --Mapper.ba_refine_extra_params 0)
@@ -111,7 +122,9 @@ for entry in "${RAMAP_DATASETS[@]}"; do
   seconds=$(seconds_of colmap_pipeline)
   row "$name" "COLMAP (SIFT, $matcher)" "$seconds" "$out/colmap_sparse/0" "$out/colmap.db"
   # ramap's defaults are SIFT with BA; the others are the options to pass.
-  for variant in "sift 1" "sift 0" "orb 1" "orb 0"; do
+  variants=("sift 1" "sift 0" "orb 1" "orb 0")
+  [[ $intrinsics == given ]] && variants=("sift 1")
+  for variant in "${variants[@]}"; do
     read -r type refine <<<"$variant"
     label="ramap reconstruct ($type, $mode"
     [[ $refine == 1 ]] && label+=", +BA"

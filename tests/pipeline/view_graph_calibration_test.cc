@@ -121,6 +121,32 @@ TEST(ViewGraphCalibration, TwoCamerasWithDifferentFocalLengths) {
   }
 }
 
+// COLMAP's default: one camera per image, each with the same guess. They are estimated and
+// refined as one, so the focal length is the same in every image and as good as a shared camera's.
+TEST(ViewGraphCalibration, OneGuessedCameraPerImageCalibratedAsOne) {
+  const SyntheticScene scene = BuildSyntheticScene(Collection(7));
+  const double truth = scene.database.cameras.at(1).params[0];
+  FeatureDatabase database = WithUnknownFocalLengths(scene.database, 1.3);
+  const Camera guess = database.cameras.at(1);
+  database.cameras.clear();
+  for (auto& [image_id, image] : database.images) {
+    database.cameras[image_id] = guess;
+    database.cameras[image_id].camera_id = image_id;
+    image.camera_id = image_id;
+  }
+  const MapperResult result = RunMapper(database, MapperOptions(), "synthetic");
+  ASSERT_EQ(result.reconstructions.size(), 1u);
+  const Reconstruction& model = result.reconstructions[0];
+  ASSERT_EQ(model.cameras.size(), database.cameras.size());
+  for (const auto& [camera_id, camera] : model.cameras) {
+    EXPECT_EQ(camera.params, model.cameras.begin()->second.params) << "camera " << camera_id;
+    EXPECT_LT(RelativeError(camera.params[0], truth), 0.01) << "camera " << camera_id;
+  }
+  ASSERT_EQ(result.summary.cameras.size(), database.cameras.size());
+  for (const CameraIntrinsicsSummary& camera : result.summary.cameras)
+    EXPECT_TRUE(camera.view_graph.estimated) << "camera " << camera.camera_id;
+}
+
 TEST(ViewGraphCalibration, RadialDistortionRecoveredByBundleAdjustment) {
   SyntheticSceneOptions options = Collection(13);
   Camera camera;

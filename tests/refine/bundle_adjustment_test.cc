@@ -77,6 +77,7 @@ TEST(BundleAdjustment, RecoversPerturbedPosesAndPoints) {
   EXPECT_GT(summary.initial_rmse_px, 1.0);
   EXPECT_LT(summary.final_rmse_px, 1e-3);
   EXPECT_EQ(summary.num_filtered_observations, 1);
+  EXPECT_EQ(summary.filtered_per_image, (std::map<uint32_t, int>{{5, 1}}));
   EXPECT_EQ(scene.reconstruction.images.at(5).points2D[0].point3D_id, kInvalidPoint3DId);
   EXPECT_EQ(scene.reconstruction.points3D.at(0).track.size(), 9u);
   // Scale is free in BA with one camera fixed: compare directions of centres from camera 1.

@@ -9,6 +9,7 @@
 #include "ramap/pipeline/mapper_context.h"
 #include "ramap/pipeline/refine.h"
 #include "ramap/pipeline/relative_poses.h"
+#include "ramap/pipeline/reregistration.h"
 #include "ramap/pipeline/rotations.h"
 #include "ramap/pipeline/stage_log.h"
 #include "ramap/pipeline/translations.h"
@@ -64,10 +65,13 @@ std::optional<Reconstruction> ReconstructComponent(const MapperContext& context,
     georegistration = GeoregisterComponent(context, rotations, &*translations);
   const bool georegistered = georegistration.summary.georegistered;
 
-  // 5. Structure: every track triangulated with the poses fixed.
+  // 5. Structure: every track triangulated with the poses fixed; images its points leave out
+  // placed again from them.
+  std::map<uint32_t, Rigid3d> poses =
+      AveragedPoses(rotations, translations->positions, georegistration);
   Reconstruction reconstruction = TriangulateComponent(
-      context, AveragedPoses(rotations, translations->positions, georegistration),
-      translations->tracks, context.bearings, context.cameras, "", &component);
+      context, poses, translations->tracks, context.bearings, context.cameras, "", &component);
+  ReregisterComponent(context, translations->tracks, &poses, &component, &reconstruction);
 
   // 6. Optionally, bundle adjustment and triangulation again.
   if (options.refine) {
@@ -145,7 +149,8 @@ MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions&
   std::map<uint32_t, Camera> cameras = given_cameras ? *given_cameras : database.cameras;
   const ViewGraphCalibrationSummary calibration =
       given_cameras ? ViewGraphCalibrationSummary()
-                    : CalibrateFocalLengths(database, options.view_graph_calibration, &cameras);
+                    : CalibrateFocalLengths(database, options.view_graph_calibration, &cameras,
+                                            options.bundle_adjustment.share_identical_intrinsics);
   LogViewGraphCalibration(calibration, &log);
   const MapperOptions pass_options = FirstPassOptions(options, calibration, &summary);
   Timer timer;

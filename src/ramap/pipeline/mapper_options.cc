@@ -17,6 +17,7 @@ void MapperOptions::Check() const {
   translation_averaging.Check();
   translation_windows.Check();
   structure.Check();
+  reregistration.Check();
   bundle_adjustment.Check();
   given_intrinsics_test.Check();
   CheckOption(min_component_size >= 2, "--Mapper.min_component_size", ">= 2", min_component_size);

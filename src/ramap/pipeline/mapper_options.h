@@ -9,6 +9,7 @@
 #include "ramap/geometry/relative_pose.h"
 #include "ramap/graph/keyframes.h"
 #include "ramap/pipeline/georegistration.h"
+#include "ramap/pipeline/reregistration.h"
 #include "ramap/pipeline/structure.h"
 #include "ramap/pipeline/view_graph_calibration.h"
 #include "ramap/refine/bundle_adjustment.h"
@@ -47,6 +48,8 @@ struct MapperOptions {
   // Long sequences: translation averaging window by window, joined by shared frames and loops.
   WindowedTranslationOptions translation_windows;
   StructureOptions structure;
+  // Images the triangulated points leave out, placed again from those points.
+  ReregistrationOptions reregistration;
   // What to do with position priors, when RunMapper is given any.
   GeoregistrationOptions georegistration;
   // Final bundle adjustment ("averaging + BA"), on by default: averaging alone gives up 0.2-17

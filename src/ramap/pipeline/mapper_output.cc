@@ -23,6 +23,8 @@ nlohmann::json CamerasToJson(const std::vector<CameraIntrinsicsSummary>& summari
                             {"prior_focal_length_known", camera.prior_focal_length_known},
                             {"prior_params", camera.prior_params},
                             {"final_params", camera.final_params}};
+    if (!camera.final_model.empty() && camera.final_model != camera.model)
+      entry["final_model"] = camera.final_model;
     const CameraCalibration& estimate = camera.view_graph;
     if (estimate.camera_id != 0) {
       entry["view_graph_calibration"] = {{"estimated", estimate.estimated},
@@ -102,6 +104,22 @@ nlohmann::json ComponentToJson(const MapperComponentSummary& c) {
                                       {"num_filtered_observations", ba.num_filtered_observations},
                                       {"converged", ba.converged},
                                       {"seconds", ba.seconds}};
+    nlohmann::json filtered = nlohmann::json::array();
+    for (const auto& [name, count] : c.most_filtered_images)
+      filtered.push_back({{"name", name}, {"num_filtered_observations", count}});
+    component["bundle_adjustment"]["most_filtered_images"] = filtered;
+  }
+  if (!c.reregistered_images.empty()) {
+    nlohmann::json images = nlohmann::json::array();
+    for (const ReregisteredImage& image : c.reregistered_images) {
+      images.push_back({{"name", image.name},
+                        {"num_correspondences", image.num_correspondences},
+                        {"num_inliers_before", image.num_inliers_before},
+                        {"num_inliers_after", image.num_inliers_after},
+                        {"rotation_change_deg", image.rotation_change_deg},
+                        {"replaced", image.replaced}});
+    }
+    component["reregistered_images"] = images;
   }
   if (!c.given_intrinsics_test.groups.empty())
     component["given_intrinsics_test"] = GivenIntrinsicsTestJson(c.given_intrinsics_test);

@@ -19,6 +19,7 @@ std::vector<CameraIntrinsicsSummary> SummariseIntrinsics(
       const auto written = reconstruction.cameras.find(camera_id);
       if (written == reconstruction.cameras.end()) continue;
       entry.final_params = written->second.params;
+      entry.final_model = CameraModelName(written->second.model);
       break;
     }
     cameras.push_back(entry);

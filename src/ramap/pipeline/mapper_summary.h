@@ -9,6 +9,7 @@
 
 #include "ramap/averaging/rotation_averaging.h"
 #include "ramap/pipeline/georegistration.h"
+#include "ramap/pipeline/reregistration.h"
 #include "ramap/pipeline/view_graph_calibration.h"
 #include "ramap/refine/bundle_adjustment.h"
 #include "ramap/refine/given_intrinsics_test.h"
@@ -52,7 +53,12 @@ struct MapperComponentSummary {
   int num_solver_iterations = 0;
   int num_factorizations = 0;
   int num_translation_windows = 0;            // 0: translation averaging in one system
+  // The images averaging placed badly that were tried again from the points.
+  std::vector<ReregisteredImage> reregistered_images;
   BundleAdjustmentSummary bundle_adjustment;  // zeros when not refined
+  // The images bundle adjustment detached the most observations from (gross reprojection errors),
+  // by name, most first; at most 20.
+  std::vector<std::pair<std::string, int>> most_filtered_images;
   GivenIntrinsicsTestSummary given_intrinsics_test;  // no groups when nothing given was tested
   GeoregistrationSummary georegistration;     // num_priors 0 when run without priors
 };
@@ -65,6 +71,7 @@ struct CameraIntrinsicsSummary {
   std::vector<double> prior_params;       // as the database gives them
   CameraCalibration view_graph;           // camera_id 0 when not calibrated from the view graph
   std::vector<double> final_params;       // as written (after BA, when refined)
+  std::string final_model;                // as written: a distortion model may have been added
 };
 
 struct MapperSummary {

@@ -64,12 +64,26 @@ void AdjustComponent(const MapperContext& context, const std::map<uint32_t, Posi
   const ImageBearings bearings =
       ComputeBearings(context.database, cameras, "bundle adjustment", image_ids);
   const double seconds = ba.seconds + test.seconds;
-  const int num_filtered = ba.num_filtered_observations;
+  const BundleAdjustmentSummary first = ba;
   ba = BundleAdjust(bearings.bearings, bearings.focal_lengths_px, adjusted,
                     options.bundle_adjustment, priors);
   LogBundleAdjustment(context, ba, "again through the tested intrinsics: ");
   ba.seconds += seconds;
-  ba.num_filtered_observations += num_filtered;
+  ba.num_filtered_observations += first.num_filtered_observations;
+  for (const auto& [image_id, count] : first.filtered_per_image)
+    ba.filtered_per_image[image_id] += count;
+}
+
+// The images BA detached the most observations from, by name (MapperComponentSummary).
+std::vector<std::pair<std::string, int>> MostFilteredImages(const FeatureDatabase& database,
+                                                            const BundleAdjustmentSummary& ba) {
+  std::vector<std::pair<std::string, int>> images;
+  for (const auto& [image_id, count] : ba.filtered_per_image)
+    images.emplace_back(database.images.at(image_id).name, count);
+  std::stable_sort(images.begin(), images.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  if (images.size() > 20) images.resize(20);
+  return images;
 }
 
 }  // namespace
@@ -84,6 +98,8 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
   AdjustComponent(context,
                   use_priors ? georegistration->inliers : std::map<uint32_t, PositionPrior>(),
                   component, &adjusted);
+  component->most_filtered_images =
+      MostFilteredImages(context.database, component->bundle_adjustment);
   georegistration->summary.used_in_bundle_adjustment = use_priors;
   std::map<uint32_t, Rigid3d> refined;
   std::vector<uint32_t> image_ids;

@@ -302,15 +302,24 @@ std::string EstimateProblem(const CameraCalibration& result, const EstimateShape
 
 ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& database,
                                                   const ViewGraphCalibrationOptions& options,
-                                                  std::map<uint32_t, Camera>* cameras) {
+                                                  std::map<uint32_t, Camera>* cameras,
+                                                  bool share_identical_cameras) {
   options.Check();
   Timer timer;
   ViewGraphCalibrationSummary summary;
   const std::set<uint32_t> unknown = UnknownCameras(database, *cameras);
   if (!options.enable || unknown.empty()) return summary;
+  // Identical cameras are estimated as one, through the lowest id among them.
+  std::map<uint32_t, uint32_t> estimated_as;
+  for (const auto& [camera_id, camera] : *cameras) estimated_as[camera_id] = camera_id;
+  if (share_identical_cameras) estimated_as = IdenticalCameras(*cameras);
 
-  const std::vector<FundamentalPair> pairs =
+  std::vector<FundamentalPair> pairs =
       PairsWithFundamentalMatrix(database, options.min_num_inliers);
+  for (FundamentalPair& pair : pairs) {
+    if (estimated_as.count(pair.camera1)) pair.camera1 = estimated_as.at(pair.camera1);
+    if (estimated_as.count(pair.camera2)) pair.camera2 = estimated_as.at(pair.camera2);
+  }
   const std::map<uint32_t, CameraTerms> terms =
       TermsOfUnknownCameras(pairs, unknown, *cameras, options);
   std::map<uint32_t, const CameraTerms*> estimable;
@@ -326,9 +335,10 @@ ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& databas
 
   // Every camera is judged at the joint estimate first; the parameters change only afterwards (the
   // cost reads them).
-  for (const uint32_t camera_id : unknown) {
+  for (const uint32_t member : unknown) {
+    const uint32_t camera_id = estimated_as.at(member);
     CameraCalibration result;
-    result.camera_id = camera_id;
+    result.camera_id = member;
     result.prior_focal_px = MeanFocalLength(cameras->at(camera_id));
     const auto found = terms.find(camera_id);
     result.num_pairs = found == terms.end() ? 0 : static_cast<int>(found->second.pairs.size());
@@ -352,7 +362,7 @@ ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& databas
   for (const CameraCalibration& result : summary.cameras) {
     if (!result.estimated) continue;
     Camera& camera = cameras->at(result.camera_id);
-    const double factor = std::exp(log_scales.at(result.camera_id));
+    const double factor = std::exp(log_scales.at(estimated_as.at(result.camera_id)));
     camera.params[0] *= factor;
     if (!HasSingleFocalLength(camera.model)) camera.params[1] *= factor;
   }

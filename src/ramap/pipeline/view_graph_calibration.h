@@ -79,9 +79,12 @@ double EssentialMatrixCost(const Eigen::Matrix3d& F, const Eigen::Matrix3d& K1,
 // (has_prior_focal_length false) from the database's verified pairs (configurations CALIBRATED and
 // UNCALIBRATED, whose F is stored), and scales its focal length parameters to the estimate. A
 // camera that cannot be estimated (too few pairs, only pure rotations, estimate at the edge of the
-// range, pairs inconsistent) keeps its prior and is listed with the reason.
+// range, pairs inconsistent) keeps its prior and is listed with the reason. With
+// `share_identical_cameras`, cameras with the same model, size, parameters and prior flag (COLMAP's
+// one camera per image, all with one guess) are estimated as one.
 ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& database,
                                                   const ViewGraphCalibrationOptions& options,
-                                                  std::map<uint32_t, Camera>* cameras);
+                                                  std::map<uint32_t, Camera>* cameras,
+                                                  bool share_identical_cameras = true);
 
 }  // namespace ramap

@@ -9,7 +9,6 @@
 #include <memory>
 #include <set>
 #include <stdexcept>
-#include <tuple>
 
 #include "ramap/geometry/camera_distortion.h"
 #include "ramap/util/option_check.h"
@@ -303,10 +302,10 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   return summary;
 }
 
-// Detaches observations whose error exceeds the bound, removes points left with fewer than two
-// observations, and returns the number of observations detached.
+// Detaches observations whose error exceeds the bound (counted per image in `per_image`), removes
+// points left with fewer than two observations, and returns the number of observations detached.
 int FilterObservations(const std::vector<Observation>& observations, double max_error_px,
-                       Reconstruction* reconstruction) {
+                       Reconstruction* reconstruction, std::map<uint32_t, int>* per_image) {
   std::map<uint64_t, std::vector<TrackElement>> kept;
   int num_filtered = 0;
   for (const Observation& o : observations) {
@@ -314,6 +313,7 @@ int FilterObservations(const std::vector<Observation>& observations, double max_
       kept[o.point3D_id].push_back({o.image_id, o.point2D_idx});
     } else {
       ++num_filtered;
+      ++(*per_image)[o.image_id];
     }
   }
   for (auto it = reconstruction->points3D.begin(); it != reconstruction->points3D.end();) {
@@ -381,18 +381,10 @@ bool RefinesIntrinsics(const BundleAdjustmentOptions& options, const Camera& cam
 
 std::map<uint32_t, uint32_t> SharedIntrinsics(const BundleAdjustmentOptions& options,
                                               const Reconstruction& reconstruction) {
-  std::map<uint32_t, uint32_t> shared;
-  std::map<std::tuple<int, uint64_t, uint64_t, std::vector<double>, bool>, uint32_t> first_of;
-  for (const auto& [camera_id, camera] : reconstruction.cameras) {
-    if (!options.share_identical_intrinsics) {
-      shared[camera_id] = camera_id;
-      continue;
-    }
-    const auto key = std::make_tuple(static_cast<int>(camera.model), camera.width, camera.height,
-                                     camera.params, camera.has_prior_focal_length);
-    shared[camera_id] = first_of.emplace(key, camera_id).first->second;
-  }
-  return shared;
+  if (options.share_identical_intrinsics) return IdenticalCameras(reconstruction.cameras);
+  std::map<uint32_t, uint32_t> own;
+  for (const auto& [camera_id, camera] : reconstruction.cameras) own[camera_id] = camera_id;
+  return own;
 }
 
 Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
@@ -453,8 +445,8 @@ BundleAdjustmentSummary BundleAdjust(const KeypointBearings& bearings,
         Solve(observations, priors, options, shared, reconstruction);
     summary.num_iterations += static_cast<int>(solve.iterations.size());
     summary.converged = solve.termination_type == ceres::CONVERGENCE;
-    const int filtered =
-        FilterObservations(observations, options.max_reprojection_error_px, reconstruction);
+    const int filtered = FilterObservations(observations, options.max_reprojection_error_px,
+                                            reconstruction, &summary.filtered_per_image);
     summary.num_filtered_observations += filtered;
     observations = UsableObservations(bearings, focal_lengths_px, *reconstruction, options);
     if (filtered == 0) break;

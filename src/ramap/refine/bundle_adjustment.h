@@ -61,7 +61,8 @@ struct BundleAdjustmentOptions {
   // one camera per image: templeRing +8%, kitti07_first160 -5%).
   bool keep_prior_intrinsics = true;
   // Cameras with the same model, size, parameters and prior flag (one EXIF value, one user
-  // calibration, or one guess: COLMAP's one camera per image) share one set of intrinsics.
+  // calibration, or one guess: COLMAP's one camera per image) share one set of intrinsics. The
+  // mapper's view-graph calibration estimates them as one too.
   bool share_identical_intrinsics = true;
   // function_tolerance while some camera's focal length is refined: it couples with
   // depth and moves slowly. Measured on templeRing from COLMAP's 2x-too-short guess: 1e-4 stops
@@ -81,6 +82,9 @@ struct BundleAdjustmentSummary {
   double final_rmse_px = 0.0;  // over the observations kept after filtering
   int num_iterations = 0;
   int num_filtered_observations = 0;
+  // Where they were: image id -> observations detached from their points (gross errors gather in
+  // an image whose pose or matches are wrong).
+  std::map<uint32_t, int> filtered_per_image;
   int num_priors = 0;  // centre priors of registered images
   bool converged = false;
   double seconds = 0.0;

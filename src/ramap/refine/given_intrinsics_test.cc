@@ -140,7 +140,7 @@ bool ClearlyLower(double rmse, double reference, const GivenIntrinsicsTestOption
 }
 
 // Steps 1 and 2 of one group (keyed by `group`), judged: `freed` is its camera after step 2.
-GivenIntrinsicsTest JudgeFreedIntrinsics(uint32_t group, const std::vector<uint32_t>& camera_ids,
+GivenIntrinsicsTest JudgeFreedIntrinsics(const std::vector<uint32_t>& camera_ids,
                                          const GroupError& held, const Camera& given,
                                          const Camera& freed, double freed_rmse_px,
                                          const BundleAdjustmentOptions& ba,
@@ -228,9 +228,9 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
   for (const auto& [group, camera_ids] : groups) {
     const auto before = held_errors.find(group);
     if (before == held_errors.end()) continue;
-    summary.groups.push_back(JudgeFreedIntrinsics(
-        group, camera_ids, before->second, given.at(group), distorted.at(group),
-        RmseOf(freed_errors, group, before->second.Rmse()), ba, options));
+    summary.groups.push_back(
+        JudgeFreedIntrinsics(camera_ids, before->second, given.at(group), distorted.at(group),
+                             RmseOf(freed_errors, group, before->second.Rmse()), ba, options));
     const GivenIntrinsicsTest& test = summary.groups.back();
     if (test.focal_accepted && test.distortion_accepted) focal_only[group] = given.at(group);
   }

@@ -3,6 +3,7 @@
 #include <array>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "ramap/util/error.h"
 
@@ -47,6 +48,18 @@ std::optional<CameraModel> CameraModelFromName(const std::string& name) {
 std::optional<CameraModel> CameraModelFromId(int id) {
   if (id < 0 || id >= static_cast<int>(kModels.size())) return std::nullopt;
   return kModels[id].model;
+}
+
+std::map<uint32_t, uint32_t> IdenticalCameras(const std::map<uint32_t, Camera>& cameras) {
+  std::map<uint32_t, uint32_t> identical;
+  std::map<std::tuple<CameraModel, uint64_t, uint64_t, std::vector<double>, bool>, uint32_t>
+      first_of;
+  for (const auto& [camera_id, camera] : cameras) {
+    const auto key = std::make_tuple(camera.model, camera.width, camera.height, camera.params,
+                                     camera.has_prior_focal_length);
+    identical[camera_id] = first_of.emplace(key, camera_id).first->second;
+  }
+  return identical;
 }
 
 }  // namespace ramap

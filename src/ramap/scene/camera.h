@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,5 +44,10 @@ std::string CameraModelName(CameraModel model);
 std::optional<CameraModel> CameraModelFromName(const std::string& name);
 // The model with COLMAP's integer id, if there is one.
 std::optional<CameraModel> CameraModelFromId(int id);
+
+// Each camera mapped to the lowest id among those with the same model, size, parameters and prior
+// flag: cameras from one source (a calibration given once, one EXIF value, one guess) that COLMAP
+// writes one per image.
+std::map<uint32_t, uint32_t> IdenticalCameras(const std::map<uint32_t, Camera>& cameras);
 
 }  // namespace ramap

@@ -1,0 +1,132 @@
+#include "ramap/pipeline/reregistration.h"
+
+#include <cmath>
+
+#include "ramap/geometry/absolute_pose.h"
+#include "ramap/pipeline/mapper_options.h"
+#include "ramap/pipeline/mapper_summary.h"
+#include "ramap/pipeline/structure.h"
+#include "ramap/util/option_check.h"
+#include "ramap/util/timer.h"
+
+namespace ramap {
+namespace {
+
+// One image's keypoints on tracks with a point: their bearings, the points, and how many the
+// point's own track holds (observations with the current pose).
+struct Correspondences {
+  std::vector<Eigen::Vector3d> bearings;
+  std::vector<Eigen::Vector3d> points;
+  int num_observed = 0;
+};
+
+// For each image, its keypoints whose track triangulated, whether or not the point kept them.
+std::map<uint32_t, Correspondences> CorrespondencesByImage(const std::vector<Track>& tracks,
+                                                           const KeypointBearings& bearings,
+                                                           const Reconstruction& reconstruction) {
+  // A point's track holds some elements of the track it came from: any one finds it.
+  std::map<std::pair<uint32_t, uint32_t>, size_t> track_of;
+  for (size_t k = 0; k < tracks.size(); ++k)
+    for (const TrackElement& e : tracks[k]) track_of[{e.image_id, e.point2D_idx}] = k;
+  std::map<uint32_t, Correspondences> by_image;
+  for (const auto& [point3D_id, point] : reconstruction.points3D) {
+    const auto track =
+        track_of.find({point.track.front().image_id, point.track.front().point2D_idx});
+    if (track == track_of.end()) continue;
+    for (const TrackElement& e : tracks[track->second]) {
+      const auto image = reconstruction.images.find(e.image_id);
+      const auto image_bearings = bearings.find(e.image_id);
+      if (image == reconstruction.images.end() || image_bearings == bearings.end() ||
+          e.point2D_idx >= image_bearings->second.size() ||
+          e.point2D_idx >= image->second.points2D.size()) {
+        continue;
+      }
+      Correspondences& c = by_image[e.image_id];
+      c.bearings.push_back(image_bearings->second[e.point2D_idx]);
+      c.points.push_back(point.xyz);
+      c.num_observed += image->second.points2D[e.point2D_idx].point3D_id == point3D_id;
+    }
+  }
+  return by_image;
+}
+
+double RotationChangeDeg(const Rigid3d& a, const Rigid3d& b) {
+  return a.rotation.angularDistance(b.rotation) * 180.0 / M_PI;
+}
+
+}  // namespace
+
+void ReregistrationOptions::Check() const {
+  const std::string s = "--Reregistration.";
+  CheckOption(max_inlier_ratio >= 0 && max_inlier_ratio <= 1, s + "max_inlier_ratio", "in [0, 1]",
+              max_inlier_ratio);
+  CheckOption(min_num_correspondences >= 4, s + "min_num_correspondences", ">= 4",
+              min_num_correspondences);
+  CheckOption(min_inlier_gain >= 1, s + "min_inlier_gain", ">= 1", min_inlier_gain);
+}
+
+std::vector<ReregisteredImage> ReregisterImages(const std::vector<Track>& tracks,
+                                                const KeypointBearings& bearings,
+                                                const std::map<uint32_t, double>& focal_lengths_px,
+                                                const Reconstruction& reconstruction,
+                                                const ReregistrationOptions& options,
+                                                double max_reprojection_error_px,
+                                                std::map<uint32_t, Rigid3d>* poses) {
+  options.Check();
+  std::vector<ReregisteredImage> tried;
+  if (!options.enable) return tried;
+  for (const auto& [image_id, c] : CorrespondencesByImage(tracks, bearings, reconstruction)) {
+    const int num_correspondences = static_cast<int>(c.bearings.size());
+    if (num_correspondences < options.min_num_correspondences ||
+        c.num_observed >= options.max_inlier_ratio * num_correspondences) {
+      continue;
+    }
+    const Image& image = reconstruction.images.at(image_id);
+    ReregisteredImage result;
+    result.image_id = image_id;
+    result.name = image.name;
+    result.num_correspondences = num_correspondences;
+    AbsolutePoseOptions absolute;
+    absolute.max_angular_error_rad =
+        max_reprojection_error_px / focal_lengths_px.at(image.camera_id);
+    absolute.min_num_inliers = options.min_num_correspondences;
+    // Counted as the new pose's are, so that the two compare.
+    result.num_inliers_before =
+        static_cast<int>(AbsolutePoseInliers(image.cam_from_world, c.bearings, c.points,
+                                             absolute.max_angular_error_rad)
+                             .size());
+    if (const std::optional<AbsolutePose> pose =
+            EstimateAbsolutePose(c.bearings, c.points, absolute)) {
+      result.num_inliers_after = static_cast<int>(pose->inliers.size());
+      result.rotation_change_deg = RotationChangeDeg(image.cam_from_world, pose->cam_from_world);
+      result.replaced =
+          result.num_inliers_after >= options.min_inlier_gain * result.num_inliers_before;
+      if (result.replaced) (*poses)[image_id] = pose->cam_from_world;
+    }
+    tried.push_back(result);
+  }
+  return tried;
+}
+
+void ReregisterComponent(const MapperContext& context, const std::vector<Track>& tracks,
+                         std::map<uint32_t, Rigid3d>* poses, MapperComponentSummary* component,
+                         Reconstruction* reconstruction) {
+  const MapperOptions& options = context.options;
+  if (!options.reregistration.enable) return;
+  Timer timer;
+  component->reregistered_images = ReregisterImages(
+      tracks, context.bearings.bearings, context.bearings.focal_lengths_px, *reconstruction,
+      options.reregistration, options.structure.max_reprojection_error_px, poses);
+  int num_replaced = 0;
+  for (const ReregisteredImage& image : component->reregistered_images)
+    num_replaced += image.replaced;
+  context.log.Record(stage::kTriangulation, timer.ElapsedSeconds(),
+                     "re-registration: " + std::to_string(num_replaced) + " of " +
+                         std::to_string(component->reregistered_images.size()) +
+                         " images its points left out placed again");
+  if (num_replaced == 0) return;
+  *reconstruction = TriangulateComponent(context, *poses, tracks, context.bearings, context.cameras,
+                                         "again with the re-registered images: ", component);
+}
+
+}  // namespace ramap

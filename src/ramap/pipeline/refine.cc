@@ -42,18 +42,63 @@ void LogGivenIntrinsicsTest(const MapperContext& context, const GivenIntrinsicsT
   }
 }
 
+// Where some camera's focal length is refined, first on a subset of the points: the focal
+// length's long valley (BundleAdjustmentOptions::intrinsics_function_tolerance) is crossed there,
+// cheaply, and every track is triangulated again through the poses and intrinsics it found, for
+// the full adjustment to start from. Returns whether it ran.
+bool CalibrateOnSubset(const MapperContext& context, const std::vector<Track>& tracks,
+                       const std::map<uint32_t, PositionPrior>& priors,
+                       MapperComponentSummary* component, Reconstruction* reconstruction) {
+  const MapperOptions& options = context.options;
+  const BundleAdjustmentOptions& ba = options.bundle_adjustment;
+  const int num_points = options.calibration_num_points;
+  const bool refines_focal =
+      ba.refine_focal_length &&
+      std::any_of(reconstruction->cameras.begin(), reconstruction->cameras.end(),
+                  [&](const auto& entry) {
+                    return !(entry.second.has_prior_focal_length && ba.keep_prior_intrinsics) &&
+                           RefinesIntrinsics(ba, entry.second);
+                  });
+  if (!refines_focal || num_points == 0 ||
+      static_cast<int>(reconstruction->points3D.size()) <= 2 * num_points) {
+    return false;
+  }
+  BundleAdjustmentOptions subset_options = ba;
+  subset_options.max_num_points = num_points;
+  subset_options.min_observations_per_image = std::min(ba.min_observations_per_image, 50);
+  Reconstruction subset = PointsForBundleAdjustment(*reconstruction, subset_options);
+  const BundleAdjustmentSummary calibration =
+      BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, &subset,
+                   subset_options, priors);
+  LogBundleAdjustment(context, calibration, "intrinsics on a subset: ");
+  std::map<uint32_t, Camera> cameras = context.cameras;
+  for (const auto& [camera_id, camera] : subset.cameras) cameras[camera_id] = camera;
+  std::map<uint32_t, Rigid3d> poses;
+  std::vector<uint32_t> image_ids;
+  for (const auto& [image_id, image] : subset.images) {
+    poses[image_id] = image.cam_from_world;
+    image_ids.push_back(image_id);
+  }
+  const ImageBearings bearings =
+      ComputeBearings(context.database, cameras, "bundle adjustment", image_ids);
+  *reconstruction = TriangulateComponent(context, poses, tracks, bearings, cameras,
+                                         "with the subset's intrinsics: ", component);
+  return true;
+}
+
 // Bundle adjustment, the test of the given intrinsics, and (when the data proved some wrong)
 // bundle adjustment again, from where it stopped, through the intrinsics the test found.
-void AdjustComponent(const MapperContext& context, const std::map<uint32_t, PositionPrior>& priors,
+void AdjustComponent(const MapperContext& context, const BundleAdjustmentOptions& ba_options,
+                     const std::map<uint32_t, PositionPrior>& priors,
                      MapperComponentSummary* component, Reconstruction* adjusted) {
   const MapperOptions& options = context.options;
   BundleAdjustmentSummary& ba = component->bundle_adjustment;
   ba = BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, adjusted,
-                    options.bundle_adjustment, priors);
+                    ba_options, priors);
   LogBundleAdjustment(context, ba, "");
   GivenIntrinsicsTestSummary& test = component->given_intrinsics_test;
   test = TestGivenIntrinsics(context.bearings.bearings, context.bearings.focal_lengths_px,
-                             options.bundle_adjustment, options.given_intrinsics_test, adjusted);
+                             ba_options, options.given_intrinsics_test, adjusted);
   LogGivenIntrinsicsTest(context, test);
   if (std::none_of(test.groups.begin(), test.groups.end(), ChangesIntrinsics)) return;
   // The cameras the test changed have new bearings.
@@ -65,8 +110,7 @@ void AdjustComponent(const MapperContext& context, const std::map<uint32_t, Posi
       ComputeBearings(context.database, cameras, "bundle adjustment", image_ids);
   const double seconds = ba.seconds + test.seconds;
   const BundleAdjustmentSummary first = ba;
-  ba = BundleAdjust(bearings.bearings, bearings.focal_lengths_px, adjusted,
-                    options.bundle_adjustment, priors);
+  ba = BundleAdjust(bearings.bearings, bearings.focal_lengths_px, adjusted, ba_options, priors);
   LogBundleAdjustment(context, ba, "again through the tested intrinsics: ");
   ba.seconds += seconds;
   ba.num_filtered_observations += first.num_filtered_observations;
@@ -92,12 +136,18 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
                      PriorAlignment* georegistration, MapperComponentSummary* component,
                      Reconstruction* reconstruction) {
   const MapperOptions& options = context.options;
-  Reconstruction adjusted = PointsForBundleAdjustment(*reconstruction, options.bundle_adjustment);
   const bool use_priors =
       georegistration->summary.georegistered && options.georegistration.use_in_bundle_adjustment;
-  AdjustComponent(context,
-                  use_priors ? georegistration->inliers : std::map<uint32_t, PositionPrior>(),
-                  component, &adjusted);
+  const std::map<uint32_t, PositionPrior> priors =
+      use_priors ? georegistration->inliers : std::map<uint32_t, PositionPrior>();
+  BundleAdjustmentOptions ba_options = options.bundle_adjustment;
+  // After the subset crossed the focal length's valley the ordinary tolerance suffices.
+  if (CalibrateOnSubset(context, tracks, priors, component, reconstruction)) {
+    ba_options.intrinsics_function_tolerance =
+        std::max(ba_options.intrinsics_function_tolerance, ba_options.function_tolerance);
+  }
+  Reconstruction adjusted = PointsForBundleAdjustment(*reconstruction, ba_options);
+  AdjustComponent(context, ba_options, priors, component, &adjusted);
   component->most_filtered_images =
       MostFilteredImages(context.database, component->bundle_adjustment);
   georegistration->summary.used_in_bundle_adjustment = use_priors;

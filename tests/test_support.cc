@@ -216,6 +216,17 @@ SyntheticSceneOptions NoiseFree(SyntheticLayout layout, SyntheticPath path, int 
   return options;
 }
 
+SyntheticSceneOptions NoisyCollection(uint64_t seed) {
+  SyntheticSceneOptions options;
+  options.layout = SyntheticLayout::kUnordered;
+  options.num_images = 16;
+  options.num_points = 3000;
+  options.pixel_noise_sigma = 0.5;
+  options.outlier_ratio = 0.1;
+  options.seed = seed;
+  return options;
+}
+
 SyntheticScene StandstillLineScene() {
   SyntheticSceneOptions options = NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 30);
   const SyntheticScene line = BuildSyntheticScene(options);

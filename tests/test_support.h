@@ -53,13 +53,18 @@ std::string CachedColmapDatabase(const ColmapRun& run);
 // Path of the sparse model folder (sparse/0) of `colmap mapper` on that database, intrinsics fixed.
 std::string CachedColmapModel(const ColmapRun& run);
 
-// Camera 1: a 640 x 480 PINHOLE camera with focal lengths fx, fy and the principal point at the
-// image centre.
 // The mapper's options without bundle adjustment, for tests of the averaging stages (the
 // default refines).
 MapperOptions AveragingOnly();
 
+// Camera 1: a 640 x 480 PINHOLE camera with focal lengths fx, fy and the principal point at the
+// image centre.
 Camera VgaPinholeCamera(double fx = 500, double fy = 500);
+
+// 16 views all around an object from varied distances (so that the optical axes do not meet in
+// one point at equal distances, where F leaves the focal length free), 3000 points, 0.5 px of
+// noise and 10% wrong matches.
+SyntheticSceneOptions NoisyCollection(uint64_t seed);
 
 // A scene without keypoint noise or wrong matches: 1500 points, seed 11.
 SyntheticSceneOptions NoiseFree(SyntheticLayout layout, SyntheticPath path, int num_images);

@@ -10,31 +10,19 @@
 #include "ramap/eval/pose_metrics.h"
 #include "ramap/pipeline/mapper.h"
 #include "ramap/synthetic/synthetic_scene.h"
+#include "test_support.h"
 
 namespace ramap {
 namespace {
 
-// Views all around an object from varied distances (the focal length well determined).
+// The collection of test::NoisyCollection through `camera`.
 SyntheticSceneOptions Collection(uint64_t seed, const Camera& camera) {
-  SyntheticSceneOptions options;
-  options.layout = SyntheticLayout::kUnordered;
-  options.num_images = 16;
-  options.num_points = 3000;
-  options.pixel_noise_sigma = 0.5;
-  options.outlier_ratio = 0.1;
-  options.seed = seed;
+  SyntheticSceneOptions options = test::NoisyCollection(seed);
   options.camera = camera;
   return options;
 }
 
-Camera Pinhole(double focal_px) {
-  Camera camera;
-  camera.model = CameraModel::kPinhole;
-  camera.width = 640;
-  camera.height = 480;
-  camera.params = {focal_px, focal_px, 320.0, 240.0};
-  return camera;
-}
+Camera Pinhole(double focal_px) { return test::VgaPinholeCamera(focal_px, focal_px); }
 
 // The database as `reconstruct --ImageReader.camera_params` writes it: one camera per image, each
 // a copy of `given`, marked known.

@@ -9,20 +9,12 @@
 #include "ramap/pipeline/bearings.h"
 #include "ramap/pipeline/structure.h"
 #include "ramap/synthetic/synthetic_scene.h"
+#include "test_support.h"
 
 namespace ramap {
 namespace {
 
-SyntheticScene Collection() {
-  SyntheticSceneOptions options;
-  options.layout = SyntheticLayout::kUnordered;
-  options.num_images = 16;
-  options.num_points = 3000;
-  options.pixel_noise_sigma = 0.5;
-  options.outlier_ratio = 0.1;
-  options.seed = 5;
-  return BuildSyntheticScene(options);
-}
+SyntheticScene Collection() { return BuildSyntheticScene(test::NoisyCollection(5)); }
 
 // `pose` turned by `angle_deg` about an axis through its camera centre.
 Rigid3d Turned(const Rigid3d& pose, double angle_deg) {

@@ -11,22 +11,10 @@
 #include "ramap/geometry/camera_projection.h"
 #include "ramap/pipeline/mapper.h"
 #include "ramap/synthetic/synthetic_scene.h"
+#include "test_support.h"
 
 namespace ramap {
 namespace {
-
-// Views all around an object from varied distances, so that the optical axes do not meet in one
-// point at equal distances (the configuration where F leaves the focal length undetermined).
-SyntheticSceneOptions Collection(uint64_t seed) {
-  SyntheticSceneOptions options;
-  options.layout = SyntheticLayout::kUnordered;
-  options.num_images = 16;
-  options.num_points = 3000;
-  options.pixel_noise_sigma = 0.5;
-  options.outlier_ratio = 0.1;
-  options.seed = seed;
-  return options;
-}
 
 // The database as a user without a calibration gives it: the focal lengths scaled by `factor`
 // and marked unknown.
@@ -44,7 +32,7 @@ FeatureDatabase WithUnknownFocalLengths(FeatureDatabase database, double factor)
 double RelativeError(double estimate, double truth) { return std::abs(estimate / truth - 1.0); }
 
 TEST(ViewGraphCalibration, EssentialMatrixCostVanishesAtTheTrueCalibration) {
-  const SyntheticScene scene = BuildSyntheticScene(Collection(1));
+  const SyntheticScene scene = BuildSyntheticScene(test::NoisyCollection(1));
   const Eigen::Matrix3d K = CalibrationMatrix(scene.database.cameras.at(1));
   const Eigen::Matrix3d K_off = CalibrationMatrix(scene.database.cameras.at(1), 1.3);
   std::vector<double> off_costs;
@@ -61,7 +49,7 @@ TEST(ViewGraphCalibration, EssentialMatrixCostVanishesAtTheTrueCalibration) {
 class FocalPrior : public ::testing::TestWithParam<double> {};
 
 TEST_P(FocalPrior, RecoveredFromTheViewGraphAndByBundleAdjustment) {
-  const SyntheticScene scene = BuildSyntheticScene(Collection(7));
+  const SyntheticScene scene = BuildSyntheticScene(test::NoisyCollection(7));
   const double truth = scene.database.cameras.at(1).params[0];
   const FeatureDatabase database = WithUnknownFocalLengths(scene.database, GetParam());
 
@@ -100,7 +88,7 @@ INSTANTIATE_TEST_SUITE_P(PriorOff, FocalPrior, ::testing::Values(1.3, 0.7),
                          });
 
 TEST(ViewGraphCalibration, TwoCamerasWithDifferentFocalLengths) {
-  SyntheticSceneOptions options = Collection(11);
+  SyntheticSceneOptions options = test::NoisyCollection(11);
   options.num_images = 20;
   Camera second = options.camera;
   second.params[0] *= 1.6;
@@ -124,7 +112,7 @@ TEST(ViewGraphCalibration, TwoCamerasWithDifferentFocalLengths) {
 // COLMAP's default: one camera per image, each with the same guess. They are estimated and
 // refined as one, so the focal length is the same in every image and as good as a shared camera's.
 TEST(ViewGraphCalibration, OneGuessedCameraPerImageCalibratedAsOne) {
-  const SyntheticScene scene = BuildSyntheticScene(Collection(7));
+  const SyntheticScene scene = BuildSyntheticScene(test::NoisyCollection(7));
   const double truth = scene.database.cameras.at(1).params[0];
   FeatureDatabase database = WithUnknownFocalLengths(scene.database, 1.3);
   const Camera guess = database.cameras.at(1);
@@ -148,7 +136,7 @@ TEST(ViewGraphCalibration, OneGuessedCameraPerImageCalibratedAsOne) {
 }
 
 TEST(ViewGraphCalibration, RadialDistortionRecoveredByBundleAdjustment) {
-  SyntheticSceneOptions options = Collection(13);
+  SyntheticSceneOptions options = test::NoisyCollection(13);
   Camera camera;
   camera.model = CameraModel::kSimpleRadial;
   camera.width = 640;
@@ -227,7 +215,7 @@ TEST(ViewGraphCalibration, FocalLengthTheViewGraphCannotFixFoundByACalibrationPa
 }
 
 TEST(ViewGraphCalibration, CameraSeenOnlyInPureRotationsKeepsItsPrior) {
-  SyntheticScene scene = BuildSyntheticScene(Collection(3));
+  SyntheticScene scene = BuildSyntheticScene(test::NoisyCollection(3));
   FeatureDatabase database = WithUnknownFocalLengths(scene.database, 1.3);
   for (auto& [pair_id, geometry] : database.two_view_geometries) {
     geometry.config = TwoViewConfig::kPanoramic;
@@ -243,7 +231,7 @@ TEST(ViewGraphCalibration, CameraSeenOnlyInPureRotationsKeepsItsPrior) {
 }
 
 TEST(ViewGraphCalibration, BadFundamentalMatricesFallBackToThePrior) {
-  SyntheticScene scene = BuildSyntheticScene(Collection(5));
+  SyntheticScene scene = BuildSyntheticScene(test::NoisyCollection(5));
   FeatureDatabase database = WithUnknownFocalLengths(scene.database, 1.3);
   int k = 0;
   for (auto& [pair_id, geometry] : database.two_view_geometries) {
@@ -264,7 +252,7 @@ TEST(ViewGraphCalibration, BadFundamentalMatricesFallBackToThePrior) {
 }
 
 TEST(ViewGraphCalibration, KnownFocalLengthsAreLeftAlone) {
-  const SyntheticScene scene = BuildSyntheticScene(Collection(2));
+  const SyntheticScene scene = BuildSyntheticScene(test::NoisyCollection(2));
   FeatureDatabase database = scene.database;
   database.cameras.at(1).has_prior_focal_length = true;
   database.cameras.at(1).params[0] *= 1.1;

@@ -23,6 +23,39 @@ void LogBundleAdjustment(const MapperContext& context, const BundleAdjustmentSum
                          std::to_string(ba.num_iterations) + " iterations");
 }
 
+// The context's cameras with those of `model` in their place (in `cameras`), and the bearings of
+// `model`'s images through them.
+ImageBearings BearingsThrough(const MapperContext& context, const Reconstruction& model,
+                              std::map<uint32_t, Camera>* cameras) {
+  *cameras = context.cameras;
+  for (const auto& [camera_id, camera] : model.cameras) (*cameras)[camera_id] = camera;
+  std::vector<uint32_t> image_ids;
+  for (const auto& [image_id, image] : model.images) image_ids.push_back(image_id);
+  return ComputeBearings(context.database, *cameras, "bundle adjustment", image_ids);
+}
+
+// Every track triangulated with the poses and intrinsics of `model` (refined ones change every
+// bearing of their images); `what` opens the progress line.
+Reconstruction TriangulateThrough(const MapperContext& context, const std::vector<Track>& tracks,
+                                  const Reconstruction& model, const std::string& what,
+                                  MapperComponentSummary* component) {
+  std::map<uint32_t, Rigid3d> poses;
+  for (const auto& [image_id, image] : model.images) poses[image_id] = image.cam_from_world;
+  const bool intrinsics_changed =
+      std::any_of(model.cameras.begin(), model.cameras.end(), [&](const auto& entry) {
+        const auto given = context.cameras.find(entry.first);
+        return given == context.cameras.end() || given->second.params != entry.second.params;
+      });
+  if (!intrinsics_changed) {
+    return TriangulateComponent(context, poses, tracks, context.bearings, context.cameras,
+                                what + ": ", component);
+  }
+  std::map<uint32_t, Camera> cameras;
+  const ImageBearings bearings = BearingsThrough(context, model, &cameras);
+  return TriangulateComponent(context, poses, tracks, bearings, cameras,
+                              what + " and intrinsics: ", component);
+}
+
 // One line per group of cameras with given intrinsics: what the data said of them.
 void LogGivenIntrinsicsTest(const MapperContext& context, const GivenIntrinsicsTestSummary& test) {
   for (const GivenIntrinsicsTest& group : test.groups) {
@@ -71,18 +104,8 @@ bool CalibrateOnSubset(const MapperContext& context, const std::vector<Track>& t
       BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, &subset,
                    subset_options, priors);
   LogBundleAdjustment(context, calibration, "intrinsics on a subset: ");
-  std::map<uint32_t, Camera> cameras = context.cameras;
-  for (const auto& [camera_id, camera] : subset.cameras) cameras[camera_id] = camera;
-  std::map<uint32_t, Rigid3d> poses;
-  std::vector<uint32_t> image_ids;
-  for (const auto& [image_id, image] : subset.images) {
-    poses[image_id] = image.cam_from_world;
-    image_ids.push_back(image_id);
-  }
-  const ImageBearings bearings =
-      ComputeBearings(context.database, cameras, "bundle adjustment", image_ids);
-  *reconstruction = TriangulateComponent(context, poses, tracks, bearings, cameras,
-                                         "with the subset's intrinsics: ", component);
+  *reconstruction =
+      TriangulateThrough(context, tracks, subset, "with the subset's poses", component);
   return true;
 }
 
@@ -102,12 +125,8 @@ void AdjustComponent(const MapperContext& context, const BundleAdjustmentOptions
   LogGivenIntrinsicsTest(context, test);
   if (std::none_of(test.groups.begin(), test.groups.end(), ChangesIntrinsics)) return;
   // The cameras the test changed have new bearings.
-  std::map<uint32_t, Camera> cameras = context.cameras;
-  std::vector<uint32_t> image_ids;
-  for (const auto& [camera_id, camera] : adjusted->cameras) cameras[camera_id] = camera;
-  for (const auto& [image_id, image] : adjusted->images) image_ids.push_back(image_id);
-  const ImageBearings bearings =
-      ComputeBearings(context.database, cameras, "bundle adjustment", image_ids);
+  std::map<uint32_t, Camera> cameras;
+  const ImageBearings bearings = BearingsThrough(context, *adjusted, &cameras);
   const double seconds = ba.seconds + test.seconds;
   const BundleAdjustmentSummary first = ba;
   ba = BundleAdjust(bearings.bearings, bearings.focal_lengths_px, adjusted, ba_options, priors);
@@ -151,31 +170,8 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
   component->most_filtered_images =
       MostFilteredImages(context.database, component->bundle_adjustment);
   georegistration->summary.used_in_bundle_adjustment = use_priors;
-  std::map<uint32_t, Rigid3d> refined;
-  std::vector<uint32_t> image_ids;
-  for (const auto& [id, image] : adjusted.images) {
-    refined[id] = image.cam_from_world;
-    image_ids.push_back(id);
-  }
-  // Intrinsics BA refined, or given ones the data proved wrong.
-  const bool intrinsics_refined =
-      std::any_of(adjusted.cameras.begin(), adjusted.cameras.end(), [&](const auto& entry) {
-        const auto given = context.cameras.find(entry.first);
-        return given == context.cameras.end() || given->second.params != entry.second.params;
-      });
-  if (!intrinsics_refined) {
-    *reconstruction =
-        TriangulateComponent(context, refined, tracks, context.bearings, context.cameras,
-                             "again with the refined poses: ", component);
-    return;
-  }
-  std::map<uint32_t, Camera> refined_cameras = context.cameras;
-  for (const auto& [camera_id, camera] : adjusted.cameras) refined_cameras[camera_id] = camera;
-  const ImageBearings refined_bearings =
-      ComputeBearings(context.database, refined_cameras, "bundle adjustment", image_ids);
   *reconstruction =
-      TriangulateComponent(context, refined, tracks, refined_bearings, refined_cameras,
-                           "again with the refined poses and intrinsics: ", component);
+      TriangulateThrough(context, tracks, adjusted, "again with the refined poses", component);
 }
 
 }  // namespace ramap

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Speed ratios the way they are quoted: `ramap mapper` (its defaults, BA included) against GLOMAP
+# (COLMAP 4.1.1's global_mapper) and COLMAP 3.8's mapper, each with its defaults on the same
+# database, timed by farm-bench in paired, alternated runs (A B A B ...); the median of the pairs'
+# ratios is printed per data set. The peers run on copies of the database made (and, for COLMAP
+# 4, upgraded by a warm-up run) before the clock starts.
+#
+#   scripts/bench_speed_paired.sh [NAME ...]   (default: the four collections)
+#
+# Settings: RAMAP_INTRINSICS=unknown (default; the databases of build/bench-unknown-intrinsics) or
+# known (build/bench, the peers' and ramap's intrinsics fixed), RAMAP_RUNS (default 3).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+intrinsics=${RAMAP_INTRINSICS:-unknown}
+runs=${RAMAP_RUNS:-3}
+bench=$root/build/bench
+[[ $intrinsics == unknown ]] && bench=$root/build/bench-unknown-intrinsics
+names=("$@")
+((${#names[@]})) || names=(fountain-P11 Herz-Jesus-P8 templeRing lund_door)
+peer=$(bash "$root/scripts/peers.sh")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fixed_ramap=() fixed_glomap=() fixed_colmap=()
+if [[ $intrinsics == known ]]; then
+  fixed_ramap=(--BundleAdjustment.refine_focal_length 0 --BundleAdjustment.refine_principal_point 0
+    --BundleAdjustment.refine_extra_params 0)
+  for what in focal_length principal_point extra_params; do
+    fixed_glomap+=(--GlobalMapper.ba_refine_$what 0)
+    fixed_colmap+=(--Mapper.ba_refine_$what 0)
+  done
+fi
+
+echo "| data set | against | ramap wall (s) | peer wall (s) | peer / ramap (median of pairs) | min-max |"
+echo "| --- | --- | --- | --- | --- | --- |"
+for name in "${names[@]}"; do
+  db=$bench/$name/database.db
+  [[ -f $db ]] || { echo "bench_speed_paired: $name: no database, skipped" >&2; continue; }
+  images=$bench/$name/images
+  ramap_cmd="$root/build/ramap mapper --database_path $db --output_path $work/$name/ramap --Mapper.num_threads 2 ${fixed_ramap[*]}"
+  mkdir -p "$work/$name/glomap" "$work/$name/colmap"
+  cp "$db" "$work/$name/glomap.db" && cp "$db" "$work/$name/colmap.db"
+  glomap_cmd="$peer global_mapper --database_path $work/$name/glomap.db --image_path $images --output_path $work/$name/glomap --GlobalMapper.num_threads 2 ${fixed_glomap[*]}"
+  colmap_cmd="colmap mapper --database_path $work/$name/colmap.db --image_path $images --output_path $work/$name/colmap --Mapper.num_threads 2 ${fixed_colmap[*]}"
+  for peer_name in GLOMAP "COLMAP 3.8"; do
+    peer_cmd=$glomap_cmd
+    [[ $peer_name == GLOMAP ]] || peer_cmd=$colmap_cmd
+    report=$work/$name.$RANDOM.txt
+    farm-bench -n "$runs" --warmup 1 --timeout 3600 --vs "$peer_cmd" -- $ramap_cmd > "$report" 2>&1
+    # farm-bench's rows: "<figure> min median max"; A is ramap, B the peer, the ratio A/B.
+    awk -v name="$name" -v peer="$peer_name" '
+      $1 == "A" && $2 == "wall" { a = $4 }
+      $1 == "B" && $2 == "wall" { b = $4 }
+      $1 == "A/B" && $2 == "wall" { lo = 1 / $5; mid = 1 / $4; hi = 1 / $3 }
+      END { printf "| %s | %s | %.2f | %.2f | %.1fx | %.1f-%.1fx |\n", name, peer, a, b, mid, lo, hi }
+    ' "$report"
+  done
+done

@@ -342,6 +342,10 @@ void AddBundleAdjustmentOptions(CLI::App& app, MapperOptions* o) {
                  "1: bundle adjustment after averaging; 0: averaging alone (faster)")
       ->capture_default_str();
   AddBundleAdjusterOptions(app, &o->bundle_adjustment);
+  app.add_option("--BundleAdjustment.num_rounds", o->num_refinement_rounds,
+                 "rounds of bundle adjustment, each followed by every track triangulated again")
+      ->capture_default_str()
+      ->check(AtLeast(1));
   AddGivenIntrinsicsOptions(app, o);
 }
 
@@ -531,6 +535,7 @@ nlohmann::json BundleAdjustmentToJson(const MapperOptions& o) {
           {"given_intrinsics_test_min_rmse_decrease", o.given_intrinsics_test.min_rmse_decrease},
           {"given_intrinsics_test_focal_tolerance", o.given_intrinsics_test.focal_tolerance},
           {"given_intrinsics_test_num_points", o.given_intrinsics_test.num_points},
+          {"num_rounds", o.num_refinement_rounds},
           {"max_num_iterations", ba.max_num_iterations},
           {"loss_scale_px", ba.loss_scale_px},
           {"max_num_points", ba.max_num_points},

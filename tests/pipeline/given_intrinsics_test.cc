@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "ramap/eval/pose_metrics.h"
 #include "ramap/pipeline/mapper.h"
@@ -84,20 +85,25 @@ TEST(GivenIntrinsics, FocalLengthTenPercentOffIsProvenWrong) {
   EXPECT_LT(Evaluate(model, scene).rotation_error_median_deg, 0.1);
 }
 
-TEST(GivenIntrinsics, PinholeCameraWithRadialDistortionGetsItsK1) {
+// A lens with k1 = -0.15, and the database that gives it as a plain PINHOLE camera.
+SyntheticScene RadialLensScene() {
   Camera lens;
   lens.model = CameraModel::kSimpleRadial;
   lens.width = 640;
   lens.height = 480;
   lens.params = {500.0, 320.0, 240.0, -0.15};
-  const SyntheticScene scene = BuildSyntheticScene(Collection(13, lens));
-  FeatureDatabase database = scene.database;
-  for (auto& [camera_id, camera] : database.cameras) {
+  SyntheticScene scene = BuildSyntheticScene(Collection(13, lens));
+  for (auto& [camera_id, camera] : scene.database.cameras) {
     camera = Pinhole(500);
     camera.camera_id = camera_id;
     camera.has_prior_focal_length = true;
   }
-  const MapperResult result = RunMapper(database, MapperOptions(), "synthetic");
+  return scene;
+}
+
+TEST(GivenIntrinsics, PinholeCameraWithRadialDistortionGetsItsK1) {
+  const SyntheticScene scene = RadialLensScene();
+  const MapperResult result = RunMapper(scene.database, MapperOptions(), "synthetic");
   ASSERT_EQ(result.reconstructions.size(), 1u);
   const Reconstruction& model = result.reconstructions[0];
   ASSERT_EQ(model.images.size(), scene.ground_truth.images.size());
@@ -109,6 +115,20 @@ TEST(GivenIntrinsics, PinholeCameraWithRadialDistortionGetsItsK1) {
   EXPECT_TRUE(test.distortion_accepted);
   EXPECT_FALSE(test.focal_accepted);
   EXPECT_EQ(test.final_model, "SIMPLE_RADIAL");
+  EXPECT_LT(Evaluate(model, scene).rotation_error_median_deg, 0.1);
+}
+
+TEST(GivenIntrinsics, SecondRefinementRoundThroughTheFoundDistortion) {
+  const SyntheticScene scene = RadialLensScene();
+  MapperOptions options;
+  options.num_refinement_rounds = 2;
+  std::ostringstream progress;
+  const MapperResult result = RunMapper(scene.database, options, "synthetic", &progress);
+  ASSERT_EQ(result.reconstructions.size(), 1u);
+  const Reconstruction& model = result.reconstructions[0];
+  ASSERT_EQ(model.images.size(), scene.ground_truth.images.size());
+  EXPECT_NE(progress.str().find("round 2: "), std::string::npos) << progress.str();
+  EXPECT_NEAR(model.cameras.at(1).params[3], -0.15, 0.01);
   EXPECT_LT(Evaluate(model, scene).rotation_error_median_deg, 0.1);
 }
 

@@ -25,6 +25,8 @@ void MapperOptions::Check() const {
   CheckOption(max_focal_change_in_bundle_adjustment >= 0,
               "--Mapper.max_focal_change_in_bundle_adjustment", ">= 0",
               max_focal_change_in_bundle_adjustment);
+  CheckOption(num_refinement_rounds >= 1, "--BundleAdjustment.num_rounds", ">= 1",
+              num_refinement_rounds);
   CheckOption(calibration_num_points >= 0, "--Mapper.calibration_num_points", ">= 0",
               calibration_num_points);
 }

@@ -58,6 +58,11 @@ struct MapperOptions {
   // is the fast option, 3-10x quicker.
   bool refine = true;
   BundleAdjustmentOptions bundle_adjustment;
+  // Rounds of bundle adjustment, each followed by every track triangulated again. A second round
+  // gains nothing on nine of the ten benchmark databases (AUC@3 within 0.4) at 40-70% more BA
+  // time; on sceaux_castle, whose lens the given PINHOLE camera ignores, it gains 1.3-4.0 points
+  // (BENCHMARKS.md, "BA in rounds").
+  int num_refinement_rounds = 1;
   // After it, whether the data prove given intrinsics wrong (refine/given_intrinsics_test.h).
   GivenIntrinsicsTestOptions given_intrinsics_test;
   // When bundle adjustment moves a focal length by more than this fraction from the value

@@ -172,6 +172,16 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
   georegistration->summary.used_in_bundle_adjustment = use_priors;
   *reconstruction =
       TriangulateThrough(context, tracks, adjusted, "again with the refined poses", component);
+  for (int round = 1; round < options.num_refinement_rounds; ++round) {
+    std::map<uint32_t, Camera> cameras;
+    const ImageBearings bearings = BearingsThrough(context, *reconstruction, &cameras);
+    Reconstruction again = PointsForBundleAdjustment(*reconstruction, ba_options);
+    const BundleAdjustmentSummary summary =
+        BundleAdjust(bearings.bearings, bearings.focal_lengths_px, &again, ba_options, priors);
+    LogBundleAdjustment(context, summary, "round " + std::to_string(round + 1) + ": ");
+    *reconstruction =
+        TriangulateThrough(context, tracks, again, "again with the refined poses", component);
+  }
 }
 
 }  // namespace ramap

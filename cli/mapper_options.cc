@@ -330,6 +330,10 @@ void AddGivenIntrinsicsOptions(CLI::App& app, MapperOptions* o) {
                  "a freed focal length within this fraction of the given one confirms it")
       ->capture_default_str()
       ->check(AtLeast(0));
+  app.add_option("--BundleAdjustment.given_intrinsics_test_max_num_images", test.max_num_images,
+                 "images each step of the test adjusts at most, the middle run of ids (0: all)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--BundleAdjustment.given_intrinsics_test_num_points", test.num_points,
                  "points adjusted in each step of the test (0: all)")
       ->capture_default_str()
@@ -535,6 +539,7 @@ nlohmann::json BundleAdjustmentToJson(const MapperOptions& o) {
           {"given_intrinsics_test_min_rmse_decrease", o.given_intrinsics_test.min_rmse_decrease},
           {"given_intrinsics_test_focal_tolerance", o.given_intrinsics_test.focal_tolerance},
           {"given_intrinsics_test_num_points", o.given_intrinsics_test.num_points},
+          {"given_intrinsics_test_max_num_images", o.given_intrinsics_test.max_num_images},
           {"num_rounds", o.num_refinement_rounds},
           {"max_num_iterations", ba.max_num_iterations},
           {"loss_scale_px", ba.loss_scale_px},

@@ -5,7 +5,7 @@
 # more than 100 frames away; 3% of the pairs aliased, i.e. verified matches of a relative pose
 # 0-40 deg off; 2% outlier matches; landmarks on facades 8 m left and right of the road, seen
 # within 40 m; 4-column keypoints), then `ramap mapper`
-# (averaging alone, --Mapper.refine 0) and `ramap evaluate` against the drive's ground truth.
+# (averaging alone, --Mapper.refine 0, unless RAMAP_REFINE=1) and `ramap evaluate` against the drive's ground truth.
 # Prints one markdown table row per drive (stage times from summary.json, peak memory, ATE as a
 # share of the path, rotation error) and the log-log slopes of time and memory against frames.
 #
@@ -16,7 +16,8 @@
 #                                                view instead of on two facades)
 #
 # Scenes are cached under build/bench-scale (RAMAP_SCALE_DIR); RAMAP_DATA_DIR as elsewhere;
-# RAMAP_THREADS (default 2) is --Mapper.num_threads; RAMAP_MAPPER_ARGS, more mapper options (e.g.
+# RAMAP_THREADS (default 2) is --Mapper.num_threads; RAMAP_REFINE=1 adds bundle adjustment (the
+# default a new user gets); RAMAP_MAPPER_ARGS, more mapper options (e.g.
 # "--TranslationAveraging.irls_cost_tolerance 1e-3").
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -24,6 +25,7 @@ data_dir=${RAMAP_DATA_DIR:-$root/../shared/data}
 scale_dir=${RAMAP_SCALE_DIR:-$root/build/bench-scale}
 ramap=${RAMAP_BINARY:-$root/build/ramap}
 threads=${RAMAP_THREADS:-2}
+refine=${RAMAP_REFINE:-0}
 read -r -a extra_args <<<"${RAMAP_MAPPER_ARGS:-}"
 poses_dir=$data_dir/gt_trajectories/kitti_odometry_poses
 [[ -x $ramap ]] || { echo "bench_scale: $ramap not built (run scripts/build.sh)" >&2; exit 1; }
@@ -59,7 +61,7 @@ for run in "${runs[@]}"; do
   fi
   rm -rf "$scene/sparse" "$scene/eval.json"
   "$ramap" mapper --database_path "$scene/database.db" --output_path "$scene/sparse" \
-    --Mapper.refine 0 --Mapper.num_threads "$threads" "${extra_args[@]}" > "$scene/mapper.log"
+    --Mapper.refine "$refine" --Mapper.num_threads "$threads" "${extra_args[@]}" > "$scene/mapper.log"
   "$ramap" evaluate --model_path "$scene/sparse/0" --ground_truth "$scene/ground_truth.txt" \
     --ground_truth_format tum --database_path "$scene/database.db" \
     --output_path "$scene/eval.json" > /dev/null

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <set>
 
 #include "ramap/geometry/camera_distortion.h"
@@ -46,6 +47,32 @@ Camera WithGivenFocalLength(Camera camera, const Camera& given) {
     camera.params[2] = given.params[3];
   }
   return camera;
+}
+
+// `reconstruction` restricted to the middle run of `max_num_images` image ids (all when 0 or
+// fewer): the other images and their observations go, and the points left seen twice stay.
+Reconstruction MiddleImages(const Reconstruction& reconstruction, int max_num_images) {
+  const int num_images = static_cast<int>(reconstruction.images.size());
+  if (max_num_images <= 0 || num_images <= max_num_images) return reconstruction;
+  Reconstruction middle;
+  middle.cameras = reconstruction.cameras;
+  auto image = reconstruction.images.begin();
+  std::advance(image, (num_images - max_num_images) / 2);
+  for (int k = 0; k < max_num_images; ++k, ++image) middle.images.insert(*image);
+  for (const auto& [point3D_id, point] : reconstruction.points3D) {
+    Point3D kept = point;
+    kept.track.clear();
+    for (const TrackElement& element : point.track)
+      if (middle.images.count(element.image_id)) kept.track.push_back(element);
+    if (kept.track.size() >= 2) middle.points3D.emplace(point3D_id, std::move(kept));
+  }
+  for (auto& [image_id, image] : middle.images) {
+    for (Point2D& point2D : image.points2D) {
+      if (point2D.point3D_id != kInvalidPoint3DId && !middle.points3D.count(point2D.point3D_id))
+        point2D.point3D_id = kInvalidPoint3DId;
+    }
+  }
+  return middle;
 }
 
 // The groups of cameras BA shares intrinsics between whose given intrinsics it held, keyed by the
@@ -182,6 +209,7 @@ void GivenIntrinsicsTestOptions::Check() const {
               min_rmse_decrease);
   CheckOption(focal_tolerance >= 0, s + "focal_tolerance", ">= 0", focal_tolerance);
   CheckOption(num_points >= 0, s + "num_points", ">= 0", num_points);
+  CheckOption(max_num_images >= 0, s + "max_num_images", ">= 0", max_num_images);
 }
 
 bool ChangesIntrinsics(const GivenIntrinsicsTest& test) {
@@ -205,7 +233,11 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
   held.min_observations_per_image = std::min(held.min_observations_per_image, 50);
   held.max_reprojection_error_px = 1e9;
   Trials trials{
-      bearings, focal_lengths_px, groups, {}, PointsForBundleAdjustment(*reconstruction, held)};
+      bearings,
+      focal_lengths_px,
+      groups,
+      {},
+      PointsForBundleAdjustment(MiddleImages(*reconstruction, options.max_num_images), held)};
   std::map<uint32_t, Camera> given;
   for (const auto& [group, camera_ids] : groups) {
     given[group] = trials.start.cameras.at(group);

@@ -86,12 +86,8 @@ bool CalibrateOnSubset(const MapperContext& context, const std::vector<Track>& t
   const BundleAdjustmentOptions& ba = options.bundle_adjustment;
   const int num_points = options.calibration_num_points;
   const bool refines_focal =
-      ba.refine_focal_length &&
       std::any_of(reconstruction->cameras.begin(), reconstruction->cameras.end(),
-                  [&](const auto& entry) {
-                    return !(entry.second.has_prior_focal_length && ba.keep_prior_intrinsics) &&
-                           RefinesIntrinsics(ba, entry.second);
-                  });
+                  [&](const auto& entry) { return RefinesFocalLength(ba, entry.second); });
   if (!refines_focal || num_points == 0 ||
       static_cast<int>(reconstruction->points3D.size()) <= 2 * num_points) {
     return false;
@@ -127,11 +123,10 @@ void AdjustComponent(const MapperContext& context, const BundleAdjustmentOptions
   // The cameras the test changed have new bearings.
   std::map<uint32_t, Camera> cameras;
   const ImageBearings bearings = BearingsThrough(context, *adjusted, &cameras);
-  const double seconds = ba.seconds + test.seconds;
   const BundleAdjustmentSummary first = ba;
   ba = BundleAdjust(bearings.bearings, bearings.focal_lengths_px, adjusted, ba_options, priors);
   LogBundleAdjustment(context, ba, "again through the tested intrinsics: ");
-  ba.seconds += seconds;
+  ba.seconds += first.seconds + test.seconds;
   ba.num_filtered_observations += first.num_filtered_observations;
   for (const auto& [image_id, count] : first.filtered_per_image)
     ba.filtered_per_image[image_id] += count;

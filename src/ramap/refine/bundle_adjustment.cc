@@ -288,9 +288,8 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   // The slow valley is the focal length's: distortion alone converges at the ordinary tolerance.
   const bool refines_focal_length = std::any_of(
       reconstruction->cameras.begin(), reconstruction->cameras.end(), [&](const auto& entry) {
-        const std::vector<int> fixed = FixedIntrinsics(options, entry.second);
         return problem.HasParameterBlock(entry.second.params.data()) &&
-               (fixed.empty() || fixed.front() != 0);
+               RefinesFocalLength(options, entry.second);
       });
   const ceres::Solver::Options solver_options =
       SolverOptions(options, refines_focal_length, reconstruction->images.size());
@@ -377,6 +376,12 @@ bool RefinesIntrinsics(const BundleAdjustmentOptions& options, const Camera& cam
     default:
       return false;
   }
+}
+
+bool RefinesFocalLength(const BundleAdjustmentOptions& options, const Camera& camera) {
+  if (!RefinesIntrinsics(options, camera)) return false;
+  const std::vector<int> fixed = FixedIntrinsics(options, camera);
+  return fixed.empty() || fixed.front() != 0;
 }
 
 std::map<uint32_t, uint32_t> SharedIntrinsics(const BundleAdjustmentOptions& options,

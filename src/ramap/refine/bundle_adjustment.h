@@ -98,6 +98,8 @@ Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
 
 // Whether BundleAdjust refines some intrinsic parameter of `camera` under `options`.
 bool RefinesIntrinsics(const BundleAdjustmentOptions& options, const Camera& camera);
+// Whether it refines the focal length of `camera` (not held as given, a perspective model).
+bool RefinesFocalLength(const BundleAdjustmentOptions& options, const Camera& camera);
 
 // Each camera of `reconstruction` mapped to the one whose intrinsics it shares in BA (itself, or
 // the lowest id with the same model, size, parameters and prior flag), under `options`.

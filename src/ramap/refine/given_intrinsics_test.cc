@@ -79,15 +79,16 @@ Reconstruction MiddleImages(const Reconstruction& reconstruction, int max_num_im
 // camera that represents each.
 std::map<uint32_t, std::vector<uint32_t>> HeldGroups(const BundleAdjustmentOptions& ba,
                                                      const Reconstruction& reconstruction) {
-  BundleAdjustmentOptions every = ba;
-  every.keep_prior_intrinsics = false;
-  every.refine_focal_length = true;
   std::map<uint32_t, std::vector<uint32_t>> groups;
   if (!ba.keep_prior_intrinsics || !(ba.refine_focal_length || ba.refine_extra_params))
     return groups;
+  // Cameras whose focal length BA would refine, were it not given.
+  BundleAdjustmentOptions every = ba;
+  every.keep_prior_intrinsics = false;
+  every.refine_focal_length = true;
   for (const auto& [camera_id, shared_with] : SharedIntrinsics(ba, reconstruction)) {
     const Camera& camera = reconstruction.cameras.at(camera_id);
-    if (camera.has_prior_focal_length && RefinesIntrinsics(every, camera))
+    if (camera.has_prior_focal_length && RefinesFocalLength(every, camera))
       groups[shared_with].push_back(camera_id);
   }
   return groups;
@@ -166,7 +167,7 @@ bool ClearlyLower(double rmse, double reference, const GivenIntrinsicsTestOption
   return rmse <= (1.0 - options.min_rmse_decrease) * reference;
 }
 
-// Steps 1 and 2 of one group (keyed by `group`), judged: `freed` is its camera after step 2.
+// Steps 1 and 2 of one group of cameras, judged: `freed` is its camera after step 2.
 GivenIntrinsicsTest JudgeFreedIntrinsics(const std::vector<uint32_t>& camera_ids,
                                          const GroupError& held, const Camera& given,
                                          const Camera& freed, double freed_rmse_px,

@@ -10,18 +10,37 @@
 
 namespace ramap::cli {
 
-void MatchAndReport(FeatureDatabase* database, FeatureOptions* options) {
-  // The mode auto stands for, so that what follows (reconstruct's loop closure) knows it.
-  options->matching.mode = ResolveMatchingMode(options->matching, *database);
-  options->mode = MatchingModeName(options->matching.mode);
-  const MatchingSummary summary = MatchDatabase(database, options->matching, &std::cout);
+DatabaseMatchingSummary MatchAndReport(FeatureDatabase* database, FeatureOptions* options) {
+  const DatabaseMatchingSummary summary = MatchDatabase(database, options->matching, &std::cout);
+  options->matching.mode = summary.mode;
+  options->mode = MatchingModeName(summary.mode);
+  std::cout << std::fixed << std::setprecision(2) << "[ramap] matching plan: " << options->mode
+            << " (" << summary.reason << "): ";
+  if (summary.num_window_pairs > 0) std::cout << summary.num_window_pairs << " neighbour pairs, ";
+  std::cout << summary.num_guessed_pairs
+            << (summary.mode == MatchingMode::kSequential  ? " loop candidates"
+                : summary.mode == MatchingMode::kRetrieval ? " retrieved pairs"
+                                                           : " pairs");
+  if (summary.retrieval_seconds > 0)
+    std::cout << " (retrieval " << summary.retrieval_seconds << " s)";
+  std::cout << ", " << summary.num_screened_pairs << " kept by preemptive matching ("
+            << summary.screening_seconds << " s)\n";
   std::cout << "[ramap] matching: " << summary.num_verified_pairs << " of " << summary.num_pairs
-            << " pairs verified (" << options->mode;
-  if (summary.num_preemptive_pairs > 0) {
-    std::cout << ", " << summary.num_pairs << " of " << summary.num_preemptive_pairs
-              << " kept by preemptive matching";
-  }
-  std::cout << "), " << std::fixed << std::setprecision(2) << summary.seconds << " s\n";
+            << " pairs verified, " << summary.seconds << " s\n";
+  return summary;
+}
+
+nlohmann::json MatchingSummaryToJson(const DatabaseMatchingSummary& summary) {
+  return {{"mode", MatchingModeName(summary.mode)},
+          {"reason", summary.reason},
+          {"neighbour_pairs", summary.num_window_pairs},
+          {"guessed_pairs", summary.num_guessed_pairs},
+          {"guessed_pairs_kept_by_preemptive_matching", summary.num_screened_pairs},
+          {"pairs_matched", summary.num_pairs},
+          {"pairs_verified", summary.num_verified_pairs},
+          {"retrieval_seconds", summary.retrieval_seconds},
+          {"preemptive_matching_seconds", summary.screening_seconds},
+          {"seconds", summary.seconds}};
 }
 
 int RunMatcher(int argc, char** argv) {

@@ -51,7 +51,7 @@ int RunReconstruct(int argc, char** argv) {
   CreatedOutput created_database(database_path);
 
   FeatureDatabase database = ExtractAndReport(image_path, image_list, features);
-  MatchAndReport(&database, &features);
+  const DatabaseMatchingSummary matching = MatchAndReport(&database, &features);
   std::filesystem::create_directories(output_path);
   WriteColmapDatabase(database, database_path, features.generation);
   // EXIF GPS went into the database's prior positions (as COLMAP's ImageReader does).
@@ -71,6 +71,7 @@ int RunReconstruct(int argc, char** argv) {
       {"database_path", database_path},
       {"feature_type", features.type},
       {"matching_mode", features.mode},
+      {"matching", MatchingSummaryToJson(matching)},
       {"options", MapperOptionsToJson(mapper)},
       {"pose_priors", PosePriorOptionsToJson(prior_text, mapper.georegistration)},
       {"loop_closure", LoopClosureToJson(close_loops, closure_options, closed.closure)}};

@@ -35,7 +35,8 @@ void AddExtractionOptions(CLI::App& app, FeatureOptions* o) {
 void AddMatchingOptions(CLI::App& app, FeatureOptions* o) {
   app.add_option("--Matching.mode", o->mode,
                  "auto (exhaustive up to --Matching.auto_exhaustive_max_images images, else "
-                 "sequential for frame-numbered names)|sequential|exhaustive")
+                 "sequential for frame-numbered names, else retrieval)|sequential|exhaustive|"
+                 "retrieval")
       ->capture_default_str();
   app.add_option("--Matching.auto_exhaustive_max_images", o->matching.auto_exhaustive_max_images)
       ->capture_default_str()
@@ -44,6 +45,35 @@ void AddMatchingOptions(CLI::App& app, FeatureOptions* o) {
                  "sequential: each image with its next N")
       ->capture_default_str()
       ->check(AtLeast(1));
+  app.add_option("--Matching.loop_num_neighbors", o->matching.loop_num_neighbors,
+                 "sequential: each frame also with its N most similar frames (image retrieval) "
+                 "at least --Matching.loop_min_frame_gap frames away (0: none)")
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--Matching.loop_min_frame_gap", o->matching.loop_min_frame_gap)
+      ->capture_default_str()
+      ->check(AtLeast(0));
+  app.add_option("--Matching.retrieval_num_neighbors", o->matching.retrieval_num_neighbors,
+                 "retrieval: each image with its N most similar images")
+      ->capture_default_str()
+      ->check(AtLeast(1));
+  app.add_option("--Matching.retrieval_num_words", o->matching.retrieval.num_words,
+                 "visual words of the vocabulary trained on the images' own descriptors")
+      ->capture_default_str()
+      ->check(AtLeast(1));
+  app.add_option("--Matching.retrieval_max_features_per_image",
+                 o->matching.retrieval.max_features_per_image,
+                 "the largest-scale descriptors of an image that describe it for retrieval")
+      ->capture_default_str()
+      ->check(AtLeast(1));
+  app.add_option("--Matching.retrieval_max_training_descriptors",
+                 o->matching.retrieval.max_training_descriptors)
+      ->capture_default_str()
+      ->check(AtLeast(1));
+  app.add_option("--Matching.retrieval_num_kmeans_iterations",
+                 o->matching.retrieval.num_kmeans_iterations)
+      ->capture_default_str()
+      ->check(AtLeast(0));
   app.add_option("--Matching.max_ratio", o->matching.max_ratio)
       ->capture_default_str()
       ->check(NumberCheck(0, true, 1, false));

@@ -3,10 +3,12 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "ramap/features/feature_matching.h"
 #include "ramap/features/image_reader.h"
+#include "ramap/features/matching_plan.h"
 #include "ramap/scene/features.h"
 
 namespace ramap::cli {
@@ -31,7 +33,10 @@ void FinishFeatureOptions(FeatureOptions* options);
 // ExtractAndReport throws InputError when no image could be read.
 FeatureDatabase ExtractAndReport(const std::string& image_path, const std::string& image_list,
                                  const FeatureOptions& options);
-// Resolves --Matching.mode auto for `database` in `options` first.
-void MatchAndReport(FeatureDatabase* database, FeatureOptions* options);
+// Matches as --Matching.mode says and prints the plan and its counts; `options` is left with the
+// mode auto stood for, so that what follows (reconstruct's loop closure) knows it.
+DatabaseMatchingSummary MatchAndReport(FeatureDatabase* database, FeatureOptions* options);
+// The plan and its counts for summary.json.
+nlohmann::json MatchingSummaryToJson(const DatabaseMatchingSummary& summary);
 
 }  // namespace ramap::cli

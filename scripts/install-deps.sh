@@ -10,6 +10,7 @@ packages=(
   libeigen3-dev
   libopencv-dev               # feature extraction / matching for image-list input
   libsuitesparse-dev          # CHOLMOD for the sparse normal equations
+  libblas-dev                 # cblas.h: SGEMM for descriptor matching and image retrieval
   libopenblas0-pthread        # BLAS for CHOLMOD's dense kernels (Debian's alternatives pick it
                               # over ATLAS): translation averaging ~3x faster on 2 cores
   libgeographiclib-dev        # WGS84 <-> local frames

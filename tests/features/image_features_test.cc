@@ -9,6 +9,7 @@
 
 #include "ramap/features/feature_matching.h"
 #include "ramap/features/image_reader.h"
+#include "ramap/features/matching_plan.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/trajectory.h"
@@ -102,14 +103,15 @@ TEST(ImageFeatures, PreemptiveMatchingSkipsPairsThatShareNothing) {
   FeatureMatchingOptions matching;
   matching.mode = MatchingMode::kExhaustive;
   FeatureDatabase screened = database;
-  const MatchingSummary with = MatchDatabase(&screened, matching);
-  EXPECT_EQ(with.num_preemptive_pairs, 3);
+  const DatabaseMatchingSummary with = MatchDatabase(&screened, matching);
+  EXPECT_EQ(with.num_guessed_pairs, 3);
+  EXPECT_EQ(with.num_screened_pairs, 1);
   EXPECT_EQ(with.num_pairs, 1);
   EXPECT_TRUE(screened.matches.count(ImagePairToPairId(1, 2)));
   matching.preemptive_num_features = 0;
-  const MatchingSummary without = MatchDatabase(&database, matching);
+  const DatabaseMatchingSummary without = MatchDatabase(&database, matching);
   EXPECT_EQ(without.num_pairs, 3);
-  EXPECT_EQ(without.num_preemptive_pairs, 0);
+  EXPECT_EQ(without.num_screened_pairs, 3);
 }
 
 TEST(ImageFeatures, AwkwardFolderIsReportedNotFatal) {
@@ -162,8 +164,8 @@ TEST(ImageFeatures, TempleRingDatabaseIsRightAndColmapMapsIt) {
   ASSERT_EQ(summary.num_images, 10);
   FeatureMatchingOptions matching;
   matching.mode = MatchingMode::kExhaustive;
-  const MatchingSummary matched = MatchDatabase(&database, matching);
-  EXPECT_EQ(matched.num_preemptive_pairs, 45);
+  const DatabaseMatchingSummary matched = MatchDatabase(&database, matching);
+  EXPECT_EQ(matched.num_guessed_pairs, 45);
   EXPECT_LE(matched.num_pairs, 45);  // those preemptive matching kept
   EXPECT_GE(matched.num_verified_pairs, 15);
   const std::map<std::string, Rigid3d> truth = GroundTruthByImageName(

@@ -6,8 +6,8 @@
 
 #include <random>
 
-#include "ramap/features/feature_matching.h"
 #include "ramap/features/image_reader.h"
+#include "ramap/features/matching_plan.h"
 #include "ramap/geometry/alignment.h"
 #include "ramap/geometry/geodetic.h"
 #include "ramap/io/colmap_database.h"

@@ -1,155 +1,30 @@
 #include "ramap/features/feature_matching.h"
 
 #include <Eigen/Core>
-#include <cfloat>
-#include <cstring>
 #include <map>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
-#include <opencv2/features2d.hpp>
+#include <optional>
 #include <set>
 
 #include "ramap/geometry/camera_projection.h"
 #include "ramap/geometry/pair_correspondences.h"
 #include "ramap/geometry/relative_pose.h"
-#include "ramap/scene/image_order.h"
+#include "ramap/util/blas_threads.h"
 #include "ramap/util/error.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/parallel.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
-namespace {
-
-cv::Mat AsMat(const Descriptors& descriptors) {
-  cv::Mat bytes(static_cast<int>(descriptors.size()), descriptors.num_cols, CV_8U,
-                const_cast<uint8_t*>(descriptors.data.data()));
-  if (descriptors.num_cols == 32) return bytes;  // binary (ORB): Hamming on the bytes
-  cv::Mat floats;
-  bytes.convertTo(floats, CV_32F);
-  return floats;
-}
-
-// The matches that pass the ratio test (nearest < max_ratio * second nearest) and, if asked, the
-// cross check (row i of 1 is also the nearest of its match in 2), from the nearest neighbours found
-// in one pass over the distance matrix; `ratios` gets nearest / second nearest of each.
-template <typename Distance>
-std::vector<FeatureMatch> AcceptMatches(const std::vector<int>& best2,
-                                        const std::vector<Distance>& first2,
-                                        const std::vector<Distance>& second2,
-                                        const std::vector<int>& best1,
-                                        const FeatureMatchingOptions& options,
-                                        std::vector<float>* ratios) {
-  std::vector<FeatureMatch> matches;
-  for (size_t i = 0; i < best2.size(); ++i) {
-    // Passing the test makes second2[i] > 0.
-    if (!(first2[i] < options.max_ratio * second2[i])) continue;
-    if (options.cross_check && best1[best2[i]] != static_cast<int>(i)) continue;
-    matches.push_back({static_cast<uint32_t>(i), static_cast<uint32_t>(best2[i])});
-    if (ratios != nullptr) ratios->push_back(static_cast<float>(first2[i]) / second2[i]);
-  }
-  return matches;
-}
-
-// Brute-force Hamming matching of 256-bit descriptors in one pass over the distance matrix: the two
-// nearest neighbours of every row of 1 (ratio test) and the nearest row of 1 for every row of 2
-// (cross check) at once. About 4x faster than two OpenCV knnMatch calls on ORB's 32 bytes.
-std::vector<FeatureMatch> MatchBinaryDescriptors(const Descriptors& descriptors1,
-                                                 const Descriptors& descriptors2,
-                                                 const FeatureMatchingOptions& options,
-                                                 std::vector<float>* ratios) {
-  const size_t n1 = descriptors1.size(), n2 = descriptors2.size();
-  if (n1 == 0 || n2 < 2) return {};
-  auto words = [](const Descriptors& d) {
-    std::vector<uint64_t> w(d.size() * 4);
-    std::memcpy(w.data(), d.data.data(), d.data.size());
-    return w;
-  };
-  const std::vector<uint64_t> w1 = words(descriptors1), w2 = words(descriptors2);
-  std::vector<int> best2(n1), first2(n1), second2(n1);
-  std::vector<int> best1(n2, -1), best1_distance(n2, 257);
-  for (size_t i = 0; i < n1; ++i) {
-    const uint64_t* a = &w1[4 * i];
-    int first = 257, second = 257, first_j = -1;
-    for (size_t j = 0; j < n2; ++j) {
-      const uint64_t* b = &w2[4 * j];
-      const int d = __builtin_popcountll(a[0] ^ b[0]) + __builtin_popcountll(a[1] ^ b[1]) +
-                    __builtin_popcountll(a[2] ^ b[2]) + __builtin_popcountll(a[3] ^ b[3]);
-      if (d < first) {
-        second = first, first = d, first_j = static_cast<int>(j);
-      } else if (d < second) {
-        second = d;
-      }
-      if (d < best1_distance[j]) best1_distance[j] = d, best1[j] = static_cast<int>(i);
-    }
-    best2[i] = first_j, first2[i] = first, second2[i] = second;
-  }
-  return AcceptMatches(best2, first2, second2, best1, options, ratios);
-}
-
-// The descriptors of an image's `count` largest-scale keypoints (keypoint column 3 is the scale;
-// all of them when there is no scale column or fewer keypoints).
-Descriptors LargestScaleDescriptors(const Keypoints& keypoints, const Descriptors& descriptors,
-                                    int count) {
-  const size_t n = std::min(keypoints.size(), descriptors.size());
-  if (keypoints.num_cols < 3 || static_cast<int>(n) <= count) return descriptors;
-  std::vector<size_t> order(n);
-  for (size_t k = 0; k < n; ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return keypoints.data[a * keypoints.num_cols + 2] > keypoints.data[b * keypoints.num_cols + 2];
-  });
-  Descriptors subset;
-  subset.num_cols = descriptors.num_cols;
-  for (int k = 0; k < count; ++k) {
-    const auto row = descriptors.data.begin() + order[k] * descriptors.num_cols;
-    subset.data.insert(subset.data.end(), row, row + descriptors.num_cols);
-  }
-  return subset;
-}
-
-// The same single pass for float descriptors (SIFT): squared L2 distances of a block of rows of 1
-// against every row of 2 by OpenCV's vectorised batchDistance, the two nearest per row and the
-// nearest per column taken from it. Half the work of two knnMatch calls (each direction would
-// compute the whole distance matrix again).
-std::vector<FeatureMatch> MatchFloatDescriptors(const cv::Mat& d1, const cv::Mat& d2,
-                                                const FeatureMatchingOptions& options,
-                                                std::vector<float>* ratios) {
-  const int n1 = d1.rows, n2 = d2.rows;
-  if (n1 == 0 || n2 < 2) return {};
-  constexpr int kBlockRows = 256;  // a 256 x 4000 float block (4 MB) stays in cache
-  std::vector<int> best2(n1), best1(n2, -1);
-  std::vector<float> first2(n1), second2(n1), best1_distance(n2, FLT_MAX);
-  cv::Mat distances;
-  for (int begin = 0; begin < n1; begin += kBlockRows) {
-    const int end = std::min(n1, begin + kBlockRows);
-    cv::batchDistance(d1.rowRange(begin, end), d2, distances, CV_32F, cv::noArray(),
-                      cv::NORM_L2SQR);
-    for (int i = begin; i < end; ++i) {
-      const float* row = distances.ptr<float>(i - begin);
-      float first = FLT_MAX, second = FLT_MAX;
-      int first_j = -1;
-      for (int j = 0; j < n2; ++j) {
-        const float d = row[j];
-        if (d < first) {
-          second = first, first = d, first_j = j;
-        } else if (d < second) {
-          second = d;
-        }
-        if (d < best1_distance[j]) best1_distance[j] = d, best1[j] = i;
-      }
-      best2[i] = first_j, first2[i] = std::sqrt(first), second2[i] = std::sqrt(second);
-    }
-  }
-  return AcceptMatches(best2, first2, second2, best1, options, ratios);
-}
-
-}  // namespace
 
 MatchingMode MatchingModeFromName(const std::string& name) {
   if (name == "auto") return MatchingMode::kAuto;
   if (name == "sequential") return MatchingMode::kSequential;
   if (name == "exhaustive") return MatchingMode::kExhaustive;
-  throw InputError("--Matching.mode", "'" + name + "' is not auto, sequential or exhaustive");
+  if (name == "retrieval") return MatchingMode::kRetrieval;
+  throw InputError("--Matching.mode",
+                   "'" + name + "' is not auto, sequential, exhaustive or retrieval");
 }
 
 std::string MatchingModeName(MatchingMode mode) {
@@ -160,19 +35,10 @@ std::string MatchingModeName(MatchingMode mode) {
       return "sequential";
     case MatchingMode::kExhaustive:
       return "exhaustive";
+    case MatchingMode::kRetrieval:
+      return "retrieval";
   }
   return "auto";
-}
-
-MatchingMode ResolveMatchingMode(const FeatureMatchingOptions& options,
-                                 const FeatureDatabase& database) {
-  if (options.mode != MatchingMode::kAuto) return options.mode;
-  if (static_cast<int>(database.images.size()) <= options.auto_exhaustive_max_images) {
-    return MatchingMode::kExhaustive;
-  }
-  std::vector<std::string> names;
-  for (const auto& [id, image] : database.images) names.push_back(image.name);
-  return LooksSequential(names) ? MatchingMode::kSequential : MatchingMode::kExhaustive;
 }
 
 void FeatureMatchingOptions::Check() const {
@@ -188,18 +54,18 @@ void FeatureMatchingOptions::Check() const {
   CheckOption(preemptive_min_matches >= 1, "--Matching.preemptive_min_matches", ">= 1",
               preemptive_min_matches);
   CheckOption(num_threads >= 1, "--Matching.num_threads", ">= 1", num_threads);
+  CheckOption(loop_num_neighbors >= 0, "--Matching.loop_num_neighbors", ">= 0", loop_num_neighbors);
+  CheckOption(loop_min_frame_gap >= 0, "--Matching.loop_min_frame_gap", ">= 0", loop_min_frame_gap);
+  CheckOption(retrieval_num_neighbors >= 1, "--Matching.retrieval_num_neighbors", ">= 1",
+              retrieval_num_neighbors);
+  retrieval.Check();
 }
 
 std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,
                                            const Descriptors& descriptors2,
                                            const FeatureMatchingOptions& options,
                                            std::vector<float>* ratios) {
-  std::vector<FeatureMatch> matches;
-  if (ratios != nullptr) ratios->clear();
-  if (descriptors1.num_cols != descriptors2.num_cols) return matches;
-  if (descriptors1.num_cols == 32)
-    return MatchBinaryDescriptors(descriptors1, descriptors2, options, ratios);
-  return MatchFloatDescriptors(AsMat(descriptors1), AsMat(descriptors2), options, ratios);
+  return MatchDescriptors(descriptors1, descriptors2, options.descriptor_matching(), ratios);
 }
 
 namespace {
@@ -328,32 +194,6 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
   return geometry;
 }
 
-MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOptions& options,
-                              std::ostream* progress) {
-  options.Check();
-  Timer timer;
-  const MatchingMode mode = ResolveMatchingMode(options, *database);
-  const std::vector<uint32_t> ordered = ImageIdsInCaptureOrder(*database);
-  std::vector<std::pair<uint32_t, uint32_t>> pairs;
-  for (size_t a = 0; a < ordered.size(); ++a) {
-    const size_t last = mode == MatchingMode::kExhaustive
-                            ? ordered.size()
-                            : std::min(ordered.size(), a + 1 + options.overlap);
-    for (size_t b = a + 1; b < last; ++b) {
-      pairs.emplace_back(std::min(ordered[a], ordered[b]), std::max(ordered[a], ordered[b]));
-    }
-  }
-  const int num_screened = static_cast<int>(pairs.size());
-  const bool preemptive = mode == MatchingMode::kExhaustive && options.preemptive_num_features > 0;
-  if (preemptive) pairs = ScreenPairsPreemptively(*database, pairs, options, progress);
-  database->matches.clear();
-  database->two_view_geometries.clear();
-  MatchingSummary summary = MatchImagePairs(database, pairs, options, progress);
-  if (preemptive) summary.num_preemptive_pairs = num_screened;
-  summary.seconds = timer.ElapsedSeconds();
-  return summary;
-}
-
 std::vector<std::pair<uint32_t, uint32_t>> ScreenPairsPreemptively(
     const FeatureDatabase& database, const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
     const FeatureMatchingOptions& options, std::ostream* progress) {
@@ -369,6 +209,8 @@ std::vector<std::pair<uint32_t, uint32_t>> ScreenPairsPreemptively(
                                       options.preemptive_num_features);
   }
   std::vector<char> keep(pairs.size(), 0);
+  std::optional<SingleBlasThread> single_blas_thread;
+  if (options.num_threads > 1) single_blas_thread.emplace();
   ParallelFor(
       pairs.size(), options.num_threads,
       [&](size_t k) {
@@ -406,6 +248,9 @@ MatchingSummary MatchImagePairs(FeatureDatabase* database,
   std::vector<std::vector<FeatureMatch>> matches(pairs.size());
   std::vector<std::vector<float>> ratios(pairs.size());
   std::vector<TwoViewGeometry> geometries(pairs.size());
+  // Pairs run in parallel; each one's matrix products on one BLAS thread.
+  std::optional<SingleBlasThread> single_blas_thread;
+  if (options.num_threads > 1) single_blas_thread.emplace();
   ParallelFor(
       pairs.size(), options.num_threads,
       [&](size_t k) {

@@ -9,30 +9,42 @@
 #include <utility>
 #include <vector>
 
+#include "ramap/features/descriptor_matching.h"
+#include "ramap/features/image_retrieval.h"
 #include "ramap/scene/features.h"
 
 namespace ramap {
 
+// Which pairs are matched (matching_plan.h).
 enum class MatchingMode {
-  kAuto,        // exhaustive for small collections, sequential for long sequences
-  kSequential,  // each image with the next `overlap` in capture order
+  kAuto,        // exhaustive for small collections; sequential for frame-numbered names; else
+                // retrieval
+  kSequential,  // a video: each frame with the next `overlap`, plus loop candidates by retrieval
   kExhaustive,  // every pair (screened preemptively)
+  kRetrieval,   // each image with its `retrieval_num_neighbors` most similar (screened)
 };
 
-// "auto", "sequential" or "exhaustive"; throws InputError naming --Matching.mode otherwise.
+// "auto", "sequential", "exhaustive" or "retrieval"; throws InputError naming --Matching.mode
+// otherwise.
 MatchingMode MatchingModeFromName(const std::string& name);
 std::string MatchingModeName(MatchingMode mode);
 
 struct FeatureMatchingOptions {
   MatchingMode mode = MatchingMode::kAuto;
-  // Auto mode: exhaustive up to this many images (COLMAP's automatic reconstructor also matches
-  // small collections exhaustively: it finds every overlapping pair, whatever the order of the
-  // photos), beyond it sequential when the names are frame numbers of one sequence, else
-  // exhaustive.
-  int auto_exhaustive_max_images = 200;
+  // Auto mode: exhaustive up to this many images (every overlapping pair is found, whatever the
+  // order of the photos, and 50 images are 1225 pairs, about what retrieval's neighbours would
+  // cost); beyond it sequential when the names are frame numbers of one sequence, else retrieval.
+  int auto_exhaustive_max_images = 50;
   // Sequential mode: each image is matched with the next `overlap` images in capture order
-  // (COLMAP's SequentialMatching.overlap default, 10).
+  // (COLMAP's SequentialMatching.overlap default, 10), and with its `loop_num_neighbors` most
+  // similar images at least `loop_min_frame_gap` frames away (image retrieval; 0: none), so that
+  // a revisit is matched before the mapper runs.
   int overlap = 10;
+  int loop_num_neighbors = 2;
+  int loop_min_frame_gap = 50;
+  // Retrieval mode: each image with its `retrieval_num_neighbors` most similar images.
+  int retrieval_num_neighbors = 30;
+  ImageRetrievalOptions retrieval;
   // Lowe's ratio test and mutual nearest neighbours (COLMAP's SiftMatching defaults: 0.8, on).
   double max_ratio = 0.8;
   bool cross_check = true;
@@ -42,20 +54,18 @@ struct FeatureMatchingOptions {
   double confidence = 0.999;
   // Pairs with fewer inliers get no two-view geometry (COLMAP's min_num_inliers, 15).
   int min_num_inliers = 15;
-  // Exhaustive mode: preemptive matching (Wu, "Towards Linear-time Incremental Structure from
-  // Motion", 3DV 2013): the preemptive_num_features largest-scale features of two images are
-  // matched first, and only pairs with at least preemptive_min_matches among them are matched in
-  // full. Wu's values, 100 and 4. 0 features: every pair in full.
+  // Pairs that are guessed (exhaustive, retrieval, loop candidates): preemptive matching (Wu,
+  // "Towards Linear-time Incremental Structure from Motion", 3DV 2013): the preemptive_num_features
+  // largest-scale features of two images are matched first, and only pairs with at least
+  // preemptive_min_matches among them are matched in full. Wu's values, 100 and 4. 0 features:
+  // every pair in full.
   int preemptive_num_features = 100;
   int preemptive_min_matches = 4;
   int num_threads = 2;
 
+  DescriptorMatchingOptions descriptor_matching() const { return {max_ratio, cross_check}; }
   void Check() const;  // throws InputError naming the option
 };
-
-// The mode `options.mode` means for `database`: kAuto resolved, the others as they are.
-MatchingMode ResolveMatchingMode(const FeatureMatchingOptions& options,
-                                 const FeatureDatabase& database);
 
 // Putative matches of two descriptor sets (Hamming distance for 32-byte binary descriptors, L2
 // otherwise), after the ratio test and, if asked, the cross check. With `ratios`, also each
@@ -78,17 +88,9 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
 
 struct MatchingSummary {
   int num_pairs = 0;             // pairs matched in full
-  int num_preemptive_pairs = 0;  // exhaustive: pairs screened by preemptive matching
   int num_verified_pairs = 0;    // pairs with a two-view geometry
   double seconds = 0.0;
 };
-
-// Matches the pairs `options.mode` chooses among database.images (descriptors must be present;
-// exhaustive mode screens every pair preemptively first) and stores their matches and verified
-// geometries in `database`, replacing earlier ones. With
-// `progress`, one line counts the pairs done in tens of percent.
-MatchingSummary MatchDatabase(FeatureDatabase* database, const FeatureMatchingOptions& options,
-                              std::ostream* progress = nullptr);
 
 // The pairs worth matching in full: those whose preemptive_num_features largest-scale features
 // give at least preemptive_min_matches matches (see FeatureMatchingOptions).

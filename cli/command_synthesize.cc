@@ -12,6 +12,7 @@
 #include "ramap/io/colmap_database_schema.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/trajectory.h"
+#include "ramap/synthetic/synthetic_descriptors.h"
 #include "ramap/synthetic/synthetic_scene.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
@@ -65,6 +66,16 @@ int RunSynthesize(int argc, char** argv) {
   app.add_option("--Database.generation", generation_name,
                  "schema of the database: 3.8 (every COLMAP reads it) | 3.10 | 4 (3.12-4.x)")
       ->capture_default_str();
+  bool with_descriptors = false;
+  SyntheticDescriptorOptions descriptor_options;
+  app.add_option("--Synthetic.descriptors", with_descriptors,
+                 "1: SIFT-like descriptors for every keypoint (one per 3D point, noisy per view), "
+                 "so that ramap matcher can match the database again")
+      ->capture_default_str();
+  app.add_option("--Synthetic.descriptor_noise", descriptor_options.noise_sigma,
+                 "noise of a view's descriptor values (SIFT's scale: norm 512)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   if (const auto exit_code = ParseOptions(app, argc, argv)) return *exit_code;
   const DatabaseGeneration generation =
       DatabaseGenerationFromName(generation_name, "--Database.generation");
@@ -72,7 +83,11 @@ int RunSynthesize(int argc, char** argv) {
   CheckFolderOutput("--output_path", output_path, {text.trajectory_path});
   CheckNewDatabasePath("--output_path", output_path + "/database.db", {text.trajectory_path});
 
-  const SyntheticScene scene = BuildSyntheticScene(options);
+  SyntheticScene scene = BuildSyntheticScene(options);
+  if (with_descriptors) {
+    descriptor_options.seed = options.seed;
+    AddSyntheticDescriptors(descriptor_options, &scene);
+  }
   // Removed again if writing fails or is interrupted.
   CreatedOutput created(output_path);
   CreatedOutput created_database(output_path + "/database.db");

@@ -65,6 +65,9 @@ void AddDriveOptions(CLI::App& app, SyntheticSceneOptions* options) {
                  "columns per stored keypoint: 2 (x, y), 4 (+ scale, orientation), 6 (+ affine "
                  "shape)")
       ->capture_default_str();
+  app.add_option("--Synthetic.photo_names", options->photo_names,
+                 "1: images named as unordered photos (photo_kqzb.jpg), not frame numbers")
+      ->capture_default_str();
 }
 
 }  // namespace

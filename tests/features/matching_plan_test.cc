@@ -71,6 +71,29 @@ TEST(DescriptorMatching, MatrixProductEqualsTheDistanceLoop) {
   }
 }
 
+// Preemptive matching's features are the largest in scale however the keypoints store it: a
+// scale column, or an affine shape whose a11 is negative when the feature points left.
+TEST(DescriptorMatching, PreemptiveFeaturesAreTheLargestWhateverTheKeypointColumns) {
+  Descriptors descriptors;
+  descriptors.num_cols = 128;
+  for (int k = 0; k < 4; ++k) descriptors.data.insert(descriptors.data.end(), 128, k);
+  const std::vector<float> scales = {2, 9, 1, 5};  // rows 1 and 3 are the largest
+  Keypoints with_scale, affine, plain;
+  with_scale.num_cols = 4, affine.num_cols = 6, plain.num_cols = 2;
+  for (const float scale : scales) {
+    with_scale.data.insert(with_scale.data.end(), {0, 0, scale, 0.3f});
+    affine.data.insert(affine.data.end(), {0, 0, -scale, 0, 0, -scale});  // turned by 180 deg
+    plain.data.insert(plain.data.end(), {0, 0});
+  }
+  for (const Keypoints* keypoints : {&with_scale, &affine}) {
+    const Descriptors top = LargestScaleDescriptors(*keypoints, descriptors, 2);
+    ASSERT_EQ(top.size(), 2u);
+    EXPECT_EQ(top.data[0], 1);
+    EXPECT_EQ(top.data[128], 3);
+  }
+  EXPECT_EQ(LargestScaleDescriptors(plain, descriptors, 2).size(), 2u);  // an even subset
+}
+
 TEST(MatchingPlan, FrameNumberedVideoTakesTheSequentialPlan) {
   const SyntheticScene scene = SceneWithDescriptors(Drive(80, 1));
   FeatureMatchingOptions options;

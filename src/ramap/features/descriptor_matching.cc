@@ -202,12 +202,23 @@ std::vector<FeatureMatch> MatchDescriptorsByLoop(const Descriptors& descriptors1
 Descriptors LargestScaleDescriptors(const Keypoints& keypoints, const Descriptors& descriptors,
                                     int count) {
   const size_t n = std::min(keypoints.size(), descriptors.size());
-  if (keypoints.num_cols < 3 || static_cast<int>(n) <= count) return descriptors;
+  if (static_cast<int>(n) <= count) return descriptors;
+  // The scale: column 3 of x, y, scale, orientation; the square root of the affine shape's
+  // determinant (COLMAP's x, y, a11, a12, a21, a22). Without either, an even subset.
+  const int cols = keypoints.num_cols;
+  std::vector<float> scales(n, 0.0f);
+  for (size_t k = 0; k < n && (cols == 4 || cols == 6); ++k) {
+    const float* row = &keypoints.data[k * cols];
+    scales[k] = cols == 4 ? row[2] : std::sqrt(std::abs(row[2] * row[5] - row[3] * row[4]));
+  }
   std::vector<size_t> order(n);
   for (size_t k = 0; k < n; ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return keypoints.data[a * keypoints.num_cols + 2] > keypoints.data[b * keypoints.num_cols + 2];
-  });
+  if (cols == 4 || cols == 6) {
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return scales[a] > scales[b]; });
+  } else {
+    for (int k = 0; k < count; ++k) order[k] = k * n / count;
+  }
   Descriptors subset;
   subset.num_cols = descriptors.num_cols;
   for (int k = 0; k < count; ++k) {

@@ -33,9 +33,9 @@ std::vector<FeatureMatch> MatchDescriptorsByLoop(const Descriptors& descriptors1
                                                  const DescriptorMatchingOptions& options,
                                                  std::vector<float>* ratios = nullptr);
 
-// The descriptors of an image's `count` largest-scale keypoints (keypoint column 3 is the scale):
-// the features most likely to be seen again from further away or closer. All of them when there is
-// no scale column or no more than `count` keypoints.
+// The descriptors of an image's `count` largest-scale keypoints: the features most likely to be
+// seen again from further away or closer. All of them when there are no more than `count`; an even
+// subset when the keypoints have no scale (two columns).
 Descriptors LargestScaleDescriptors(const Keypoints& keypoints, const Descriptors& descriptors,
                                     int count);
 

@@ -250,6 +250,21 @@ std::string FrameName(size_t index) {
   return name;
 }
 
+// Names without a frame number: four letters, from a random permutation of the images.
+std::vector<std::string> PhotoNames(size_t count, uint64_t seed) {
+  std::vector<size_t> order(count);
+  for (size_t k = 0; k < count; ++k) order[k] = k;
+  std::shuffle(order.begin(), order.end(), Rng(seed ^ 0x9407015ull));
+  std::vector<std::string> names;
+  for (const size_t k : order) {
+    std::string letters;
+    for (size_t rest = k, n = 0; n < 4; ++n, rest /= 26)
+      letters += static_cast<char>('a' + rest % 26);
+    names.push_back("photo_" + letters + ".jpg");
+  }
+  return names;
+}
+
 void CheckPositive(double value, const char* option) {
   if (!(value > 0.0) || !std::isfinite(value)) {
     throw InputError(std::string("Synthetic.") + option,
@@ -277,6 +292,9 @@ void CheckViewAndAliasingOptions(const SyntheticSceneOptions& o) {
         o.aliased_max_angle_deg <= 180.0)) {
     throw InputError("Synthetic.aliased_min_angle_deg",
                      "must satisfy 0 <= aliased_min_angle_deg <= aliased_max_angle_deg <= 180");
+  }
+  if (o.photo_names && o.num_images > 26 * 26 * 26 * 26) {
+    throw InputError("Synthetic.photo_names", "names at most 456976 images (four letters)");
   }
   if (o.aliased_max_frame_gap < 0) {
     throw InputError("Synthetic.aliased_max_frame_gap", "must be >= 0 (0: any two frames)");
@@ -781,11 +799,13 @@ void AddImages(const SyntheticSceneOptions& options, const std::vector<Rigid3d>&
                SceneObservations* seen, SyntheticScene* scene) {
   // Its own stream, so that the keypoints' shapes leave the rest of the scene as it was.
   Rng shape_rng(options.seed ^ 0x5eed5ba9e5ull);
+  const std::vector<std::string> photo_names =
+      options.photo_names ? PhotoNames(poses.size(), options.seed) : std::vector<std::string>();
   for (size_t i = 0; i < poses.size(); ++i) {
     const uint32_t image_id = static_cast<uint32_t>(i + 1);
     Image image;
     image.image_id = image_id;
-    image.name = FrameName(i);
+    image.name = options.photo_names ? photo_names[i] : FrameName(i);
     image.camera_id = CameraIdOf(options, i);
     scene->database.images[image_id] = image;
 

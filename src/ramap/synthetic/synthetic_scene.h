@@ -102,6 +102,10 @@ struct SyntheticSceneOptions {
   // databases hold SIFT) or 6 (x, y and an affine shape, as COLMAP writes SIFT). The extra
   // columns are random and do not change the scene.
   int keypoint_columns = 2;
+  // Images named as unordered photos are ("photo_kqzb.jpg": letters from a random permutation of
+  // the frames, no frame number) instead of frame_000001.png...: a collection, for the matching
+  // plans that must not take it for a video.
+  bool photo_names = false;
   // Aliased pairs, as repetitive structure (facades, fences) gives: two frames that are not
   // matched by the layout get verified matches consistent with a relative pose whose rotation is
   // aliased_min_angle_deg to aliased_max_angle_deg off the true one (about a random axis). Their
@@ -136,7 +140,8 @@ struct SyntheticSceneOptions {
 };
 
 struct SyntheticScene {
-  // One camera (id 1; two with second_camera), images 1..N named frame_000001.png... in order,
+  // One camera (id 1; two with second_camera), images 1..N named frame_000001.png... in order
+  // (or photo names),
   // keypoints (float32 x, y), raw matches (true and wrong, shuffled) and two-view geometries
   // (config CALIBRATED, inlier_matches the true matches, E, F, cam2_from_cam1 with unit
   // translation) for pairs with image_id1 < image_id2. No descriptors.

@@ -15,7 +15,9 @@
 # model and parameters given and nothing else: one camera per image, each tool's defaults (COLMAP's
 # mapper refines every focal length), ramap with its defaults only; the focal length column gives
 # the written focal length furthest from the calibration.
-# Every mode matches as the data set says (exhaustive, or sequential for kitti07_first160).
+# COLMAP matches as its documentation advises for the data set (exhaustive, or sequential for
+# kitti07_first160); ramap chooses its own plan (--Matching.mode auto). The last column splits
+# each run's time into feature extraction, matching and the rest (mapper, loop closure).
 # Settings: RAMAP_DATA_DIR (default ../shared/data), RAMAP_BENCH_DIR (default build/bench),
 # RAMAP_MAX_IMAGE_SIZE (COLMAP's SIFT, default 1600, ramap's default too),
 # RAMAP_MAX_NUM_FEATURES (ramap with known intrinsics, default 4000).
@@ -35,26 +37,26 @@ source "$root/scripts/datasets/list.sh"
 names=("$@")
 ((${#names[@]})) || names=(templeRing kitti07_first160)
 
-seconds_of() {  # runs "$@" quietly, prints its wall time in seconds (or "failed")
+seconds_of() {  # runs "$@" with its output in $log, prints its wall time in seconds (or "failed")
   local start end
   start=$(date +%s%N)
-  if ! "$@" >/dev/null 2>&1; then echo failed; return 0; fi
+  if ! "$@" >"${log:-/dev/null}" 2>&1; then echo failed; return 0; fi
   end=$(date +%s%N)
   awk -v a="$start" -v b="$end" 'BEGIN { printf "%.1f", (b - a) / 1e9 }'
 }
 
-row() {  # name variant seconds model database (the data set's $params and $camera_model)
+row() {  # name variant seconds model database stages (the data set's $params and $camera_model)
   local model=$4 report=$bench_dir/$1/$(echo "$2" | tr -c 'a-zA-Z0-9' _).eval.json
   if [[ ! -f $model/images.bin ]]; then
-    echo "| $1 | $2 | failed | | | | | $3 |"
+    echo "| $1 | $2 | failed | | | | | $3 | |"
     return
   fi
   "$ramap" evaluate --model_path "$model" --ground_truth "$data_dir/$gt" \
     --ground_truth_format "$gt_format" --database_path "$5" --output_path "$report" >/dev/null
   python3 - "$report" "$1" "$2" "$3" "$model/cameras.bin" "$params" "$camera_model" \
-    "$intrinsics" <<'PY'
+    "$intrinsics" "$6" <<'PY'
 import json, struct, sys
-report, name, variant, seconds, cameras, known, known_model, intrinsics = sys.argv[1:9]
+report, name, variant, seconds, cameras, known, known_model, intrinsics, stages = sys.argv[1:10]
 r = json.load(open(report))
 auc = r["relative"]["auc_by_threshold_deg"]
 cells = [name, variant]
@@ -76,15 +78,15 @@ if intrinsics != "known":
 cells += [f"{r['num_registered']} / {r['num_images']}", f"{100 * auc['1']:.1f}",
           f"{100 * auc['3']:.1f}", f"{100 * auc['5']:.1f}",
           f"{r['rotation_error_deg']['median']:.3f}",
-          f"{100 * r['ate']['rmse_over_path_length']:.2f}%", seconds]
+          f"{100 * r['ate']['rmse_over_path_length']:.2f}%", seconds, stages]
 print("| " + " | ".join(cells) + " |")
 PY
 }
 
 focal_header="" && focal_rule=""
 [[ $intrinsics == known ]] || { focal_header=" focal error |" && focal_rule=" --- |"; }
-echo "| data set | pipeline |$focal_header registered | AUC@1 | AUC@3 | AUC@5 | rot. err. median (deg) | ATE / path | images to model (s) |"
-echo "| --- | --- |$focal_rule --- | --- | --- | --- | --- | --- | --- |"
+echo "| data set | pipeline |$focal_header registered | AUC@1 | AUC@3 | AUC@5 | rot. err. median (deg) | ATE / path | images to model (s) | features / matching / mapper (s) |"
+echo "| --- | --- |$focal_rule --- | --- | --- | --- | --- | --- | --- | --- |"
 for entry in "${RAMAP_DATASETS[@]}"; do
   IFS='|' read -r name images camera_model params matcher gt gt_format <<<"$entry"
   [[ " ${names[*]} " == *" $name "* ]] || continue
@@ -111,31 +113,41 @@ for entry in "${RAMAP_DATASETS[@]}"; do
       --FeatureExtraction.max_num_features "$max_num_features"
       --FeatureExtraction.max_image_size "$max_image_size")
   fi
-  colmap_pipeline() {
-    colmap feature_extractor --database_path "$out/colmap.db" --image_path "$out/images" \
-      "${colmap_camera[@]}" --SiftExtraction.use_gpu 0 \
-      --SiftExtraction.max_image_size "$max_image_size" &&
-      colmap "${matcher}_matcher" --database_path "$out/colmap.db" --SiftMatching.use_gpu 0 &&
-      colmap mapper --database_path "$out/colmap.db" --image_path "$out/images" \
-        --output_path "$out/colmap_sparse" --Mapper.num_threads 2 "${colmap_fixed[@]}"
-  }
-  seconds=$(seconds_of colmap_pipeline)
-  row "$name" "COLMAP (SIFT, $matcher)" "$seconds" "$out/colmap_sparse/0" "$out/colmap.db"
+  log=$out/colmap_features.log
+  extraction=$(seconds_of colmap feature_extractor --database_path "$out/colmap.db" \
+    --image_path "$out/images" "${colmap_camera[@]}" --SiftExtraction.use_gpu 0 \
+    --SiftExtraction.max_image_size "$max_image_size")
+  log=$out/colmap_matcher.log
+  matching=$(seconds_of colmap "${matcher}_matcher" --database_path "$out/colmap.db" \
+    --SiftMatching.use_gpu 0)
+  log=$out/colmap_mapper.log
+  mapping=$(seconds_of colmap mapper --database_path "$out/colmap.db" --image_path "$out/images" \
+    --output_path "$out/colmap_sparse" --Mapper.num_threads 2 "${colmap_fixed[@]}")
+  seconds=$(awk -v a="$extraction" -v b="$matching" -v c="$mapping" 'BEGIN { printf "%.1f", a + b + c }')
+  row "$name" "COLMAP (SIFT, $matcher)" "$seconds" "$out/colmap_sparse/0" "$out/colmap.db" \
+    "$extraction / $matching / $mapping"
   # ramap's defaults are SIFT with BA; the others are the options to pass.
   variants=("sift 1" "sift 0" "orb 1" "orb 0")
   [[ $intrinsics == given ]] && variants=("sift 1")
   for variant in "${variants[@]}"; do
     read -r type refine <<<"$variant"
-    label="ramap reconstruct ($type, $mode"
-    [[ $refine == 1 ]] && label+=", +BA"
-    label+=")"
-    [[ $variant == "sift 1" ]] && label+=" (defaults)"
     options=()
     [[ $type == sift ]] || options+=(--FeatureExtraction.type "$type")
     [[ $refine == 1 ]] || options+=(--Mapper.refine 0)
     dir=$out/ramap_${type}_$refine
+    # ramap chooses its matching plan itself, as a user's run does.
+    log=$dir.log
     seconds=$(seconds_of "$ramap" reconstruct --image_path "$out/images" --output_path "$dir" \
-      --Matching.mode "$mode" "${ramap_camera[@]}" "${options[@]}")
-    row "$name" "$label" "$seconds" "$dir/sparse/0" "$dir/database.db"
+      "${ramap_camera[@]}" "${options[@]}")
+    plan=$(grep -o 'matching plan: [a-z]*' "$log" | awk '{print $3}')
+    label="ramap reconstruct ($type, ${plan:-$mode}"
+    [[ $refine == 1 ]] && label+=", +BA"
+    label+=")"
+    [[ $variant == "sift 1" ]] && label+=" (defaults)"
+    stages=$(awk -v total="$seconds" '
+      /^\[ramap\] features:/ { features = $NF == "s" ? $(NF-1) : features }
+      /^\[ramap\] matching:/ { matching = $(NF-1) }
+      END { printf "%.1f / %.1f / %.1f", features, matching, total - features - matching }' "$log")
+    row "$name" "$label" "$seconds" "$dir/sparse/0" "$dir/database.db" "$stages"
   done
 done

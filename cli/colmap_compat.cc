@@ -12,7 +12,7 @@ struct Alias {
 };
 
 // COLMAP 3.8's names and COLMAP 4.1.1's (its option manager), as the peers' sources give them.
-constexpr std::array<Alias, 29> kAliases = {{
+constexpr std::array<Alias, 30> kAliases = {{
     // Feature extraction: SiftExtraction (3.x) became FeatureExtraction (4.x) for what is not
     // specific to SIFT.
     {"--SiftExtraction.max_image_size", "--FeatureExtraction.max_image_size"},
@@ -39,7 +39,8 @@ constexpr std::array<Alias, 29> kAliases = {{
     {"--ExhaustiveMatching.block_size", nullptr,
      "ramap screens and matches every pair in one pass"},
     {"--VocabTreeMatching.vocab_tree_path", nullptr,
-     "ramap has no vocabulary tree (it screens pairs by preemptive matching)"},
+     "ramap trains its retrieval vocabulary on the images' own descriptors"},
+    {"--VocabTreeMatching.num_images", "--Matching.retrieval_num_neighbors"},
     // The mapper's global bundle adjustment.
     {"--Mapper.ba_global_function_tolerance", "--BundleAdjustment.function_tolerance"},
     {"--Mapper.ba_global_max_num_iterations", "--BundleAdjustment.max_num_iterations"},

@@ -16,15 +16,22 @@ DatabaseMatchingSummary MatchAndReport(FeatureDatabase* database, FeatureOptions
   options->mode = MatchingModeName(summary.mode);
   std::cout << std::fixed << std::setprecision(2) << "[ramap] matching plan: " << options->mode
             << " (" << summary.reason << "): ";
-  if (summary.num_window_pairs > 0) std::cout << summary.num_window_pairs << " neighbour pairs, ";
-  std::cout << summary.num_guessed_pairs
-            << (summary.mode == MatchingMode::kSequential  ? " loop candidates"
-                : summary.mode == MatchingMode::kRetrieval ? " retrieved pairs"
-                                                           : " pairs");
+  const bool retrieval = summary.mode == MatchingMode::kRetrieval;
+  if (summary.num_unscreened_pairs > 0 || retrieval) {
+    std::cout << summary.num_unscreened_pairs
+              << (retrieval ? " retrieved pairs" : " neighbour pairs");
+  }
+  if (!retrieval) {
+    std::cout << (summary.num_unscreened_pairs > 0 ? ", " : "") << summary.num_pairs_to_screen
+              << (summary.mode == MatchingMode::kSequential ? " loop candidates" : " pairs");
+  }
   if (summary.retrieval_seconds > 0)
     std::cout << " (retrieval " << summary.retrieval_seconds << " s)";
-  std::cout << ", " << summary.num_screened_pairs << " kept by preemptive matching ("
-            << summary.screening_seconds << " s)\n";
+  if (summary.num_pairs_to_screen > 0) {
+    std::cout << ", " << summary.num_pairs_kept_by_screening
+              << " of them kept by preemptive matching (" << summary.screening_seconds << " s)";
+  }
+  std::cout << "\n";
   std::cout << "[ramap] matching: " << summary.num_verified_pairs << " of " << summary.num_pairs
             << " pairs verified, " << summary.seconds << " s\n";
   return summary;
@@ -33,9 +40,9 @@ DatabaseMatchingSummary MatchAndReport(FeatureDatabase* database, FeatureOptions
 nlohmann::json MatchingSummaryToJson(const DatabaseMatchingSummary& summary) {
   return {{"mode", MatchingModeName(summary.mode)},
           {"reason", summary.reason},
-          {"neighbour_pairs", summary.num_window_pairs},
-          {"guessed_pairs", summary.num_guessed_pairs},
-          {"guessed_pairs_kept_by_preemptive_matching", summary.num_screened_pairs},
+          {"pairs_matched_unscreened", summary.num_unscreened_pairs},
+          {"pairs_to_screen", summary.num_pairs_to_screen},
+          {"pairs_kept_by_preemptive_matching", summary.num_pairs_kept_by_screening},
           {"pairs_matched", summary.num_pairs},
           {"pairs_verified", summary.num_verified_pairs},
           {"retrieval_seconds", summary.retrieval_seconds},

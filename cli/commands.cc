@@ -36,15 +36,16 @@ const std::vector<Command>& AllCommands() {
       {"reconstruct", "images to a COLMAP model: features, matching, mapper", RunReconstruct},
       {"feature_extractor", "ORB or SIFT features of images into a COLMAP database",
        RunFeatureExtractor},
-      {"matcher", "matches and verified geometries (sequential or exhaustive)", RunMatcher},
+      {"matcher", "matches and verified geometries (sequential, retrieval or exhaustive)",
+       RunMatcher},
       {"exhaustive_matcher", "as COLMAP's: matcher --Matching.mode exhaustive",
        [](int argc, char** argv) { return RunMatcherInMode("exhaustive", argc, argv); }},
       {"sequential_matcher", "as COLMAP's: matcher --Matching.mode sequential",
        [](int argc, char** argv) { return RunMatcherInMode("sequential", argc, argv); }},
-      // nerfstudio's default: ramap has no vocabulary tree; its exhaustive mode screens pairs by
-      // preemptive matching, and auto picks sequential matching for long frame sequences.
-      {"vocab_tree_matcher", "as COLMAP's, without a tree: matcher --Matching.mode auto",
-       [](int argc, char** argv) { return RunMatcherInMode("auto", argc, argv); }},
+      // nerfstudio's default: image retrieval, with a vocabulary trained on the images themselves
+      // instead of a downloaded tree.
+      {"vocab_tree_matcher", "as COLMAP's: matcher --Matching.mode retrieval",
+       [](int argc, char** argv) { return RunMatcherInMode("retrieval", argc, argv); }},
       {"mapper", "camera poses and points from a COLMAP database by motion averaging", RunMapper},
       {"relative_poses", "relative pose of every verified pair (grid 6-point, Kneip)",
        RunRelativePoses},

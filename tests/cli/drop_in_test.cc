@@ -121,8 +121,8 @@ TEST(DropIn, ExtractorAndMatcherLines) {
   ExpectSucceeds(RunRamap("vocab_tree_matcher --database_path " + d +
                           "/distorted/database.db --SiftMatching.use_gpu 1 "
                           "--VocabTreeMatching.vocab_tree_path " +
-                          d + "/vocab_tree.fbow"),
-                 "--VocabTreeMatching.vocab_tree_path");
+                          d + "/vocab_tree.fbow --VocabTreeMatching.num_images 2"),
+                 "--VocabTreeMatching.num_images read as --Matching.retrieval_num_neighbors");
   const FeatureDatabase database = ReadColmapDatabase(d + "/distorted/database.db");
   ASSERT_EQ(database.cameras.size(), 1u);
   EXPECT_EQ(database.cameras.begin()->second.model, CameraModel::kOpenCV);

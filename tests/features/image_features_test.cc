@@ -104,14 +104,14 @@ TEST(ImageFeatures, PreemptiveMatchingSkipsPairsThatShareNothing) {
   matching.mode = MatchingMode::kExhaustive;
   FeatureDatabase screened = database;
   const DatabaseMatchingSummary with = MatchDatabase(&screened, matching);
-  EXPECT_EQ(with.num_guessed_pairs, 3);
-  EXPECT_EQ(with.num_screened_pairs, 1);
+  EXPECT_EQ(with.num_pairs_to_screen, 3);
+  EXPECT_EQ(with.num_pairs_kept_by_screening, 1);
   EXPECT_EQ(with.num_pairs, 1);
   EXPECT_TRUE(screened.matches.count(ImagePairToPairId(1, 2)));
   matching.preemptive_num_features = 0;
   const DatabaseMatchingSummary without = MatchDatabase(&database, matching);
   EXPECT_EQ(without.num_pairs, 3);
-  EXPECT_EQ(without.num_screened_pairs, 3);
+  EXPECT_EQ(without.num_pairs_kept_by_screening, 3);
 }
 
 TEST(ImageFeatures, AwkwardFolderIsReportedNotFatal) {
@@ -165,7 +165,7 @@ TEST(ImageFeatures, TempleRingDatabaseIsRightAndColmapMapsIt) {
   FeatureMatchingOptions matching;
   matching.mode = MatchingMode::kExhaustive;
   const DatabaseMatchingSummary matched = MatchDatabase(&database, matching);
-  EXPECT_EQ(matched.num_guessed_pairs, 45);
+  EXPECT_EQ(matched.num_pairs_to_screen, 45);
   EXPECT_LE(matched.num_pairs, 45);  // those preemptive matching kept
   EXPECT_GE(matched.num_verified_pairs, 15);
   const std::map<std::string, Rigid3d> truth = GroundTruthByImageName(

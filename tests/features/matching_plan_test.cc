@@ -100,10 +100,10 @@ TEST(MatchingPlan, FrameNumberedVideoTakesTheSequentialPlan) {
   const MatchingPlan plan = PlanMatching(options, scene.database);
   EXPECT_EQ(plan.mode, MatchingMode::kSequential) << plan.reason;
   // Frame k with frames k+1 .. k+overlap.
-  EXPECT_EQ(plan.window_pairs.size(), 80u * 10 - 55);
-  for (const auto& [a, b] : plan.window_pairs) EXPECT_LE(b - a, 10u);
-  ASSERT_FALSE(plan.guessed_pairs.empty());
-  for (const auto& [a, b] : plan.guessed_pairs) {
+  EXPECT_EQ(plan.unscreened_pairs.size(), 80u * 10 - 55);
+  for (const auto& [a, b] : plan.unscreened_pairs) EXPECT_LE(b - a, 10u);
+  ASSERT_FALSE(plan.pairs_to_screen.empty());
+  for (const auto& [a, b] : plan.pairs_to_screen) {
     EXPECT_GT(b - a, static_cast<uint32_t>(options.loop_min_frame_gap));
   }
   // Up to the exhaustive limit, every pair.
@@ -111,7 +111,7 @@ TEST(MatchingPlan, FrameNumberedVideoTakesTheSequentialPlan) {
       SceneWithDescriptors(Drive(options.auto_exhaustive_max_images, 1));
   const MatchingPlan exhaustive = PlanMatching(options, short_clip.database);
   EXPECT_EQ(exhaustive.mode, MatchingMode::kExhaustive);
-  EXPECT_EQ(exhaustive.guessed_pairs.size(), 50u * 49 / 2);
+  EXPECT_EQ(exhaustive.pairs_to_screen.size(), 50u * 49 / 2);
 }
 
 TEST(MatchingPlan, NamesThatAreNotFrameNumbersNeverTakeTheVideoPlan) {
@@ -134,7 +134,8 @@ TEST(MatchingPlan, NamesThatAreNotFrameNumbersNeverTakeTheVideoPlan) {
     for (auto& [id, image] : scene.database.images) image.name = naming(id);
     const MatchingPlan plan = PlanMatching(options, scene.database);
     EXPECT_EQ(plan.mode, MatchingMode::kRetrieval) << naming(1) << ": " << plan.reason;
-    EXPECT_TRUE(plan.window_pairs.empty());
+    EXPECT_TRUE(plan.pairs_to_screen.empty());  // no loop candidates, no exhaustive pairs
+    EXPECT_FALSE(plan.unscreened_pairs.empty());
   }
   // Asked for, the video plan is still there.
   FeatureMatchingOptions sequential = options;
@@ -160,7 +161,7 @@ TEST(ImageRetrieval, FindsAKnownLoopInASyntheticSequence) {
         with_loop.insert({pair.first, pair.second});
       }
     }
-    for (const auto& pair : plan.guessed_pairs) {
+    for (const auto& pair : plan.pairs_to_screen) {
       const auto found = shared.find(pair);
       if (found != shared.end() && found->second >= 15)
         loop_found.insert({pair.first, pair.second});

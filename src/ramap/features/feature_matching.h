@@ -54,7 +54,7 @@ struct FeatureMatchingOptions {
   double confidence = 0.999;
   // Pairs with fewer inliers get no two-view geometry (COLMAP's min_num_inliers, 15).
   int min_num_inliers = 15;
-  // Pairs that are guessed (exhaustive, retrieval, loop candidates): preemptive matching (Wu,
+  // Every pair of exhaustive matching and a video's loop candidates: preemptive matching (Wu,
   // "Towards Linear-time Incremental Structure from Motion", 3DV 2013): the preemptive_num_features
   // largest-scale features of two images are matched first, and only pairs with at least
   // preemptive_min_matches among them are matched in full. Wu's values, 100 and 4. 0 features:

@@ -48,14 +48,14 @@ MatchingPlan PlanMatching(const FeatureMatchingOptions& options, const FeatureDa
   if (plan.mode == MatchingMode::kExhaustive) {
     for (size_t a = 0; a < ordered.size(); ++a) {
       for (size_t b = a + 1; b < ordered.size(); ++b)
-        add(&plan.guessed_pairs, ordered[a], ordered[b]);
+        add(&plan.pairs_to_screen, ordered[a], ordered[b]);
     }
     return plan;
   }
   if (plan.mode == MatchingMode::kSequential) {
     for (size_t a = 0; a < ordered.size(); ++a) {
       const size_t last = std::min(ordered.size(), a + 1 + options.overlap);
-      for (size_t b = a + 1; b < last; ++b) add(&plan.window_pairs, ordered[a], ordered[b]);
+      for (size_t b = a + 1; b < last; ++b) add(&plan.unscreened_pairs, ordered[a], ordered[b]);
     }
     if (options.loop_num_neighbors == 0) return plan;
   }
@@ -66,7 +66,7 @@ MatchingPlan PlanMatching(const FeatureMatchingOptions& options, const FeatureDa
   for (const auto& [a, b] : MostSimilarPairs(
            global, video ? options.loop_num_neighbors : options.retrieval_num_neighbors,
            video ? options.loop_min_frame_gap : 0)) {
-    add(&plan.guessed_pairs, a, b);
+    add(video ? &plan.pairs_to_screen : &plan.unscreened_pairs, a, b);
   }
   plan.retrieval_seconds = timer.ElapsedSeconds();
   return plan;
@@ -82,18 +82,19 @@ DatabaseMatchingSummary MatchDatabase(FeatureDatabase* database,
   summary.mode = plan.mode;
   summary.reason = plan.reason;
   summary.retrieval_seconds = plan.retrieval_seconds;
-  summary.num_window_pairs = static_cast<int>(plan.window_pairs.size());
-  summary.num_guessed_pairs = static_cast<int>(plan.guessed_pairs.size());
-  std::vector<std::pair<uint32_t, uint32_t>> pairs = plan.window_pairs;
+  summary.num_unscreened_pairs = static_cast<int>(plan.unscreened_pairs.size());
+  summary.num_pairs_to_screen = static_cast<int>(plan.pairs_to_screen.size());
+  std::vector<std::pair<uint32_t, uint32_t>> pairs = plan.unscreened_pairs;
   Timer screening;
   if (options.preemptive_num_features > 0) {
-    const auto kept = ScreenPairsPreemptively(*database, plan.guessed_pairs, options, progress);
+    const auto kept = ScreenPairsPreemptively(*database, plan.pairs_to_screen, options, progress);
     pairs.insert(pairs.end(), kept.begin(), kept.end());
   } else {
-    pairs.insert(pairs.end(), plan.guessed_pairs.begin(), plan.guessed_pairs.end());
+    pairs.insert(pairs.end(), plan.pairs_to_screen.begin(), plan.pairs_to_screen.end());
   }
   summary.screening_seconds = screening.ElapsedSeconds();
-  summary.num_screened_pairs = static_cast<int>(pairs.size()) - summary.num_window_pairs;
+  summary.num_pairs_kept_by_screening =
+      static_cast<int>(pairs.size()) - summary.num_unscreened_pairs;
   database->matches.clear();
   database->two_view_geometries.clear();
   const MatchingSummary matched = MatchImagePairs(database, pairs, options, progress);

@@ -4,8 +4,10 @@
 //     image retrieval;
 //   - retrieval (an unordered collection): each image with its most similar images;
 //   - exhaustive: every pair.
-// Guessed pairs (exhaustive, retrieval, loop candidates) are screened preemptively before they are
-// matched in full; a video's neighbouring frames are not.
+// Every pair of exhaustive matching and a video's loop candidates are screened preemptively
+// before they are matched in full; a video's next frames and retrieval's neighbours are not
+// (retrieval is the screen: on a synthetic collection the screen's 100 features cut its pairs to
+// a tenth, most of them pairs the mapper needs).
 #pragma once
 
 #include <cstdint>
@@ -21,8 +23,10 @@ namespace ramap {
 struct MatchingPlan {
   MatchingMode mode = MatchingMode::kExhaustive;             // auto resolved
   std::string reason;                                        // why this mode, in words
-  std::vector<std::pair<uint32_t, uint32_t>> window_pairs;   // sequential: the next frames
-  std::vector<std::pair<uint32_t, uint32_t>> guessed_pairs;  // screened before full matching
+  // Matched in full: a video's next frames, or retrieval's neighbours.
+  std::vector<std::pair<uint32_t, uint32_t>> unscreened_pairs;
+  // Screened before full matching: every pair, or a video's loop candidates.
+  std::vector<std::pair<uint32_t, uint32_t>> pairs_to_screen;
   double retrieval_seconds = 0.0;
 };
 
@@ -34,9 +38,9 @@ MatchingPlan PlanMatching(const FeatureMatchingOptions& options, const FeatureDa
 struct DatabaseMatchingSummary {
   MatchingMode mode = MatchingMode::kExhaustive;
   std::string reason;
-  int num_window_pairs = 0;    // sequential neighbours
-  int num_guessed_pairs = 0;   // exhaustive, retrieval or loop candidates, before screening
-  int num_screened_pairs = 0;  // of those, kept by preemptive matching
+  int num_unscreened_pairs = 0;         // a video's next frames, or retrieval's neighbours
+  int num_pairs_to_screen = 0;          // every pair, or a video's loop candidates
+  int num_pairs_kept_by_screening = 0;  // of those, kept by preemptive matching
   int num_pairs = 0;           // pairs matched in full
   int num_verified_pairs = 0;  // pairs with a two-view geometry
   double retrieval_seconds = 0.0;

@@ -43,10 +43,5 @@ for entry in "${RAMAP_DATASETS[@]}"; do
   report=$work/$name.txt
   farm-bench -n "$runs" --warmup 1 --timeout 3600 --vs "sh -c '$colmap_cmd'" -- sh -c "$ramap_cmd" \
     >"$report" 2>&1
-  awk -v name="$name" -v intrinsics="$intrinsics" '
-    $1 == "A" && $2 == "wall" { a = $4 }
-    $1 == "B" && $2 == "wall" { b = $4 }
-    $1 == "A/B" && $2 == "wall" { lo = 1 / $5; mid = 1 / $4; hi = 1 / $3 }
-    END { printf "| %s | %s | %.2f | %.2f | %.1fx | %.1f-%.1fx |\n", name, intrinsics, a, b, mid, lo, hi }
-  ' "$report"
+  awk -v first="$name" -v second="$intrinsics" -f "$root/scripts/paired_ratio.awk" "$report"
 done

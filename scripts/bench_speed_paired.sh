@@ -47,11 +47,6 @@ for name in "${names[@]}"; do
     report=$work/$name.$RANDOM.txt
     farm-bench -n "$runs" --warmup 1 --timeout 3600 --vs "$peer_cmd" -- $ramap_cmd > "$report" 2>&1
     # farm-bench's rows: "<figure> min median max"; A is ramap, B the peer, the ratio A/B.
-    awk -v name="$name" -v peer="$peer_name" '
-      $1 == "A" && $2 == "wall" { a = $4 }
-      $1 == "B" && $2 == "wall" { b = $4 }
-      $1 == "A/B" && $2 == "wall" { lo = 1 / $5; mid = 1 / $4; hi = 1 / $3 }
-      END { printf "| %s | %s | %.2f | %.2f | %.1fx | %.1f-%.1fx |\n", name, peer, a, b, mid, lo, hi }
-    ' "$report"
+    awk -v first="$name" -v second="$peer_name" -f "$root/scripts/paired_ratio.awk" "$report"
   done
 done

@@ -156,31 +156,11 @@ std::vector<FeatureMatch> MatchFloat(const Descriptors& descriptors1,
       nn, options, [](float d) { return std::sqrt(static_cast<double>(d)); }, ratios);
 }
 
-}  // namespace
-
-std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,
+// Squared L2 distances by the plain loop, in exact integers.
+std::vector<FeatureMatch> MatchFloatByLoop(const Descriptors& descriptors1,
                                            const Descriptors& descriptors2,
                                            const DescriptorMatchingOptions& options,
                                            std::vector<float>* ratios) {
-  if (ratios != nullptr) ratios->clear();
-  if (descriptors1.num_cols != descriptors2.num_cols || descriptors1.size() == 0 ||
-      descriptors2.size() < 2) {
-    return {};
-  }
-  if (descriptors1.num_cols == 32) return MatchBinary(descriptors1, descriptors2, options, ratios);
-  return MatchFloat(descriptors1, descriptors2, options, ratios);
-}
-
-std::vector<FeatureMatch> MatchDescriptorsByLoop(const Descriptors& descriptors1,
-                                                 const Descriptors& descriptors2,
-                                                 const DescriptorMatchingOptions& options,
-                                                 std::vector<float>* ratios) {
-  if (ratios != nullptr) ratios->clear();
-  if (descriptors1.num_cols != descriptors2.num_cols || descriptors1.size() == 0 ||
-      descriptors2.size() < 2) {
-    return {};
-  }
-  if (descriptors1.num_cols == 32) return MatchBinary(descriptors1, descriptors2, options, ratios);
   const size_t n1 = descriptors1.size(), n2 = descriptors2.size();
   const int dim = descriptors1.num_cols;
   NearestNeighbours<int64_t> nn(n1, n2, std::numeric_limits<int64_t>::max());
@@ -197,6 +177,37 @@ std::vector<FeatureMatch> MatchDescriptorsByLoop(const Descriptors& descriptors1
   }
   return AcceptMatches(
       nn, options, [](int64_t d) { return std::sqrt(static_cast<double>(d)); }, ratios);
+}
+
+// Matches by `float_path` for float descriptors; Hamming's loop for binary ones; none when the
+// two sets cannot be compared or the second has fewer than two rows (no ratio test).
+template <typename FloatPath>
+std::vector<FeatureMatch> Match(const Descriptors& descriptors1, const Descriptors& descriptors2,
+                                const DescriptorMatchingOptions& options,
+                                std::vector<float>* ratios, FloatPath float_path) {
+  if (ratios != nullptr) ratios->clear();
+  if (descriptors1.num_cols != descriptors2.num_cols || descriptors1.size() == 0 ||
+      descriptors2.size() < 2) {
+    return {};
+  }
+  if (descriptors1.num_cols == 32) return MatchBinary(descriptors1, descriptors2, options, ratios);
+  return float_path(descriptors1, descriptors2, options, ratios);
+}
+
+}  // namespace
+
+std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,
+                                           const Descriptors& descriptors2,
+                                           const DescriptorMatchingOptions& options,
+                                           std::vector<float>* ratios) {
+  return Match(descriptors1, descriptors2, options, ratios, MatchFloat);
+}
+
+std::vector<FeatureMatch> MatchDescriptorsByLoop(const Descriptors& descriptors1,
+                                                 const Descriptors& descriptors2,
+                                                 const DescriptorMatchingOptions& options,
+                                                 std::vector<float>* ratios) {
+  return Match(descriptors1, descriptors2, options, ratios, MatchFloatByLoop);
 }
 
 Descriptors LargestScaleDescriptors(const Keypoints& keypoints, const Descriptors& descriptors,

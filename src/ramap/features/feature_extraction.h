@@ -16,9 +16,8 @@ FeatureType FeatureTypeFromName(const std::string& name);
 std::string FeatureTypeName(FeatureType type);
 
 struct FeatureExtractionOptions {
-  // SIFT by default: ORB (the paper's features) is 2-3x faster to extract but less accurate on
-  // small or weakly textured collections (BENCHMARKS.md, "From images": templeRing AUC@1 30.8 vs
-  // 73.7 with BA).
+  // SIFT by default: ORB (the paper's features) is faster to extract but less accurate on small
+  // or weakly textured collections (BENCHMARKS.md, "From images", templeRing).
   FeatureType type = FeatureType::kSift;
   // Images larger than this (longest side, pixels) are downscaled for detection; keypoints are
   // scaled back to full resolution (COLMAP's SiftExtraction.max_image_size default is 3200; 1600

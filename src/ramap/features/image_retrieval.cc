@@ -158,16 +158,22 @@ GlobalDescriptors ComputeGlobalDescriptors(const FeatureDatabase& database,
     }
   }
   const int dim = FloatDimension(cols);
-  // Training samples evenly drawn from every image's voting descriptors.
+  // Training samples evenly drawn from every image's voting descriptors; only those are converted
+  // (the voting descriptors are selected again for the VLAD pass below rather than kept: as floats
+  // they would take 2.5 GB at 5000 images).
   const size_t per_image = std::max<size_t>(1, options.max_training_descriptors / image_ids.size());
   std::vector<float> samples;
   for (const uint32_t id : image_ids) {
-    const std::vector<float> rows = RetrievalFloats(VotingDescriptors(database, id, options));
-    const size_t n = rows.size() / dim, take = std::min(n, per_image);
+    const Descriptors voting = VotingDescriptors(database, id, options);
+    const size_t n = voting.size(), take = std::min(n, per_image);
+    Descriptors drawn;
+    drawn.num_cols = voting.num_cols;
     for (size_t k = 0; k < take; ++k) {
-      const size_t i = k * n / take;
-      samples.insert(samples.end(), rows.begin() + i * dim, rows.begin() + (i + 1) * dim);
+      const auto row = voting.data.begin() + (k * n / take) * voting.num_cols;
+      drawn.data.insert(drawn.data.end(), row, row + voting.num_cols);
     }
+    const std::vector<float> rows = RetrievalFloats(drawn);
+    samples.insert(samples.end(), rows.begin(), rows.end());
   }
   if (samples.empty()) return global;
   const std::vector<float> words = TrainVocabulary(samples, dim, options);

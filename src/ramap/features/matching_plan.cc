@@ -1,6 +1,8 @@
 #include "ramap/features/matching_plan.h"
 
+#include <algorithm>
 #include <set>
+#include <tuple>
 
 #include "ramap/scene/image_order.h"
 #include "ramap/util/timer.h"

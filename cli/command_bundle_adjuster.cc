@@ -9,6 +9,7 @@
 #include "mapper_options.h"
 #include "options.h"
 #include "ramap/io/colmap_model.h"
+#include "ramap/pipeline/mapper_option_table.h"
 #include "ramap/refine/model_bundle_adjustment.h"
 #include "ramap/util/output_policy.h"
 
@@ -22,10 +23,19 @@ int RunBundleAdjuster(int argc, char** argv) {
   app.add_option("--output_path", output_path, "folder for the adjusted model (may be the input)")
       ->required();
   app.add_option("--output_type", output_type, "BIN or TXT")->capture_default_str();
-  BundleAdjustmentOptions options;
-  AddBundleAdjusterOptions(app, &options);
+  // Bundle adjustment's own settings, declared with the mapper's.
+  MapperOptions mapper;
+  AddOptionTable(
+      app,
+      MapperOptionSections(
+          {}, {"BundleAdjustment.max_num_iterations", "BundleAdjustment.loss_scale_px",
+               "BundleAdjustment.function_tolerance", "BundleAdjustment.max_num_points",
+               "BundleAdjustment.refine_focal_length", "BundleAdjustment.refine_principal_point",
+               "BundleAdjustment.refine_extra_params"}),
+      &mapper);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  options.Check();
+  ResolveMapperOptions(&mapper);
+  const BundleAdjustmentOptions& options = mapper.bundle_adjustment;
   const ModelFormat format = ModelFormatFromName(output_type, "--output_type");
   CheckModelOutputMayReplaceInput("--output_path", output_path, input_path);
 

@@ -9,12 +9,13 @@
 #include <iostream>
 
 #include "options.h"
-#include "pose_prior_options.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/geo_export.h"
 #include "ramap/pipeline/georegistration.h"
+#include "ramap/pipeline/mapper_option_table.h"
 #include "ramap/pipeline/plane_alignment.h"
+#include "ramap/pipeline/pose_prior_loading.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
@@ -80,12 +81,21 @@ int RunModelAligner(int argc, char** argv) {
   app.add_option("--database_path", database_path,
                  "COLMAP database whose position priors are used (without --PosePrior.path)");
   app.add_option("--output_type", output_type, "BIN or TXT")->capture_default_str();
-  PosePriorOptionText prior_text;
-  GeoregistrationOptions georegistration;
-  AddPosePriorOptions(app, &prior_text, &georegistration, /*with_uses=*/false);
+  // The position priors' source and alignment, declared with the mapper's options.
+  MapperOptions prior_options;
+  AddOptionTable(
+      app,
+      MapperOptionSections(
+          {}, {"PosePrior.path", "PosePrior.type", "PosePrior.from_database", "PosePrior.origin",
+               "PosePrior.std_x_m", "PosePrior.std_y_m", "PosePrior.std_z_m",
+               "PosePrior.max_distance_from_origin_m", "PosePrior.max_alignment_error_m",
+               "PosePrior.max_fit_uncertainty_deg", "PosePrior.min_num_inliers"}),
+      &prior_options);
   ColmapAlignerOptions colmap;
   AddColmapAlignerOptions(app, &colmap);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
+  PosePriorSource& prior_text = prior_options.prior_source;
+  GeoregistrationOptions& georegistration = prior_options.georegistration;
   const ModelFormat format = ModelFormatFromName(output_type, "--output_type");
   if (colmap.alignment_type != "plane" && colmap.alignment_type != "enu" &&
       colmap.alignment_type != "custom") {
@@ -116,7 +126,7 @@ int RunModelAligner(int argc, char** argv) {
                                      ? ModelImagesWithDatabasePriors(model, database_path)
                                      : FeatureDatabase{{}, model.images};
   const LocalizedPriors priors =
-      LoadPosePriors(prior_text, images, "ramap model_aligner", std::cerr);
+      LoadPosePriors(prior_text, images, "ramap model_aligner", &std::cerr);
   const PriorAlignment alignment = GeoregisterModel(priors.priors, georegistration, &model);
   const GeoregistrationSummary& summary = alignment.summary;
   if (!summary.georegistered) {

@@ -10,12 +10,13 @@
 #include "mapper_options.h"
 #include "mapper_report.h"
 #include "options.h"
-#include "pose_prior_options.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/point_colors.h"
 #include "ramap/pipeline/loop_closure.h"
 #include "ramap/pipeline/mapper.h"
+#include "ramap/pipeline/mapper_option_table.h"
 #include "ramap/pipeline/mapper_output.h"
+#include "ramap/pipeline/pose_prior_loading.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
@@ -33,16 +34,13 @@ int RunReconstruct(int argc, char** argv) {
   AddExtractionOptions(app, &features);
   AddMatchingOptions(app, &features);
   MapperOptions mapper;
-  MapperOptionText text;
-  AddMapperOptions(app, &mapper, &text);
-  PosePriorOptionText prior_text;
-  AddPosePriorOptions(app, &prior_text, &mapper.georegistration, /*with_uses=*/true);
+  AddMapperOptions(app, &mapper);
   bool close_loops = true;
   LoopClosureOptions closure_options;
   AddLoopClosureOptions(app, &close_loops, &closure_options);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   FinishFeatureOptions(&features);
-  FinishMapperOptions(text, &mapper);
+  ResolveMapperOptions(&mapper);
   CheckFolderOutput("--output_path", output_path, {image_path, image_list});
   const std::string database_path = output_path + "/database.db";
   CheckNewDatabasePath("--output_path", database_path, {image_path, image_list});
@@ -56,7 +54,7 @@ int RunReconstruct(int argc, char** argv) {
   WriteColmapDatabase(database, database_path, features.generation);
   // EXIF GPS went into the database's prior positions (as COLMAP's ImageReader does).
   const LocalizedPriors priors =
-      LoadPosePriors(prior_text, database, "ramap reconstruct", std::cerr);
+      LoadPosePriors(mapper.prior_source, database, "ramap reconstruct", &std::cerr);
   const bool sequential = features.matching.mode == MatchingMode::kSequential;
   LoopClosedMapperResult closed =
       RunMapperWithLoopClosure(&database, mapper, close_loops && sequential, closure_options,
@@ -72,8 +70,7 @@ int RunReconstruct(int argc, char** argv) {
       {"feature_type", features.type},
       {"matching_mode", features.mode},
       {"matching", MatchingSummaryToJson(matching)},
-      {"options", MapperOptionsToJson(mapper)},
-      {"pose_priors", PosePriorOptionsToJson(prior_text, mapper.georegistration)},
+      {"options", OptionValuesToJson(MapperOptionTable(), mapper)},
       {"loop_closure", LoopClosureToJson(close_loops, closure_options, closed.closure)}};
   WriteMapperOutput(result, output_path + "/sparse", ModelFormat::kBinary, run);
   created_database.Keep();

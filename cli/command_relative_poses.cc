@@ -10,6 +10,7 @@
 #include "options.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/relative_pose_file.h"
+#include "ramap/pipeline/mapper_option_table.h"
 #include "ramap/pipeline/relative_poses.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
@@ -26,10 +27,9 @@ int RunRelativePoses(int argc, char** argv) {
                  "text file: NAME1 NAME2 qw qx qy qz tx ty tz num_inliers flags")
       ->required();
   MapperOptions options;
-  MapperOptionText text;
-  AddRelativePoseOptions(app, &options, &text);
+  AddOptionTable(app, MapperOptionSections({"RelativePose"}, {"Mapper.num_threads"}), &options);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  FinishMapperOptions(text, &options);
+  ResolveMapperOptions(&options);
   CheckFileOutput("--output_path", output_path, {database_path});
 
   const FeatureDatabase database = ReadColmapDatabase(database_path, MapperDatabaseReadOptions());

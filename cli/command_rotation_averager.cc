@@ -12,6 +12,7 @@
 #include "options.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/relative_pose_file.h"
+#include "ramap/pipeline/mapper_option_table.h"
 #include "ramap/pipeline/relative_poses.h"
 #include "ramap/pipeline/rotations.h"
 #include "ramap/util/error.h"
@@ -99,11 +100,12 @@ int RunRotationAverager(int argc, char** argv) {
   app.add_option("--output_path", output_path, "text file: NAME qw qx qy qz (cam_from_world)")
       ->required();
   MapperOptions options;
-  MapperOptionText text;
-  AddRelativePoseOptions(app, &options, &text);
-  AddRotationAveragingOptions(app, &options, &text);
+  AddOptionTable(app,
+                 MapperOptionSections({"RelativePose", "PoseGraph", "RotationAveraging"},
+                                      {"Mapper.num_threads"}),
+                 &options);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  FinishMapperOptions(text, &options);
+  ResolveMapperOptions(&options);
   if (database_path.empty() && relative_poses_path.empty()) {
     throw InputError("rotation_averager", "give --database_path or --relative_poses");
   }

@@ -67,16 +67,4 @@ void PrintMapperSummary(const MapperSummary& s, const std::string& output_path, 
   }
 }
 
-void PrintPointColors(const PointColorSummary& colors, const std::string& image_path,
-                      double seconds, std::ostream* log, std::ostream& warnings) {
-  if (log != nullptr) {
-    PrintStageLine(*log, "point colours", seconds,
-                   "from " + std::to_string(colors.num_images_read) + " images in " + image_path);
-  }
-  for (const std::string& name : colors.unreadable_images) {
-    warnings << "ramap mapper: warning: cannot read " << image_path << "/" << name
-             << ": its points keep no colour from it\n";
-  }
-}
-
 }  // namespace ramap::cli

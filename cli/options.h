@@ -9,8 +9,43 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include "ramap/util/option_table.h"
 
 namespace ramap::cli {
+
+// Registers every declaration of `table` as --Section.option, bound to `settings`: its help, its
+// default (the value `settings` holds now) and its value hint come from the declaration, and a
+// value it refuses stops parsing with the declaration's message ("--Section.option: problem"),
+// the one a library or Python caller gets too.
+template <typename Settings>
+void AddOptionTable(CLI::App& app, const OptionTable<Settings>& table, Settings* settings) {
+  for (const OptionDeclaration<Settings>& declaration : table) {
+    std::string help = declaration.help;
+    const bool bounded =
+        std::isfinite(declaration.range.low) || std::isfinite(declaration.range.high);
+    if ((declaration.type == OptionType::kInteger || declaration.type == OptionType::kNumber) &&
+        bounded) {
+      help +=
+          " (" + OptionValueHint(declaration.type, declaration.range, declaration.choices) + ")";
+    }
+    CLI::Option* option = app.add_option(
+        "--" + declaration.name,
+        [declaration, settings](const CLI::results_t& values) {
+          try {
+            SetOption(declaration, values.front(), settings);
+          } catch (const InputError& error) {
+            throw CLI::ValidationError(error.what());
+          }
+          return true;
+        },
+        help);
+    option->default_str(declaration.text(*settings));
+    option->type_name(OptionTypeName(declaration.type, declaration.choices));
+    option->expected(1);
+  }
+}
 
 // Parses argv into `app`. Returns an exit code when the process should stop now (help was asked
 // for, or the options are wrong: CLI11 has printed why), std::nullopt to go on.
@@ -19,6 +54,23 @@ inline std::optional<int> ParseOptions(CLI::App& app, int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& help) {
     return app.exit(help);
+  } catch (const CLI::ExtrasError&) {
+    // An unknown option, said as the library says it to a Python caller, with the nearest name.
+    std::vector<std::string> known;
+    for (const CLI::Option* option : app.get_options()) {
+      for (const std::string& name : option->get_lnames()) known.push_back(name);
+    }
+    for (const std::string& extra : app.remaining()) {
+      if (extra.rfind("--", 0) != 0) continue;
+      const std::string name = extra.substr(2, extra.find('=') - 2);
+      std::cerr << app.get_name() << ": error: --" << name << ": "
+                << UnknownOptionMessage(name, known) << "\n";
+      return 2;
+    }
+    std::cerr << app.get_name() << ": error: unexpected arguments";
+    for (const std::string& extra : app.remaining()) std::cerr << " " << extra;
+    std::cerr << "\n";
+    return 2;
   } catch (const CLI::ParseError& error) {
     // One line, as every other error: "ramap <command>: error: --Section.option: problem".
     std::cerr << app.get_name() << ": error: " << error.what() << "\n";

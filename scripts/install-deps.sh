@@ -22,6 +22,8 @@ packages=(
   libspectra-dev              # sparse eigenvalues (Fiedler value of the certificate)
   libexiv2-dev                # EXIF focal length and GPS
   clang libclang-rt-14-dev    # libFuzzer and the sanitizers for the readers' fuzz harnesses
+  python3-dev pybind11-dev    # the Python module, `import ramap`
+  python3-numpy python3-pytest  # its arrays and its tests
 )
 
 missing=()

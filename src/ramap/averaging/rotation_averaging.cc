@@ -15,6 +15,7 @@
 #include "ramap/graph/cycle_consistency.h"
 #include "ramap/graph/fiedler.h"
 #include "ramap/util/option_check.h"
+#include "ramap/util/run_observer.h"
 #include "ramap/util/statistics.h"
 #include "ramap/util/timer.h"
 
@@ -148,6 +149,7 @@ class TangentIrls {
     int iteration = 0;
     while (iteration < max_iterations) {
       ++iteration;
+      CheckForStop();
       for (size_t k = 0; k < edges_.size(); ++k) {
         const size_t e = edges_[k];
         residuals[k] = LogQ(EdgeError(graph_.edges[e], R[edge_a_[e]], R[edge_b_[e]]));

@@ -18,6 +18,7 @@
 #include "ramap/util/disjoint_sets.h"
 #include "ramap/util/error.h"
 #include "ramap/util/option_check.h"
+#include "ramap/util/run_observer.h"
 #include "ramap/util/statistics.h"
 #include "ramap/util/timer.h"
 
@@ -304,6 +305,7 @@ Eigen::VectorXd SolveByAdmm(const StackedSystem& system, Eigen::VectorXd x,
   double previous_cost = std::numeric_limits<double>::infinity();
   int iteration = 0;
   for (; iteration < options.max_admm_iterations; ++iteration) {
+    CheckForStop();
     y = admm_step.Solve(B.transpose() * (z - u) + (x - w));
     const Eigen::VectorXd By = B * y;
     const Eigen::VectorXd By_relaxed =
@@ -535,6 +537,7 @@ Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
   int num_moved = num_scales;
   int iteration = 0;
   for (; iteration < options.max_irls_iterations; ++iteration) {
+    CheckForStop();
     double least_cost = 0;
     const double cost =
         IrlsWeights(system, layout, residuals, options, &block_weights, &least_cost);

@@ -7,6 +7,7 @@
 #include "ramap/pipeline/calibration_passes.h"
 #include "ramap/pipeline/components.h"
 #include "ramap/pipeline/mapper_context.h"
+#include "ramap/pipeline/mapper_option_table.h"
 #include "ramap/pipeline/refine.h"
 #include "ramap/pipeline/relative_poses.h"
 #include "ramap/pipeline/reregistration.h"
@@ -181,20 +182,21 @@ MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions&
   summary.cameras = SummariseIntrinsics(database, calibration, result.reconstructions);
   summary.total_seconds = total.ElapsedSeconds();
   if (result.reconstructions.empty()) {
-    throw InputError(source, "no component of at least " +
-                                 std::to_string(options.min_component_size) +
-                                 " images could be reconstructed");
+    throw NothingReconstructed(source, "no component of at least " +
+                                           std::to_string(options.min_component_size) +
+                                           " images could be reconstructed");
   }
   return result;
 }
 
 }  // namespace
 
-MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& options,
+MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& given_options,
                        const std::string& source, std::ostream* progress,
                        const PositionPriors& priors) {
-  options.Check();
-  LimitBlasThreads(options.num_threads);
+  MapperOptions options = given_options;
+  ResolveMapperOptions(&options);
+  const ScopedBlasThreads blas_threads(options.num_threads);
   MapperResult first = RunMapperPass(database, options, source, progress, priors, nullptr);
   first.summary.peak_rss_mib = PeakResidentMebibytes();
   if (!options.refine || !(options.max_focal_change_in_bundle_adjustment > 0)) return first;

@@ -9,6 +9,7 @@
 #include "ramap/geometry/relative_pose.h"
 #include "ramap/graph/keyframes.h"
 #include "ramap/pipeline/georegistration.h"
+#include "ramap/pipeline/pose_prior_loading.h"
 #include "ramap/pipeline/reregistration.h"
 #include "ramap/pipeline/structure.h"
 #include "ramap/pipeline/view_graph_calibration.h"
@@ -50,6 +51,8 @@ struct MapperOptions {
   StructureOptions structure;
   // Images the triangulated points leave out, placed again from those points.
   ReregistrationOptions reregistration;
+  // Where a job's position priors come from (RunMapperJob; RunMapper takes them loaded).
+  PosePriorSource prior_source;
   // What to do with position priors, when RunMapper is given any.
   GeoregistrationOptions georegistration;
   // Final bundle adjustment ("averaging + BA"), on by default: averaging alone gives up 0.2-17

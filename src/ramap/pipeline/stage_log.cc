@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "ramap/pipeline/mapper_summary.h"
+#include "ramap/util/run_observer.h"
 
 namespace ramap {
 
@@ -32,6 +33,7 @@ void StageLog::Record(const std::string& stage, double seconds, const std::strin
     it->seconds += seconds;
   }
   if (progress_ != nullptr) PrintStageLine(*progress_, stage, seconds, message);
+  ReportStage(stage, seconds, message);
 }
 
 std::string FormatDegrees(double value) {

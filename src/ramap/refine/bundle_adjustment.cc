@@ -12,10 +12,25 @@
 
 #include "ramap/geometry/camera_distortion.h"
 #include "ramap/util/option_check.h"
+#include "ramap/util/run_observer.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
 namespace {
+
+// Ends Ceres's iterations when the run's observer asks to stop (util/run_observer.h); the caller
+// then throws RunStopped.
+class StopBetweenIterations : public ceres::IterationCallback {
+ public:
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& /*summary*/) override {
+    try {
+      CheckForStop();
+    } catch (const RunStopped&) {
+      return ceres::SOLVER_ABORT;
+    }
+    return ceres::SOLVER_CONTINUE;
+  }
+};
 
 // Pixel-scaled error on the normalised plane; parameters: quaternion (x, y, z, w as Eigen stores
 // it), translation, point.
@@ -291,10 +306,13 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
         return problem.HasParameterBlock(entry.second.params.data()) &&
                RefinesFocalLength(options, entry.second);
       });
-  const ceres::Solver::Options solver_options =
+  ceres::Solver::Options solver_options =
       SolverOptions(options, refines_focal_length, reconstruction->images.size());
+  StopBetweenIterations stop;
+  solver_options.callbacks.push_back(&stop);
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options, &problem, &summary);
+  CheckForStop();
   for (auto& [image_id, image] : reconstruction->images) image.cam_from_world.rotation.normalize();
   for (auto& [camera_id, camera] : reconstruction->cameras)
     camera.params = reconstruction->cameras.at(shared.at(camera_id)).params;

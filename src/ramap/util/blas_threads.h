@@ -26,4 +26,17 @@ class SingleBlasThread {
   int previous_ = 0;
 };
 
+// `num_threads` BLAS threads for as long as it lives, then the limit there was before: a run of the
+// mapper sets its own and leaves the process (a Python interpreter, say) as it found it.
+class ScopedBlasThreads {
+ public:
+  explicit ScopedBlasThreads(int num_threads);
+  ~ScopedBlasThreads();
+  ScopedBlasThreads(const ScopedBlasThreads&) = delete;
+  ScopedBlasThreads& operator=(const ScopedBlasThreads&) = delete;
+
+ private:
+  int previous_ = 0;
+};
+
 }  // namespace ramap

@@ -21,6 +21,13 @@ class InputError : public std::runtime_error {
   std::string source_;
 };
 
+// The input held no component the mapper could reconstruct (too few images connected). The
+// command line reports it as any input error; a Python caller gets an empty result and the reason.
+class NothingReconstructed : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 // A stage that cannot run on this input (e.g. translation averaging with fewer than two cameras
 // connected): the mapper records the reason for the images concerned and goes on with the rest.
 class StageFailure : public std::runtime_error {

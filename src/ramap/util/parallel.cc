@@ -6,6 +6,8 @@
 #include <thread>
 #include <vector>
 
+#include "ramap/util/run_observer.h"
+
 namespace ramap {
 
 void ParallelFor(size_t count, int num_threads, const std::function<void(size_t)>& work,
@@ -24,9 +26,13 @@ void ParallelFor(size_t count, int num_threads, const std::function<void(size_t)
     reported = finished * 10 / count;
     *progress << " " << 10 * reported << "%" << std::flush;
   };
+  // Workers see the caller's observer, so a stop asked for reaches every thread's next item.
+  RunObserver* const observer = CurrentRunObserver();
   auto run = [&](bool reporting) {
+    const ScopedRunObserver worker_observer(observer, /*owner=*/false);
     for (size_t k = next++; k < count && !failed; k = next++) {
       try {
+        CheckForStop();
         work(k);
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);

@@ -1,4 +1,4 @@
-#include "ramap/compare/model_evaluation.h"
+#include "ramap/eval/model_evaluation.h"
 
 #include <map>
 #include <set>

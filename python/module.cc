@@ -1,0 +1,157 @@
+// ramap._core: the compiled half of `import ramap` (python/ramap/__init__.py is the other). It
+// binds what is slow or stateful: the mapper, feature extraction and matching, evaluation and the
+// models. Every call that works releases the GIL; Ctrl-C stops it cleanly at its next step.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <iostream>
+
+#include "model_bindings.h"
+#include "ramap/eval/model_evaluation.h"
+#include "ramap/io/trajectory.h"
+#include "ramap/pipeline/mapper_job.h"
+#include "ramap/pipeline/mapper_option_table.h"
+#include "ramap/pipeline/mapper_output.h"
+#include "ramap/util/error.h"
+#include "ramap/util/run_observer.h"
+
+namespace py = pybind11;
+
+namespace ramap::python {
+
+namespace {
+
+// Turns Python's Ctrl-C (checked in the thread that called, holding the GIL for a moment) into a
+// stop of the run, and passes each stage to the progress callback. A Python exception raised in
+// either is kept and raised again once the run has unwound.
+class PythonRunObserver : public RunObserver {
+ public:
+  explicit PythonRunObserver(py::object progress) : progress_(std::move(progress)) {}
+
+  void OnStage(const std::string& stage, double seconds, const std::string& message) override {
+    if (progress_.is_none() || error_) return;
+    py::gil_scoped_acquire gil;
+    try {
+      progress_(stage, seconds, message);
+    } catch (py::error_already_set& error) {
+      error_ = std::make_unique<py::error_already_set>(std::move(error));
+    }
+  }
+
+  bool StopRequested() override {
+    if (error_) return true;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) error_ = std::make_unique<py::error_already_set>();
+    return error_ != nullptr;
+  }
+
+  // Raises the kept Python exception, if any (with the GIL held).
+  void RaiseKeptError() {
+    if (!error_) return;
+    std::unique_ptr<py::error_already_set> error = std::move(error_);
+    error->restore();
+    throw py::error_already_set();
+  }
+
+  ~PythonRunObserver() override {
+    if (!error_) return;
+    py::gil_scoped_acquire gil;
+    error_.reset();
+  }
+
+ private:
+  py::object progress_;
+  std::unique_ptr<py::error_already_set> error_;
+};
+
+// Options from Python, already flattened to {"Section.option": "text"} by __init__.py; a wrong
+// name or value raises ValueError with the command line's message.
+MapperOptions MapperOptionsFromText(const std::map<std::string, std::string>& values) {
+  MapperOptions options;
+  for (const auto& [name, text] : values) SetOption(MapperOptionTable(), name, text, &options);
+  return options;
+}
+
+// What global_mapping returns to __init__.py: the models (largest first, moved into Python), the
+// summary as JSON text, and why nothing was reconstructed (empty when something was).
+py::tuple GlobalMapping(const std::string& database_path, const std::string& image_path,
+                        const std::string& output_path,
+                        const std::map<std::string, std::string>& options,
+                        const py::object& progress, bool log) {
+  MapperJob job;
+  job.database_path = database_path;
+  job.image_path = image_path;
+  job.output_path = output_path;
+  job.options = MapperOptionsFromText(options);
+  job.command = "ramap.global_mapping";
+  PythonRunObserver observer(progress);
+  MapperResult result;
+  std::string failure;
+  {
+    py::gil_scoped_release release;
+    const ScopedRunObserver scope(&observer);
+    try {
+      result = RunMapperJob(job, log ? &std::cout : nullptr, &std::cerr);
+    } catch (const NothingReconstructed& nothing) {
+      failure = nothing.what();
+    } catch (const RunStopped&) {
+      // Raised below, as the Python exception that asked for the stop.
+    }
+  }
+  observer.RaiseKeptError();
+  py::list models;
+  for (Reconstruction& model : result.reconstructions) models.append(py::cast(std::move(model)));
+  const std::string summary = failure.empty() ? MapperSummaryToJson(result.summary).dump() : "{}";
+  return py::make_tuple(models, summary, failure);
+}
+
+py::dict EvaluateModelPoses(const std::string& model_path, const std::string& ground_truth,
+                            const std::string& format, const std::string& image_list,
+                            const std::string& database_path) {
+  ModelEvaluationInput input{model_path, ground_truth, GroundTruthFormatFromName(format),
+                             image_list, database_path};
+  PoseEvaluation evaluation;
+  {
+    py::gil_scoped_release release;
+    evaluation = EvaluateModel(input, PoseEvaluationOptions());
+  }
+  return py::module_::import("json").attr("loads")(PoseEvaluationToJson(evaluation).dump());
+}
+
+void BindOptions(py::module_& m) {
+  m.def(
+      "mapper_option_names", []() { return OptionNames(MapperOptionTable()); },
+      "every mapper option's name, as the command line spells it without the dashes");
+  m.def(
+      "mapper_option_defaults",
+      []() {
+        const MapperOptions defaults;
+        std::map<std::string, std::string> values;
+        for (const auto& d : MapperOptionTable()) values[d.name] = d.text(defaults);
+        return values;
+      },
+      "every mapper option's default, as text");
+  m.def(
+      "check_mapper_options",
+      [](const std::map<std::string, std::string>& values) {
+        MapperOptions options = MapperOptionsFromText(values);
+        ResolveMapperOptions(&options);
+      },
+      "raises ValueError with the command line's message for a wrong name or value");
+}
+
+}  // namespace
+
+}  // namespace ramap::python
+
+PYBIND11_MODULE(_core, m) {
+  using namespace ramap::python;
+  m.doc() = "ramap's compiled core: motion-averaging structure from motion";
+  py::register_exception<ramap::InputError>(m, "InputError", PyExc_ValueError);
+  BindModel(m);
+  BindOptions(m);
+  m.def("global_mapping", &GlobalMapping, py::arg("database_path"), py::arg("image_path"),
+        py::arg("output_path"), py::arg("options"), py::arg("progress"), py::arg("log"));
+  m.def("evaluate", &EvaluateModelPoses, py::arg("model_path"), py::arg("ground_truth"),
+        py::arg("format"), py::arg("image_list") = "", py::arg("database_path") = "");
+}

@@ -1,0 +1,227 @@
+// Options declared once: each with its COLMAP-style name ("Mapper.refine"), type, default, range
+// and one line of help, bound to a field of a settings struct. The command line, the checks,
+// summary.json's options block, Python's keyword names and the options reference are all read
+// from the declaration, so they cannot disagree.
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "ramap/util/error.h"
+
+namespace ramap {
+
+// The values a numeric option accepts: low <= value (or <) and value <= high (or <), finite.
+struct OptionRange {
+  double low = -std::numeric_limits<double>::infinity();
+  bool low_open = false;
+  double high = std::numeric_limits<double>::infinity();
+  bool high_open = false;
+
+  bool Contains(double value) const;
+  // "a finite number >= 1 and <= 256".
+  std::string Describe() const;
+};
+// value >= low (and <= high).
+OptionRange AtLeast(double low, double high = std::numeric_limits<double>::infinity());
+// value > low (and < high).
+OptionRange Above(double low, double high = std::numeric_limits<double>::infinity());
+// Any finite number.
+OptionRange AnyNumber();
+
+enum class OptionType { kBool, kInteger, kNumber, kChoice, kText };
+
+// One option of a settings struct `Settings`.
+template <typename Settings>
+struct OptionDeclaration {
+  std::string name;  // "Section.option": --Section.option on the command line
+  OptionType type = OptionType::kNumber;
+  OptionRange range;                 // numeric options
+  std::vector<std::string> choices;  // kChoice: the accepted words
+  std::string help;
+  // The value as the command line takes it ("1", "0.05", "adaptive").
+  std::function<std::string(const Settings&)> text;
+  // The value for summary.json (numbers as numbers).
+  std::function<nlohmann::json(const Settings&)> json;
+  // Stores already checked text.
+  std::function<void(Settings&, const std::string&)> store;
+
+  std::string Section() const { return name.substr(0, name.find('.')); }
+  std::string Key() const { return name.substr(name.find('.') + 1); }
+};
+
+// What is wrong with `text` as a value of an option of this type, range and choices; empty when
+// nothing is ("must be a finite number >= 1, got 0", "'x' is not an integer").
+std::string OptionValueProblem(OptionType type, const OptionRange& range,
+                               const std::vector<std::string>& choices, const std::string& text);
+
+// The shortest decimal text that reads back as `value` ("0.05", not "0.050000000000000003").
+std::string FormatOptionNumber(double value);
+
+// "--Foo.bar: no such option (did you mean --Foo.baz?)": the closest of `known` by edit distance,
+// when one is close.
+std::string UnknownOptionMessage(const std::string& name, const std::vector<std::string>& known);
+
+// Declarations bound through `access`, a generic lambda returning a reference to the field:
+// [](auto& o) -> auto& { return o.bundle_adjustment.max_num_iterations; }.
+template <typename Settings, typename Access>
+OptionDeclaration<Settings> BoolOption(std::string name, Access access, std::string help) {
+  OptionDeclaration<Settings> d;
+  d.name = std::move(name);
+  d.type = OptionType::kBool;
+  d.help = std::move(help);
+  d.text = [access](const Settings& s) -> std::string { return access(s) ? "1" : "0"; };
+  d.json = [access](const Settings& s) -> nlohmann::json { return static_cast<bool>(access(s)); };
+  d.store = [access](Settings& s, const std::string& text) {
+    access(s) = text == "1" || text == "true" || text == "on" || text == "yes";
+  };
+  return d;
+}
+
+template <typename Settings, typename Access>
+OptionDeclaration<Settings> NumberOption(std::string name, Access access, OptionRange range,
+                                         std::string help = "") {
+  using Value = std::decay_t<decltype(access(std::declval<Settings&>()))>;
+  OptionDeclaration<Settings> d;
+  d.name = std::move(name);
+  d.type = std::is_integral_v<Value> ? OptionType::kInteger : OptionType::kNumber;
+  d.range = range;
+  d.help = std::move(help);
+  d.text = [access](const Settings& s) -> std::string {
+    if constexpr (std::is_integral_v<Value>) return std::to_string(access(s));
+    return FormatOptionNumber(static_cast<double>(access(s)));
+  };
+  d.json = [access](const Settings& s) -> nlohmann::json { return access(s); };
+  d.store = [access](Settings& s, const std::string& text) {
+    if constexpr (std::is_integral_v<Value>) {
+      access(s) = static_cast<Value>(std::stoll(text));
+    } else {
+      access(s) = static_cast<Value>(std::stod(text));
+    }
+  };
+  return d;
+}
+
+// A free text option (a path, "lat,lon,alt"): whatever it holds is checked where it is used.
+template <typename Settings, typename Access>
+OptionDeclaration<Settings> TextOption(std::string name, Access access, std::string help) {
+  OptionDeclaration<Settings> d;
+  d.name = std::move(name);
+  d.type = OptionType::kText;
+  d.help = std::move(help);
+  d.text = [access](const Settings& s) -> std::string { return access(s); };
+  d.json = [access](const Settings& s) -> nlohmann::json { return access(s); };
+  d.store = [access](Settings& s, const std::string& text) { access(s) = text; };
+  return d;
+}
+
+// An option taking one of the words of `names`, each naming a value of the field's type.
+template <typename Settings, typename Value, typename Access>
+OptionDeclaration<Settings> ChoiceOption(std::string name, Access access,
+                                         std::vector<std::pair<std::string, Value>> names,
+                                         std::string help) {
+  OptionDeclaration<Settings> d;
+  d.name = std::move(name);
+  d.type = OptionType::kChoice;
+  d.help = std::move(help);
+  for (const auto& entry : names) d.choices.push_back(entry.first);
+  d.text = [access, names](const Settings& s) -> std::string {
+    for (const auto& entry : names) {
+      if (entry.second == access(s)) return entry.first;
+    }
+    return "?";
+  };
+  d.json = [text = d.text](const Settings& s) -> nlohmann::json { return text(s); };
+  d.store = [access, names](Settings& s, const std::string& text) {
+    for (const auto& entry : names) {
+      if (entry.first == text) access(s) = entry.second;
+    }
+  };
+  return d;
+}
+
+template <typename Settings>
+using OptionTable = std::vector<OptionDeclaration<Settings>>;
+
+// The declaration named `name`, or nullptr.
+template <typename Settings>
+const OptionDeclaration<Settings>* FindOption(const OptionTable<Settings>& table,
+                                              const std::string& name) {
+  for (const OptionDeclaration<Settings>& d : table) {
+    if (d.name == name) return &d;
+  }
+  return nullptr;
+}
+
+template <typename Settings>
+std::vector<std::string> OptionNames(const OptionTable<Settings>& table) {
+  std::vector<std::string> names;
+  for (const OptionDeclaration<Settings>& d : table) names.push_back(d.name);
+  return names;
+}
+
+// Checks `text` against the declaration and stores it; throws InputError("--name", problem).
+template <typename Settings>
+void SetOption(const OptionDeclaration<Settings>& d, const std::string& text, Settings* settings) {
+  const std::string problem = OptionValueProblem(d.type, d.range, d.choices, text);
+  if (!problem.empty()) throw InputError("--" + d.name, problem);
+  d.store(*settings, text);
+}
+
+// SetOption by name; an unknown name throws InputError with UnknownOptionMessage's text.
+template <typename Settings>
+void SetOption(const OptionTable<Settings>& table, const std::string& name, const std::string& text,
+               Settings* settings) {
+  const OptionDeclaration<Settings>* d = FindOption(table, name);
+  if (d == nullptr) {
+    throw InputError("--" + name, UnknownOptionMessage(name, OptionNames(table)));
+  }
+  SetOption(*d, text, settings);
+}
+
+// Throws InputError naming the first option whose value in `settings` its declaration refuses
+// (for settings filled in by code rather than parsed).
+template <typename Settings>
+void CheckOptionValues(const OptionTable<Settings>& table, const Settings& settings) {
+  for (const OptionDeclaration<Settings>& d : table) {
+    const std::string text = d.text(settings);
+    const std::string problem = OptionValueProblem(d.type, d.range, d.choices, text);
+    if (!problem.empty()) throw InputError("--" + d.name, problem);
+  }
+}
+
+// {"Section": {"option": value, ...}, ...}, in declaration order within each section.
+template <typename Settings>
+nlohmann::json OptionValuesToJson(const OptionTable<Settings>& table, const Settings& settings) {
+  nlohmann::json sections = nlohmann::json::object();
+  for (const OptionDeclaration<Settings>& d : table)
+    sections[d.Section()][d.Key()] = d.json(settings);
+  return sections;
+}
+
+// What a reader of the help or the options reference is told the values may be:
+// "integer >= 1", "number > 0 and < 90", "0|1", "grid|random|roi|ransac5".
+std::string OptionValueHint(OptionType type, const OptionRange& range,
+                            const std::vector<std::string>& choices);
+
+// The value's type as a command line's help shows it: "INT", "FLOAT", "0|1", "grid|random".
+std::string OptionTypeName(OptionType type, const std::vector<std::string>& choices);
+
+// The options as a Markdown table: | option | default | values | what it does |.
+template <typename Settings>
+std::string OptionTableMarkdown(const OptionTable<Settings>& table, const Settings& defaults) {
+  std::string out = "| option | default | values | what it does |\n|---|---|---|---|\n";
+  for (const OptionDeclaration<Settings>& d : table) {
+    std::string help;
+    for (const char c : d.help) help += c == '|' ? std::string("\\|") : std::string(1, c);
+    out += "| `--" + d.name + "` | " + d.text(defaults) + " | " +
+           OptionValueHint(d.type, d.range, d.choices) + " | " + help + " |\n";
+  }
+  return out;
+}
+
+}  // namespace ramap

@@ -1,12 +1,12 @@
 // `ramap evaluate --model_path MODEL --ground_truth PATH --ground_truth_format FORMAT`: accuracy of
 // a COLMAP model's camera poses against ground truth (eval/pose_metrics.h), as a table on stdout
-// and optionally as JSON. Which images count as the input: eval/model_evaluation.h.
+// and optionally as JSON. Which images count as the input: pipeline/model_evaluation.h.
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <string>
 
 #include "options.h"
-#include "ramap/eval/model_evaluation.h"
+#include "ramap/pipeline/model_evaluation.h"
 #include "ramap/util/number_list.h"
 #include "ramap/util/output_policy.h"
 

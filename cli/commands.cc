@@ -7,6 +7,7 @@ namespace ramap::cli {
 // One function per subcommand, each in its own command_<name>.cc.
 int RunCompare(int argc, char** argv);
 int RunDatabaseInfo(int argc, char** argv);
+int RunOptions(int argc, char** argv);
 int RunDatabaseConverter(int argc, char** argv);
 int RunEvaluate(int argc, char** argv);
 int RunFeatureExtractor(int argc, char** argv);
@@ -55,6 +56,7 @@ const std::vector<Command>& AllCommands() {
       {"compare", "COLMAP's BA mapper vs ramap on one database: accuracy, time, figures",
        RunCompare},
       {"database_info", "counts and checks what a COLMAP database holds", RunDatabaseInfo},
+      {"options", "every mapper option, its default and meaning (Markdown)", RunOptions},
       {"database_converter", "a COLMAP database rewritten as another generation (3.8, 3.10, 4)",
        RunDatabaseConverter},
       {"model_aligner", "georegister a COLMAP model to GPS / position priors (ENU, GeoJSON)",

@@ -7,11 +7,11 @@
 #include <iostream>
 
 #include "model_bindings.h"
-#include "ramap/eval/model_evaluation.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/pipeline/mapper_job.h"
 #include "ramap/pipeline/mapper_option_table.h"
 #include "ramap/pipeline/mapper_output.h"
+#include "ramap/pipeline/model_evaluation.h"
 #include "ramap/util/error.h"
 #include "ramap/util/run_observer.h"
 

@@ -123,3 +123,23 @@ def test_ctrl_c_stops_a_long_run_and_leaves_nothing(long_scene, tmp_path):
     assert stopped_after < 5.0
     assert not output.exists()
     assert list(tmp_path.iterdir()) == []
+
+
+def test_in_place_of_pycolmap_incremental_mapping_as_hloc_calls_it(default_scene, tmp_path):
+    """README's hloc snippet, and then what hloc's run_reconstruction does with the result."""
+    incremental_mapping = (
+        lambda database_path, image_path, output_path, *options, **named: ramap.global_mapping(
+            database_path, image_path, output_path))
+    models_path = tmp_path / "models"
+    models_path.mkdir()
+    pycolmap_options = object()  # hloc passes pycolmap's options, positionally or by name
+    reconstructions = incremental_mapping(default_scene / "database.db", "",
+                                          models_path, pycolmap_options)
+    assert incremental_mapping(default_scene / "database.db", "",
+                               tmp_path / "again", options=pycolmap_options)
+    largest = max(reconstructions, key=lambda index: reconstructions[index].num_reg_images())
+    for filename in ["images.bin", "cameras.bin", "points3D.bin"]:
+        (models_path / str(largest) / filename).rename(tmp_path / filename)
+    moved = ramap.Reconstruction(str(tmp_path))
+    assert moved.num_reg_images() == reconstructions[largest].num_reg_images() == 120
+    assert "registered images" in reconstructions[largest].summary()

@@ -1,4 +1,4 @@
-#include "ramap/eval/model_evaluation.h"
+#include "ramap/pipeline/model_evaluation.h"
 
 #include <map>
 #include <set>

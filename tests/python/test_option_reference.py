@@ -1,0 +1,42 @@
+"""The options' declarations against what users read: `ramap mapper -h`, docs/options.md and the
+options README names."""
+
+import re
+
+import ramap
+from conftest import SOURCE_DIR, run_cli
+
+
+def test_docs_options_is_the_declarations():
+    generated = run_cli("options").stdout
+    assert (SOURCE_DIR / "docs" / "options.md").read_text() == generated, \
+        "docs/options.md is stale: run `ramap options > docs/options.md`"
+    for name, default in ramap.mapper_option_defaults().items():
+        assert f"| `--{name}` | {default} |" in generated, name
+
+
+def test_mapper_help_shows_every_declaration_with_its_default():
+    help_text = run_cli("mapper", "-h").stdout
+    for name, default in ramap.mapper_option_defaults().items():
+        shown = re.search(rf"^\s*--{re.escape(name)} (\S+)(?:\s|$)", help_text, re.MULTILINE)
+        assert shown, name
+        type_and_default = shown.group(1)
+        if default:
+            assert type_and_default.endswith("=" + default), (name, type_and_default)
+
+
+def test_readme_names_only_options_that_exist_with_their_defaults():
+    readme = (SOURCE_DIR / "README.md").read_text()
+    known = {}
+    for command in ["mapper", "reconstruct", "matcher", "feature_extractor", "compare",
+                    "evaluate", "synthesize", "model_aligner", "database_converter"]:
+        for match in re.finditer(r"^\s*(--[\w.]+) (\S+)(?:\s|$)", run_cli(command, "-h").stdout,
+                                 re.MULTILINE):
+            known[match.group(1)] = match.group(2).partition("=")[2]
+    rows = [line for line in readme.splitlines() if line.startswith("| `--")]
+    assert rows, "README's options table"
+    for row in rows:
+        for name in re.findall(r"`(--[A-Z]\w*\.\w+)[\s`]", row):
+            assert name in known, f"README names {name}, which no command defines"
+        for name, default in re.findall(r"`(--[A-Z]\w*\.\w+)[^`]*` \(default ([^)\s:,;]+)", row):
+            assert known[name] == default, f"README: {name} default {default}, declared {known[name]}"

@@ -56,7 +56,7 @@ const std::vector<Command>& AllCommands() {
       {"compare", "COLMAP's BA mapper vs ramap on one database: accuracy, time, figures",
        RunCompare},
       {"database_info", "counts and checks what a COLMAP database holds", RunDatabaseInfo},
-      {"options", "every mapper option, its default and meaning (Markdown)", RunOptions},
+      {"options", "every option, its default and meaning (Markdown)", RunOptions},
       {"database_converter", "a COLMAP database rewritten as another generation (3.8, 3.10, 4)",
        RunDatabaseConverter},
       {"model_aligner", "georegister a COLMAP model to GPS / position priors (ENU, GeoJSON)",

@@ -5,7 +5,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include "ramap/pipeline/loop_closure.h"
 #include "ramap/pipeline/mapper_options.h"
 
 namespace ramap::cli {
@@ -14,9 +13,5 @@ namespace ramap::cli {
 // --TranslationAveraging.*, --PairDirection.*, --Triangulation.*, --Reregistration.*,
 // --BundleAdjustment.*, --ViewGraphCalibration.*, --Mapper.*) bound to `options`.
 void AddMapperOptions(CLI::App& app, MapperOptions* options);
-
-// --LoopClosure.*: whether `ramap reconstruct` closes loops after sequential matching, and how it
-// finds the candidates (pipeline/loop_closure.h).
-void AddLoopClosureOptions(CLI::App& app, bool* close_loops, LoopClosureOptions* options);
 
 }  // namespace ramap::cli

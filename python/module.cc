@@ -7,12 +7,15 @@
 #include <iostream>
 
 #include "model_bindings.h"
+#include "ramap/io/colmap_database.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/pipeline/mapper_job.h"
 #include "ramap/pipeline/mapper_option_table.h"
 #include "ramap/pipeline/mapper_output.h"
 #include "ramap/pipeline/model_evaluation.h"
+#include "ramap/pipeline/reconstruct_job.h"
 #include "ramap/util/error.h"
+#include "ramap/util/output_policy.h"
 #include "ramap/util/run_observer.h"
 
 namespace py = pybind11;
@@ -66,10 +69,41 @@ class PythonRunObserver : public RunObserver {
 
 // Options from Python, already flattened to {"Section.option": "text"} by __init__.py; a wrong
 // name or value raises ValueError with the command line's message.
+template <typename Settings>
+Settings SettingsFromText(const OptionTable<Settings>& table,
+                          const std::map<std::string, std::string>& values) {
+  Settings settings;
+  for (const auto& [name, text] : values) SetOption(table, name, text, &settings);
+  return settings;
+}
+
 MapperOptions MapperOptionsFromText(const std::map<std::string, std::string>& values) {
-  MapperOptions options;
-  for (const auto& [name, text] : values) SetOption(MapperOptionTable(), name, text, &options);
-  return options;
+  return SettingsFromText(MapperOptionTable(), values);
+}
+
+// Runs `work` with the GIL released and `observer` installed; a Python exception the observer
+// kept (Ctrl-C, or one raised by the progress callback) is raised once the work has unwound.
+template <typename Work>
+void RunObserved(PythonRunObserver* observer, Work&& work) {
+  {
+    py::gil_scoped_release release;
+    const ScopedRunObserver scope(observer);
+    try {
+      work();
+    } catch (const RunStopped&) {
+      // Raised below, as the Python exception that asked for the stop.
+    }
+  }
+  observer->RaiseKeptError();
+}
+
+// The models of a run as __init__.py wants them: (models moved into Python, summary JSON, why
+// nothing was reconstructed).
+py::tuple MappingOutcome(MapperResult* result, const std::string& failure) {
+  py::list models;
+  for (Reconstruction& model : result->reconstructions) models.append(py::cast(std::move(model)));
+  const std::string summary = failure.empty() ? MapperSummaryToJson(result->summary).dump() : "{}";
+  return py::make_tuple(models, summary, failure);
 }
 
 // What global_mapping returns to __init__.py: the models (largest first, moved into Python), the
@@ -87,22 +121,71 @@ py::tuple GlobalMapping(const std::string& database_path, const std::string& ima
   PythonRunObserver observer(progress);
   MapperResult result;
   std::string failure;
-  {
-    py::gil_scoped_release release;
-    const ScopedRunObserver scope(&observer);
+  RunObserved(&observer, [&]() {
     try {
       result = RunMapperJob(job, log ? &std::cout : nullptr, &std::cerr);
     } catch (const NothingReconstructed& nothing) {
       failure = nothing.what();
-    } catch (const RunStopped&) {
-      // Raised below, as the Python exception that asked for the stop.
     }
-  }
-  observer.RaiseKeptError();
-  py::list models;
-  for (Reconstruction& model : result.reconstructions) models.append(py::cast(std::move(model)));
-  const std::string summary = failure.empty() ? MapperSummaryToJson(result.summary).dump() : "{}";
-  return py::make_tuple(models, summary, failure);
+  });
+  return MappingOutcome(&result, failure);
+}
+
+py::tuple Reconstruct(const std::string& image_path, const std::string& output_path,
+                      const std::map<std::string, std::string>& options,
+                      const std::string& image_list, const py::object& progress, bool log) {
+  ReconstructJob job;
+  job.image_path = image_path;
+  job.image_list = image_list;
+  job.output_path = output_path;
+  job.options = SettingsFromText(ReconstructOptionTable(), options);
+  job.command = "ramap.reconstruct";
+  PythonRunObserver observer(progress);
+  ReconstructResult result;
+  std::string failure;
+  RunObserved(&observer, [&]() {
+    try {
+      result = RunReconstructJob(job, log ? &std::cout : nullptr, &std::cerr);
+    } catch (const NothingReconstructed& nothing) {
+      failure = nothing.what();
+    }
+  });
+  return MappingOutcome(&result.mapping, failure);
+}
+
+size_t ExtractFeaturesInto(const std::string& image_path, const std::string& database_path,
+                           const std::map<std::string, std::string>& options,
+                           const std::string& image_list, bool log) {
+  FeatureOptions settings = SettingsFromText(ExtractionOptionTable(), options);
+  ResolveFeatureOptions(&settings);
+  CheckNewDatabasePath("database_path", database_path, {image_path, image_list});
+  PythonRunObserver observer{py::none()};
+  size_t num_images = 0;
+  RunObserved(&observer, [&]() {
+    const FeatureDatabase database =
+        ExtractFeatures(image_path, image_list, settings, log ? &std::cout : nullptr, &std::cerr);
+    WriteColmapDatabase(database, database_path, settings.generation);
+    num_images = database.images.size();
+  });
+  return num_images;
+}
+
+py::object MatchDatabaseFeatures(const std::string& database_path,
+                                 const std::map<std::string, std::string>& options, bool log) {
+  FeatureOptions settings = SettingsFromText(MatchingOptionTable(), options);
+  ResolveFeatureOptions(&settings);
+  PythonRunObserver observer{py::none()};
+  std::string summary;
+  RunObserved(&observer, [&]() {
+    DatabaseReadOptions read_options;
+    read_options.read_descriptors = true;
+    read_options.read_matches = false;
+    FeatureDatabase database = ReadColmapDatabase(database_path, read_options);
+    summary = MatchingSummaryToJson(MatchFeatures(&database, &settings, log ? &std::cout : nullptr))
+                  .dump();
+    WriteColmapDatabaseMatches(database, database_path);
+  });
+  return py::module_::import("json").attr("loads")(summary);
 }
 
 py::dict EvaluateModelPoses(const std::string& model_path, const std::string& ground_truth,
@@ -122,6 +205,9 @@ void BindOptions(py::module_& m) {
   m.def(
       "mapper_option_names", []() { return OptionNames(MapperOptionTable()); },
       "every mapper option's name, as the command line spells it without the dashes");
+  m.def(
+      "reconstruct_option_names", []() { return OptionNames(ReconstructOptionTable()); },
+      "every option of reconstruct: extraction, matching, the mapper's, loop closure");
   m.def(
       "mapper_option_defaults",
       []() {
@@ -152,6 +238,12 @@ PYBIND11_MODULE(_core, m) {
   BindOptions(m);
   m.def("global_mapping", &GlobalMapping, py::arg("database_path"), py::arg("image_path"),
         py::arg("output_path"), py::arg("options"), py::arg("progress"), py::arg("log"));
+  m.def("reconstruct", &Reconstruct, py::arg("image_path"), py::arg("output_path"),
+        py::arg("options"), py::arg("image_list"), py::arg("progress"), py::arg("log"));
+  m.def("extract_features", &ExtractFeaturesInto, py::arg("image_path"), py::arg("database_path"),
+        py::arg("options"), py::arg("image_list"), py::arg("log"));
+  m.def("match", &MatchDatabaseFeatures, py::arg("database_path"), py::arg("options"),
+        py::arg("log"));
   m.def("evaluate", &EvaluateModelPoses, py::arg("model_path"), py::arg("ground_truth"),
         py::arg("format"), py::arg("image_list") = "", py::arg("database_path") = "");
 }

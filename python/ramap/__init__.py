@@ -27,9 +27,12 @@ __all__ = [
     "Reconstruction",
     "Rigid3d",
     "evaluate",
+    "extract_features",
     "global_mapping",
+    "match",
     "mapper_option_defaults",
     "mapper_option_names",
+    "reconstruct",
 ]
 
 
@@ -104,6 +107,37 @@ def global_mapping(database_path, image_path="", output_path="", options=None, p
     if reason:
         warnings.warn(f"ramap.global_mapping: {reason}", RuntimeWarning, stacklevel=2)
     return MappingResult(dict(enumerate(models)), json.loads(summary_json), reason)
+
+
+def reconstruct(image_path, output_path, options=None, image_list="", progress=None, log=False):
+    """Images to models in one call, as `ramap reconstruct`: features, matching by the plan the
+    options choose, the mapper (with loop closure after sequential matching).
+
+    Writes output_path/database.db (COLMAP reads it too) and output_path/sparse/0, 1, ... with
+    summary.json. options: every name `ramap reconstruct -h` lists (ImageReader.*,
+    FeatureExtraction.*, Matching.*, the mapper's, LoopClosure.*), flat or nested. Returns a
+    MappingResult, as global_mapping does.
+    """
+    models, summary_json, reason = _core.reconstruct(
+        os.fspath(image_path), os.fspath(output_path), _flat_options(options),
+        os.fspath(image_list or ""), progress, bool(log))
+    if reason:
+        warnings.warn(f"ramap.reconstruct: {reason}", RuntimeWarning, stacklevel=2)
+    return MappingResult(dict(enumerate(models)), json.loads(summary_json), reason)
+
+
+def extract_features(image_path, database_path, options=None, image_list="", log=False):
+    """Features of the images (SIFT by default, or ORB) into a new COLMAP database, as
+    `ramap feature_extractor`. options: ImageReader.*, FeatureExtraction.*, Database.generation.
+    Returns the number of images read."""
+    return _core.extract_features(os.fspath(image_path), os.fspath(database_path),
+                                  _flat_options(options), os.fspath(image_list or ""), bool(log))
+
+
+def match(database_path, options=None, log=False):
+    """Matches and verifies the pairs of a database's images by the plan the options choose, as
+    `ramap matcher`. options: Matching.*. Returns the matching summary (plan, pairs, seconds)."""
+    return _core.match(os.fspath(database_path), _flat_options(options), bool(log))
 
 
 def evaluate(model, ground_truth, format, image_list="", database_path=""):

@@ -147,6 +147,27 @@ OptionDeclaration<Settings> ChoiceOption(std::string name, Access access,
 template <typename Settings>
 using OptionTable = std::vector<OptionDeclaration<Settings>>;
 
+// Appends `inner`'s declarations to `out`, bound to the part of an Outer that `access` returns
+// (a generic lambda: [](auto& o) -> auto& { return o.mapper; }): one declaration serves every
+// settings struct that holds its struct.
+template <typename Outer, typename Inner, typename Access>
+void AppendOptions(const OptionTable<Inner>& inner, Access access, OptionTable<Outer>* out) {
+  for (const OptionDeclaration<Inner>& d : inner) {
+    OptionDeclaration<Outer> lifted;
+    lifted.name = d.name;
+    lifted.type = d.type;
+    lifted.range = d.range;
+    lifted.choices = d.choices;
+    lifted.help = d.help;
+    lifted.text = [text = d.text, access](const Outer& s) { return text(access(s)); };
+    lifted.json = [json = d.json, access](const Outer& s) { return json(access(s)); };
+    lifted.store = [store = d.store, access](Outer& s, const std::string& value) {
+      store(access(s), value);
+    };
+    out->push_back(std::move(lifted));
+  }
+}
+
 // The declaration named `name`, or nullptr.
 template <typename Settings>
 const OptionDeclaration<Settings>* FindOption(const OptionTable<Settings>& table,

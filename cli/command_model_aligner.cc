@@ -4,6 +4,7 @@
 // frame, with geo_origin.txt and cameras.geojson when the priors are geodetic. With COLMAP's
 // --alignment_type plane, sets the model upright on its principal plane instead (3DGS's
 // convert.py). COLMAP's option names are read too, and the output may be the input folder.
+#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -67,6 +68,18 @@ int AlignToPlane(Reconstruction model, const std::string& input_path,
   return 0;
 }
 
+// The priors' source and the alignment's --PosePrior.* options, declared with the mapper's; the
+// mapper's uses of the priors (align, use_in_*) are not model_aligner's.
+void AddPriorSourceOptions(CLI::App& app, MapperOptions* options) {
+  OptionTable<MapperOptions> table = MapperOptionSections({"PosePrior"});
+  table.erase(std::remove_if(table.begin(), table.end(),
+                             [](const OptionDeclaration<MapperOptions>& d) {
+                               return d.Key() == "align" || d.Key().rfind("use_in_", 0) == 0;
+                             }),
+              table.end());
+  AddOptionTable(app, table, options);
+}
+
 }  // namespace
 
 int RunModelAligner(int argc, char** argv) {
@@ -81,16 +94,8 @@ int RunModelAligner(int argc, char** argv) {
   app.add_option("--database_path", database_path,
                  "COLMAP database whose position priors are used (without --PosePrior.path)");
   app.add_option("--output_type", output_type, "BIN or TXT")->capture_default_str();
-  // The position priors' source and alignment, declared with the mapper's options.
   MapperOptions prior_options;
-  AddOptionTable(
-      app,
-      MapperOptionSections(
-          {}, {"PosePrior.path", "PosePrior.type", "PosePrior.from_database", "PosePrior.origin",
-               "PosePrior.std_x_m", "PosePrior.std_y_m", "PosePrior.std_z_m",
-               "PosePrior.max_distance_from_origin_m", "PosePrior.max_alignment_error_m",
-               "PosePrior.max_fit_uncertainty_deg", "PosePrior.min_num_inliers"}),
-      &prior_options);
+  AddPriorSourceOptions(app, &prior_options);
   ColmapAlignerOptions colmap;
   AddColmapAlignerOptions(app, &colmap);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;

@@ -72,7 +72,7 @@ CorrespondenceSampler CorrespondenceSamplerFromName(const std::string& name) {
                                   CorrespondenceSampler::kRoi, CorrespondenceSampler::kRansac5}) {
     if (CorrespondenceSamplerName(s) == name) return s;
   }
-  throw InputError("RelativePose.sampler",
+  throw InputError("--RelativePose.sampler",
                    "unknown sampler '" + name + "' (expected grid, random, roi or ransac5)");
 }
 

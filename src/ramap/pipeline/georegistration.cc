@@ -13,11 +13,11 @@ namespace ramap {
 
 void GeoregistrationOptions::Check() const {
   if (!(max_alignment_error_m >= 0)) {
-    throw InputError("PosePrior.max_alignment_error_m", "must be >= 0");
+    throw InputError("--PosePrior.max_alignment_error_m", "must be >= 0");
   }
-  if (min_num_inliers < 3) throw InputError("PosePrior.min_num_inliers", "must be >= 3");
+  if (min_num_inliers < 3) throw InputError("--PosePrior.min_num_inliers", "must be >= 3");
   if (!(max_fit_uncertainty_deg > 0)) {
-    throw InputError("PosePrior.max_fit_uncertainty_deg", "must be > 0");
+    throw InputError("--PosePrior.max_fit_uncertainty_deg", "must be > 0");
   }
 }
 

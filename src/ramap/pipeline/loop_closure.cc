@@ -61,7 +61,7 @@ std::vector<std::pair<uint32_t, uint32_t>> BridgePairs(const MapperResult& first
 
 void LoopClosureOptions::Check() const {
   candidates.Check();
-  if (max_bridge_pairs < 0) throw InputError("LoopClosure.max_bridge_pairs", "must be >= 0");
+  if (max_bridge_pairs < 0) throw InputError("--LoopClosure.max_bridge_pairs", "must be >= 0");
 }
 
 LoopClosureSummary MatchLoopCandidates(const MapperResult& first, const LoopClosureOptions& options,

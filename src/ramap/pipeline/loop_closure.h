@@ -23,7 +23,7 @@ struct LoopClosureOptions {
   // evenly sampled from both; 0 turns the bridging off.
   int max_bridge_pairs = 1000;
 
-  void Check() const;  // throws InputError("LoopClosure...")
+  void Check() const;  // throws InputError("--LoopClosure...")
 };
 
 struct LoopClosureSummary {

@@ -58,10 +58,10 @@ void PosePriorOptions::Check() const {
     throw InputError("PosePrior", "standard deviations must be finite and > 0");
   }
   if (origin && !IsValidGeodeticPoint(*origin)) {
-    throw InputError("PosePrior.origin", "out of range");
+    throw InputError("--PosePrior.origin", "out of range");
   }
   if (!(max_distance_from_origin_m > 0)) {
-    throw InputError("PosePrior.max_distance_from_origin_m", "must be > 0");
+    throw InputError("--PosePrior.max_distance_from_origin_m", "must be > 0");
   }
 }
 

@@ -283,33 +283,33 @@ void CheckNonNegative(double value, const char* option) {
 // SyntheticSceneOptions::Check.
 void CheckViewAndAliasingOptions(const SyntheticSceneOptions& o) {
   CheckNonNegative(o.max_view_distance, "max_view_distance");
-  if (o.loop_min_frame_gap < 0) throw InputError("Synthetic.loop_min_frame_gap", "must be >= 0");
-  if (o.num_aliased_pairs < 0) throw InputError("Synthetic.num_aliased_pairs", "must be >= 0");
+  if (o.loop_min_frame_gap < 0) throw InputError("--Synthetic.loop_min_frame_gap", "must be >= 0");
+  if (o.num_aliased_pairs < 0) throw InputError("--Synthetic.num_aliased_pairs", "must be >= 0");
   if (!(o.aliased_pair_ratio >= 0.0 && o.aliased_pair_ratio <= 1.0)) {
-    throw InputError("Synthetic.aliased_pair_ratio", "must be in [0, 1]");
+    throw InputError("--Synthetic.aliased_pair_ratio", "must be in [0, 1]");
   }
   if (!(o.aliased_min_angle_deg >= 0.0 && o.aliased_min_angle_deg <= o.aliased_max_angle_deg &&
         o.aliased_max_angle_deg <= 180.0)) {
-    throw InputError("Synthetic.aliased_min_angle_deg",
+    throw InputError("--Synthetic.aliased_min_angle_deg",
                      "must satisfy 0 <= aliased_min_angle_deg <= aliased_max_angle_deg <= 180");
   }
   if (o.photo_names && o.num_images > 26 * 26 * 26 * 26) {
-    throw InputError("Synthetic.photo_names", "names at most 456976 images (four letters)");
+    throw InputError("--Synthetic.photo_names", "names at most 456976 images (four letters)");
   }
   if (o.aliased_max_frame_gap < 0) {
-    throw InputError("Synthetic.aliased_max_frame_gap", "must be >= 0 (0: any two frames)");
+    throw InputError("--Synthetic.aliased_max_frame_gap", "must be >= 0 (0: any two frames)");
   }
   if (!(o.aliased_shift_m >= 0.0 && std::isfinite(o.aliased_shift_m))) {
-    throw InputError("Synthetic.aliased_shift_m", "must be a finite distance >= 0");
+    throw InputError("--Synthetic.aliased_shift_m", "must be a finite distance >= 0");
   }
   if (o.num_aliased_pair_matches < 8) {
-    throw InputError("Synthetic.num_aliased_pair_matches", "must be at least 8");
+    throw InputError("--Synthetic.num_aliased_pair_matches", "must be at least 8");
   }
   CheckNonNegative(o.facade_distance, "facade_distance");
   CheckPositive(o.facade_height, "facade_height");
   CheckNonNegative(o.facade_roughness, "facade_roughness");
   if (o.keypoint_columns != 2 && o.keypoint_columns != 4 && o.keypoint_columns != 6) {
-    throw InputError("Synthetic.keypoint_columns",
+    throw InputError("--Synthetic.keypoint_columns",
                      "must be 2, 4 or 6, got " + std::to_string(o.keypoint_columns));
   }
 }
@@ -329,73 +329,73 @@ Camera SyntheticSceneOptions::DefaultCamera() {
 void SyntheticSceneOptions::Check() const {
   if (layout == SyntheticLayout::kSequential && path == SyntheticPath::kGiven) {
     if (given_poses.size() < 2) {
-      throw InputError("Synthetic.trajectory",
+      throw InputError("--Synthetic.trajectory",
                        "needs at least 2 given poses, got " + std::to_string(given_poses.size()));
     }
     if (num_images < 0 || static_cast<size_t>(num_images) > given_poses.size() || num_images == 1) {
-      throw InputError("Synthetic.num_images", "must be 0 (all) or between 2 and the " +
-                                                   std::to_string(given_poses.size()) +
-                                                   " given poses, got " +
-                                                   std::to_string(num_images));
+      throw InputError("--Synthetic.num_images", "must be 0 (all) or between 2 and the " +
+                                                     std::to_string(given_poses.size()) +
+                                                     " given poses, got " +
+                                                     std::to_string(num_images));
     }
     for (const Rigid3d& pose : given_poses) {
       if (!pose.rotation.coeffs().allFinite() || !pose.translation.allFinite() ||
           std::abs(pose.rotation.norm() - 1.0) > 1e-6) {
-        throw InputError("Synthetic.trajectory", "a given pose is not a finite rigid transform");
+        throw InputError("--Synthetic.trajectory", "a given pose is not a finite rigid transform");
       }
     }
   } else if (num_images < 2) {
-    throw InputError("Synthetic.num_images",
+    throw InputError("--Synthetic.num_images",
                      "must be at least 2, got " + std::to_string(num_images));
   }
   CheckCameraParams(camera, "Synthetic.camera");
   if (camera.width == 0 || camera.height == 0) {
-    throw InputError("Synthetic.camera", "image width and height must be positive");
+    throw InputError("--Synthetic.camera", "image width and height must be positive");
   }
   if (second_camera) {
     CheckCameraParams(*second_camera, "Synthetic.second_camera");
     if (second_camera->width != camera.width || second_camera->height != camera.height) {
-      throw InputError("Synthetic.second_camera", "must have the first camera's image size");
+      throw InputError("--Synthetic.second_camera", "must have the first camera's image size");
     }
   }
   if (num_points < 1) {
-    throw InputError("Synthetic.num_points",
+    throw InputError("--Synthetic.num_points",
                      "must be at least 1, got " + std::to_string(num_points));
   }
   CheckPositive(min_depth, "min_depth");
   CheckPositive(max_depth, "max_depth");
   if (max_depth <= min_depth) {
-    throw InputError("Synthetic.max_depth", "must exceed Synthetic.min_depth");
+    throw InputError("--Synthetic.max_depth", "must exceed Synthetic.min_depth");
   }
   CheckPositive(step_length, "step_length");
   CheckNonNegative(rotation_jitter_deg, "rotation_jitter_deg");
   CheckNonNegative(position_jitter, "position_jitter");
   CheckPositive(object_radius, "object_radius");
   if (!(camera_distance > object_radius) || !std::isfinite(camera_distance)) {
-    throw InputError("Synthetic.camera_distance", "must exceed Synthetic.object_radius");
+    throw InputError("--Synthetic.camera_distance", "must exceed Synthetic.object_radius");
   }
   CheckNonNegative(pixel_noise_sigma, "pixel_noise");
   if (!(outlier_ratio >= 0.0 && outlier_ratio <= 0.9)) {
-    throw InputError("Synthetic.outlier_ratio",
+    throw InputError("--Synthetic.outlier_ratio",
                      "must be in [0, 0.9], got " + std::to_string(outlier_ratio));
   }
   if (num_outlier_pairs < 0) {
-    throw InputError("Synthetic.num_outlier_pairs", "must be zero or positive");
+    throw InputError("--Synthetic.num_outlier_pairs", "must be zero or positive");
   }
   if (num_outlier_pair_matches < 1) {
-    throw InputError("Synthetic.num_outlier_pair_matches", "must be at least 1");
+    throw InputError("--Synthetic.num_outlier_pair_matches", "must be at least 1");
   }
   if (overlap < 1) {
-    throw InputError("Synthetic.overlap", "must be at least 1, got " + std::to_string(overlap));
+    throw InputError("--Synthetic.overlap", "must be at least 1, got " + std::to_string(overlap));
   }
   CheckNonNegative(loop_max_distance, "loop_max_distance");
   CheckViewAndAliasingOptions(*this);
   CheckNonNegative(loop_max_angle_deg, "loop_max_angle_deg");
   if (min_shared_points < 1) {
-    throw InputError("Synthetic.min_shared_points", "must be at least 1");
+    throw InputError("--Synthetic.min_shared_points", "must be at least 1");
   }
   if (min_num_inliers < 0) {
-    throw InputError("Synthetic.min_num_inliers", "must be zero or positive");
+    throw InputError("--Synthetic.min_num_inliers", "must be zero or positive");
   }
 }
 

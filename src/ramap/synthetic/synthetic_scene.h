@@ -135,7 +135,7 @@ struct SyntheticSceneOptions {
   uint64_t seed = 1;
 
   static Camera DefaultCamera();
-  // Throws InputError("Synthetic.<option>", ...) on a value out of range.
+  // Throws InputError("--Synthetic.<option>", ...) on a value out of range.
   void Check() const;
 };
 

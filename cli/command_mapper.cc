@@ -6,7 +6,6 @@
 #include "options.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/pipeline/mapper_job.h"
-#include "ramap/util/output_policy.h"
 
 namespace ramap::cli {
 
@@ -30,8 +29,6 @@ int RunMapper(int argc, char** argv) {
   AddMapperOptions(app, &job.options);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   job.output_format = ModelFormatFromName(output_type, "--output_type");
-  CheckFolderOutput("--output_path", job.output_path,
-                    {job.database_path, job.image_path, job.options.prior_source.path});
   const MapperResult result = RunMapperJob(job, log_level > 0 ? &std::cout : nullptr, &std::cerr);
   PrintMapperSummary(result.summary, job.output_path, std::cout);
   return 0;

@@ -149,6 +149,15 @@ py::dict Copies(const std::map<Key, Value>& values) {
   return out;
 }
 
+// The dict of a model's cameras, images or points, made once per model object: the model cannot
+// change from Python, and `model.images[k]` in a loop would otherwise copy every image each time.
+template <typename Make>
+py::object Cached(const py::object& self, const char* key, Make make) {
+  py::dict attributes = self.attr("__dict__");
+  if (!attributes.contains(key)) attributes[key] = make(self.cast<const Reconstruction&>());
+  return attributes[key];
+}
+
 std::string Describe(const Reconstruction& model) {
   size_t num_observations = 0;
   for (const auto& [id, point] : model.points3D) num_observations += point.track.size();
@@ -167,16 +176,32 @@ void BindModel(py::module_& m) {
   BindImage(m);
   BindPoint(m);
   py::class_<Reconstruction>(m, "Reconstruction",
-                             "A COLMAP model: cameras, registered images and 3D points")
+                             "A COLMAP model: cameras, registered images and 3D points",
+                             py::dynamic_attr())
       .def(py::init<>())
       .def(py::init([](const std::string& path) {
              py::gil_scoped_release release;
              return ReadColmapModel(path);
            }),
            py::arg("path"), "reads a COLMAP model folder (.bin or .txt)")
-      .def_property_readonly("cameras", [](const Reconstruction& r) { return Copies(r.cameras); })
-      .def_property_readonly("images", [](const Reconstruction& r) { return Copies(r.images); })
-      .def_property_readonly("points3D", [](const Reconstruction& r) { return Copies(r.points3D); })
+      .def_property_readonly("cameras",
+                             [](const py::object& self) {
+                               return Cached(self, "_cameras", [](const Reconstruction& r) {
+                                 return Copies(r.cameras);
+                               });
+                             })
+      .def_property_readonly("images",
+                             [](const py::object& self) {
+                               return Cached(self, "_images", [](const Reconstruction& r) {
+                                 return Copies(r.images);
+                               });
+                             })
+      .def_property_readonly("points3D",
+                             [](const py::object& self) {
+                               return Cached(self, "_points3D", [](const Reconstruction& r) {
+                                 return Copies(r.points3D);
+                               });
+                             })
       .def("num_cameras", [](const Reconstruction& r) { return r.cameras.size(); })
       .def("num_reg_images", [](const Reconstruction& r) { return r.images.size(); })
       .def("num_points3D", [](const Reconstruction& r) { return r.points3D.size(); })

@@ -29,7 +29,13 @@ namespace {
 // either is kept and raised again once the run has unwound.
 class PythonRunObserver : public RunObserver {
  public:
-  explicit PythonRunObserver(py::object progress) : progress_(std::move(progress)) {}
+  // Made with the GIL held, in the thread that calls ramap. Only Python's main thread receives
+  // Ctrl-C, so a call from another thread is never asked to stop by a signal.
+  explicit PythonRunObserver(py::object progress)
+      : progress_(std::move(progress)),
+        on_main_thread_(py::module_::import("threading")
+                            .attr("current_thread")()
+                            .is(py::module_::import("threading").attr("main_thread")())) {}
 
   void OnStage(const std::string& stage, double seconds, const std::string& message) override {
     if (progress_.is_none() || error_) return;
@@ -43,12 +49,15 @@ class PythonRunObserver : public RunObserver {
 
   bool StopRequested() override {
     if (error_) return true;
+    if (!on_main_thread_) return false;
     py::gil_scoped_acquire gil;
     if (PyErr_CheckSignals() != 0) error_ = std::make_unique<py::error_already_set>();
     return error_ != nullptr;
   }
 
   // Raises the kept Python exception, if any (with the GIL held).
+  bool HasKeptError() const { return error_ != nullptr; }
+
   void RaiseKeptError() {
     if (!error_) return;
     std::unique_ptr<py::error_already_set> error = std::move(error_);
@@ -64,6 +73,7 @@ class PythonRunObserver : public RunObserver {
 
  private:
   py::object progress_;
+  bool on_main_thread_;
   std::unique_ptr<py::error_already_set> error_;
 };
 
@@ -85,6 +95,7 @@ MapperOptions MapperOptionsFromText(const std::map<std::string, std::string>& va
 // kept (Ctrl-C, or one raised by the progress callback) is raised once the work has unwound.
 template <typename Work>
 void RunObserved(PythonRunObserver* observer, Work&& work) {
+  std::exception_ptr failure;
   {
     py::gil_scoped_release release;
     const ScopedRunObserver scope(observer);
@@ -92,9 +103,14 @@ void RunObserved(PythonRunObserver* observer, Work&& work) {
       work();
     } catch (const RunStopped&) {
       // Raised below, as the Python exception that asked for the stop.
+    } catch (...) {
+      failure = std::current_exception();
     }
   }
-  observer->RaiseKeptError();
+  // Ctrl-C (or the progress callback's exception) first, even when a worker's exception
+  // unwound the run before the stop reached it.
+  if (observer->HasKeptError()) observer->RaiseKeptError();
+  if (failure) std::rethrow_exception(failure);
 }
 
 // The models of a run as __init__.py wants them: (models moved into Python, summary JSON, why

@@ -1,6 +1,7 @@
 """ramap.global_mapping against `ramap mapper`, options, failures, the GIL and Ctrl-C."""
 
 import _thread
+import json
 import threading
 import time
 
@@ -30,7 +31,9 @@ def test_same_poses_as_the_command_line_with_one_thread(default_scene, tmp_path)
     for part in ["cameras.bin", "images.bin", "points3D.bin"]:
         assert (tmp_path / "cli" / "0" / part).read_bytes() == \
             (tmp_path / "python" / "0" / part).read_bytes(), part
-    assert (tmp_path / "python" / "summary.json").exists()
+    summary = json.loads((tmp_path / "python" / "summary.json").read_text())
+    assert summary["run"]["options"]["Mapper"]["num_threads"] == 1
+    assert summary["run"]["pose_priors"]["std_m"] == [3.0, 3.0, 6.0]
 
 
 def test_options_flat_and_nested_are_the_same_options(default_scene):
@@ -60,6 +63,8 @@ def cli_error(*option_args):
     ({"Mapper.num_threads": 0}, ["--Mapper.num_threads", "0"]),
     ({"RotationAveraging.pruning": "sometimes"}, ["--RotationAveraging.pruning", "sometimes"]),
     ({"RelativePose": {"min_num_inliers": 2.5}}, ["--RelativePose.min_num_inliers", "2.5"]),
+    # More than the field holds is refused, never wrapped (2^32 would be 0: "all points").
+    ({"Mapper.calibration_num_points": 2**32}, ["--Mapper.calibration_num_points", "4294967296"]),
 ])
 def test_wrong_options_give_the_command_lines_message(default_scene, tmp_path, options, cli_args):
     with pytest.raises(ValueError) as raised:
@@ -143,3 +148,19 @@ def test_in_place_of_pycolmap_incremental_mapping_as_hloc_calls_it(default_scene
     moved = ramap.Reconstruction(str(tmp_path))
     assert moved.num_reg_images() == reconstructions[largest].num_reg_images() == 120
     assert "registered images" in reconstructions[largest].summary()
+
+
+def test_outputs_are_checked_before_any_work(default_scene, tmp_path):
+    images = tmp_path / "images"
+    images.mkdir()
+    (images / "photo.jpg").write_bytes(b"a user's photo")
+    with pytest.raises(ValueError, match="--output_path"):
+        ramap.global_mapping(default_scene / "database.db", images, images)
+    assert [p.name for p in images.iterdir()] == ["photo.jpg"]
+
+
+def test_boolean_words_as_the_command_line_took_them(default_scene):
+    for word in ["False", "off", "NO", 0, False]:
+        ramap._core.check_mapper_options({"Mapper.refine": ramap._flat_options({"v": word})["v"]})
+    with pytest.raises(ValueError, match="'maybe' is not 1 or 0"):
+        ramap._core.check_mapper_options({"Mapper.refine": "maybe"})

@@ -8,6 +8,7 @@
 #include "ramap/pipeline/mapper_output.h"
 #include "ramap/pipeline/pose_prior_loading.h"
 #include "ramap/pipeline/stage_log.h"
+#include "ramap/util/output_policy.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
@@ -35,6 +36,10 @@ void ColorPoints(const MapperJob& job, std::ostream* progress, std::ostream* war
 MapperResult RunMapperJob(const MapperJob& job, std::ostream* progress, std::ostream* warnings) {
   MapperOptions options = job.options;
   ResolveMapperOptions(&options);
+  if (!job.output_path.empty()) {
+    CheckFolderOutput("--output_path", job.output_path,
+                      {job.database_path, job.image_path, options.prior_source.path});
+  }
   Timer read_timer;
   const FeatureDatabase database =
       ReadColmapDatabase(job.database_path, MapperDatabaseReadOptions());
@@ -61,16 +66,18 @@ MapperResult RunMapperJob(const MapperJob& job, std::ostream* progress, std::ost
   MapperResult result = RunMapper(database, options, job.database_path, progress, priors.priors);
   if (!job.image_path.empty()) ColorPoints(job, progress, warnings, &result);
   if (job.output_path.empty()) return result;
-  const nlohmann::json run = {{"command", "mapper"},
-                              {"database_path", job.database_path},
-                              {"image_path", job.image_path},
-                              {"database",
-                               {{"generation", DatabaseGenerationLabel(database.generation)},
-                                {"num_rigs", rigs.num_rigs},
-                                {"num_frames", rigs.num_frames},
-                                {"num_multi_camera_frames", rigs.num_multi_camera_frames},
-                                {"rig_constraints_used", false}}},
-                              {"options", OptionValuesToJson(MapperOptionTable(), options)}};
+  const nlohmann::json run = {
+      {"command", "mapper"},
+      {"database_path", job.database_path},
+      {"image_path", job.image_path},
+      {"database",
+       {{"generation", DatabaseGenerationLabel(database.generation)},
+        {"num_rigs", rigs.num_rigs},
+        {"num_frames", rigs.num_frames},
+        {"num_multi_camera_frames", rigs.num_multi_camera_frames},
+        {"rig_constraints_used", false}}},
+      {"options", OptionValuesToJson(MapperOptionTable(), options)},
+      {"pose_priors", PosePriorOptionsToJson(options.prior_source, options.georegistration)}};
   Timer write_timer;
   WriteMapperOutput(result, job.output_path, job.output_format, run);
   if (progress != nullptr) {

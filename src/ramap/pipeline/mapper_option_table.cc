@@ -65,26 +65,26 @@ void AddRelativePose(Table& t) {
       "matrix, not Kneip's rotation-only solver"));
   t.push_back(Number(
       "RelativePose.confident_inlier_ratio",
-      [](auto& o) -> auto& { return o.relative_pose.confident_inlier_ratio; }, AnyNumber(),
+      [](auto& o) -> auto& { return o.relative_pose.confident_inlier_ratio; }, AtLeast(0),
       "stop solving five-point candidates once one explains this fraction of 50 "
       "matches (pairs of at least confident_min_matches; above 1: never)"));
   t.push_back(Number(
       "RelativePose.confident_max_rms_error_px",
-      [](auto& o) -> auto& { return o.relative_pose.confident_max_rms_error_px; }, AnyNumber(),
+      [](auto& o) -> auto& { return o.relative_pose.confident_max_rms_error_px; }, AtLeast(0),
       "...and whose inliers there have at most this RMS epipolar error (after one "
       "refinement on them)"));
   t.push_back(Number(
       "RelativePose.confident_narrow_view_deg",
-      [](auto& o) -> auto& { return o.relative_pose.confident_narrow_view_deg; }, AnyNumber(),
+      [](auto& o) -> auto& { return o.relative_pose.confident_narrow_view_deg; }, AtLeast(0),
       "matches spread less than this (RMS angle to their mean bearing) are a "
       "narrow view..."));
   t.push_back(Number(
       "RelativePose.confident_narrow_view_rms_error_px",
       [](auto& o) -> auto& { return o.relative_pose.confident_narrow_view_rms_error_px; },
-      AnyNumber(), "...whose confident candidates must meet this error bound instead"));
+      AtLeast(0), "...whose confident candidates must meet this error bound instead"));
   t.push_back(Number(
       "RelativePose.confident_min_matches",
-      [](auto& o) -> auto& { return o.relative_pose.confident_min_matches; }, AnyNumber(),
+      [](auto& o) -> auto& { return o.relative_pose.confident_min_matches; }, AtLeast(0),
       "pairs with fewer matches always solve every candidate"));
   t.push_back(Number(
       "RelativePose.confident_noise_sample",
@@ -242,11 +242,12 @@ void AddTranslationSolver(Table& t) {
       "iterations of the IRLS solver"));
   t.push_back(Number(
       "TranslationAveraging.irls_cost_tolerance",
-      [](auto& o) -> auto& { return o.translation_averaging.irls_cost_tolerance; }, AnyNumber(),
+      [](auto& o) -> auto& { return o.translation_averaging.irls_cost_tolerance; },
+      OptionRange{0, false, 1, true},
       "stop IRLS when a step lowers its objective by less (0: off)"));
   t.push_back(Number(
       "TranslationAveraging.irls_extrapolation",
-      [](auto& o) -> auto& { return o.translation_averaging.irls_extrapolation; }, AnyNumber(),
+      [](auto& o) -> auto& { return o.translation_averaging.irls_extrapolation; }, AtLeast(1, 3),
       "IRLS steps taken this many times over when that lowers the objective more "
       "(1: plain)"));
   t.push_back(Number(

@@ -41,4 +41,22 @@ LocalizedPriors LoadPosePriors(const PosePriorSource& source, const FeatureDatab
   return priors;
 }
 
+// summary.json's "pose_priors" block, as it was before the priors' options were declared with the
+// mapper's (options.PosePrior holds the same values).
+nlohmann::json PosePriorOptionsToJson(const PosePriorSource& text,
+                                      const GeoregistrationOptions& g) {
+  return {{"path", text.path},
+          {"type", text.type},
+          {"from_database", text.from_database},
+          {"origin", text.origin},
+          {"std_m", {text.std_x_m, text.std_y_m, text.std_z_m}},
+          {"max_distance_from_origin_m", text.max_distance_from_origin_m},
+          {"align", g.align},
+          {"use_in_translation_averaging", g.use_in_translation_averaging},
+          {"use_in_bundle_adjustment", g.use_in_bundle_adjustment},
+          {"max_alignment_error_m", g.max_alignment_error_m},
+          {"min_num_inliers", g.min_num_inliers},
+          {"max_fit_uncertainty_deg", g.max_fit_uncertainty_deg}};
+}
+
 }  // namespace ramap

@@ -3,9 +3,11 @@
 // --PosePrior.* source options, shared by the command line and Python.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
 
+#include "ramap/pipeline/georegistration.h"
 #include "ramap/pipeline/pose_priors.h"
 #include "ramap/scene/features.h"
 
@@ -26,5 +28,9 @@ struct PosePriorSource {
 // as warnings prefixed by `command` (ten at most, then a count); nothing when `log` is null.
 LocalizedPriors LoadPosePriors(const PosePriorSource& source, const FeatureDatabase& database,
                                const std::string& command, std::ostream* log);
+
+// The source and the georegistration settings as summary.json's "pose_priors" block.
+nlohmann::json PosePriorOptionsToJson(const PosePriorSource& source,
+                                      const GeoregistrationOptions& georegistration);
 
 }  // namespace ramap

@@ -55,7 +55,7 @@ std::string ValueProblem(const PriorRecord& record, PriorCoordinates coordinates
 
 void PosePriorOptions::Check() const {
   if (!ValidDeviations(std_dev_m)) {
-    throw InputError("PosePrior", "standard deviations must be finite and > 0");
+    throw InputError("--PosePrior.std_x_m, std_y_m, std_z_m", "must be finite and > 0");
   }
   if (origin && !IsValidGeodeticPoint(*origin)) {
     throw InputError("--PosePrior.origin", "out of range");

@@ -10,6 +10,7 @@
 #include "ramap/pipeline/mapper_option_table.h"
 #include "ramap/pipeline/mapper_output.h"
 #include "ramap/pipeline/pose_prior_loading.h"
+#include "ramap/util/blas_threads.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
@@ -91,6 +92,8 @@ ReconstructResult RunReconstructJob(const ReconstructJob& job, std::ostream* pro
                                     std::ostream* warnings) {
   ReconstructOptions options = job.options;
   ResolveReconstructOptions(&options);
+  // The mapper's threads for the BLAS throughout, loop closure's matching included.
+  const ScopedBlasThreads blas_threads(options.mapper.num_threads);
   CheckFolderOutput("--output_path", job.output_path, {job.image_path, job.image_list});
   const std::string database_path = job.output_path + "/database.db";
   CheckNewDatabasePath("--output_path", database_path, {job.image_path, job.image_list});
@@ -123,6 +126,8 @@ ReconstructResult RunReconstructJob(const ReconstructJob& job, std::ostream* pro
       {"matching_mode", MatchingModeName(features.matching.mode)},
       {"matching", MatchingSummaryToJson(matching)},
       {"options", OptionValuesToJson(MapperOptionTable(), options.mapper)},
+      {"pose_priors",
+       PosePriorOptionsToJson(options.mapper.prior_source, options.mapper.georegistration)},
       {"loop_closure",
        LoopClosureToJson(options.close_loops, options.loop_closure, closed.closure)}};
   WriteMapperOutput(result.mapping, job.output_path + "/sparse", ModelFormat::kBinary, run);

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "ramap/pipeline/mapper_option_table.h"
+#include "ramap/util/error.h"
 
 namespace ramap {
 
@@ -14,6 +15,36 @@ template <typename Access>
 OptionDeclaration<FeatureOptions> Number(std::string name, Access access, OptionRange range,
                                          std::string help = "") {
   return NumberOption<FeatureOptions>(std::move(name), access, range, std::move(help));
+}
+
+// COLMAP's version names as DatabaseGenerationFromName reads them (3.9, 4.x, 4.1.1, ...): a
+// choice of three schemas under many names.
+OptionDeclaration<FeatureOptions> DatabaseGenerationOption() {
+  OptionDeclaration<FeatureOptions> d;
+  d.name = "Database.generation";
+  d.type = OptionType::kText;
+  d.choices = {"3.8", "3.10", "4"};
+  d.help =
+      "schema of the new database: 3.8 (COLMAP 3.8-3.9, read by every COLMAP), 3.10 "
+      "(3.10-3.11) or 4 (3.12-4.x)";
+  d.check = [](const std::string& text) -> std::string {
+    try {
+      DatabaseGenerationFromName(text, "--Database.generation");
+    } catch (const InputError&) {
+      return "'" + text + "' is not 3.8, 3.10 or 4 (COLMAP 3.8-3.9, 3.10-3.11, 3.12-4.x)";
+    }
+    return "";
+  };
+  d.text = [](const FeatureOptions& o) -> std::string {
+    return o.generation == DatabaseGeneration::kColmap38    ? "3.8"
+           : o.generation == DatabaseGeneration::kColmap310 ? "3.10"
+                                                            : "4";
+  };
+  d.json = [text = d.text](const FeatureOptions& o) -> nlohmann::json { return text(o); };
+  d.store = [](FeatureOptions& o, const std::string& text) {
+    o.generation = DatabaseGenerationFromName(text, "--Database.generation");
+  };
+  return d;
 }
 
 FeatureTable BuildExtractionTable() {
@@ -48,21 +79,7 @@ FeatureTable BuildExtractionTable() {
   t.push_back(Number(
       "FeatureExtraction.num_threads", [](auto& o) -> auto& { return o.reader.num_threads; },
       AtLeast(1, 256), "images read and described at once"));
-  t.push_back(ChoiceOption<FeatureOptions>(
-      "Database.generation", [](auto& o) -> auto& { return o.generation; },
-      std::vector<std::pair<std::string, DatabaseGeneration>>{
-          {"3.8", DatabaseGeneration::kColmap38},
-          {"3.10", DatabaseGeneration::kColmap310},
-          {"4", DatabaseGeneration::kColmap4},
-          {"3.9", DatabaseGeneration::kColmap38},
-          {"3.11", DatabaseGeneration::kColmap310},
-          {"3.12", DatabaseGeneration::kColmap4},
-          {"3.13", DatabaseGeneration::kColmap4},
-          {"4.x", DatabaseGeneration::kColmap4},
-          {"4.0", DatabaseGeneration::kColmap4},
-          {"4.1", DatabaseGeneration::kColmap4}},
-      "schema of the new database: 3.8 (COLMAP 3.8-3.9, read by every COLMAP), 3.10 (3.10-3.11) "
-      "or 4 (3.12-4.x)"));
+  t.push_back(DatabaseGenerationOption());
   return t;
 }
 

@@ -267,14 +267,14 @@ std::vector<std::string> PhotoNames(size_t count, uint64_t seed) {
 
 void CheckPositive(double value, const char* option) {
   if (!(value > 0.0) || !std::isfinite(value)) {
-    throw InputError(std::string("Synthetic.") + option,
+    throw InputError(std::string("--Synthetic.") + option,
                      "must be a positive number, got " + std::to_string(value));
   }
 }
 
 void CheckNonNegative(double value, const char* option) {
   if (!(value >= 0.0) || !std::isfinite(value)) {
-    throw InputError(std::string("Synthetic.") + option,
+    throw InputError(std::string("--Synthetic.") + option,
                      "must be zero or positive, got " + std::to_string(value));
   }
 }

@@ -69,6 +69,11 @@ std::string JoinWords(const std::vector<std::string>& words, const std::string& 
   return out;
 }
 
+std::string Lower(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
 size_t EditDistance(const std::string& a, const std::string& b) {
   std::vector<size_t> row(b.size() + 1);
   for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
@@ -88,15 +93,22 @@ size_t EditDistance(const std::string& a, const std::string& b) {
 
 }  // namespace
 
+bool OptionBoolValue(const std::string& text) {
+  const std::string word = Lower(text);
+  return word == "1" || word == "true" || word == "on" || word == "yes" || word == "enable" ||
+         word == "t" || word == "y";
+}
+
 std::string OptionValueProblem(OptionType type, const OptionRange& range,
                                const std::vector<std::string>& choices, const std::string& text) {
   switch (type) {
-    case OptionType::kBool:
-      if (text == "0" || text == "1" || text == "true" || text == "false" || text == "on" ||
-          text == "off" || text == "yes" || text == "no") {
-        return "";
-      }
+    case OptionType::kBool: {
+      static const std::vector<std::string> words = {"0",   "1",   "true", "false",  "on",
+                                                     "off", "yes", "no",   "enable", "disable",
+                                                     "t",   "f",   "y",    "n"};
+      if (std::find(words.begin(), words.end(), Lower(text)) != words.end()) return "";
       return "'" + text + "' is not 1 or 0";
+    }
     case OptionType::kText:
       return "";
     case OptionType::kChoice:
@@ -140,8 +152,8 @@ std::string OptionValueHint(OptionType type, const OptionRange& range,
   switch (type) {
     case OptionType::kBool:
       return "0 or 1";
-    case OptionType::kText:
-      return "text";
+    case OptionType::kText:  // choices, when given, are the usual values of a checked text
+      return choices.empty() ? "text" : JoinWords(choices, " or ") + " (or a COLMAP version)";
     case OptionType::kChoice:
       return JoinWords(choices, " or ");
     case OptionType::kInteger:

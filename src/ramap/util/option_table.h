@@ -4,6 +4,7 @@
 // from the declaration, so they cannot disagree.
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -43,6 +44,8 @@ struct OptionDeclaration {
   OptionRange range;                 // numeric options
   std::vector<std::string> choices;  // kChoice: the accepted words
   std::string help;
+  // A check of the text beyond type and range (empty: none): the problem, or "" when none.
+  std::function<std::string(const std::string&)> check;
   // The value as the command line takes it ("1", "0.05", "adaptive").
   std::function<std::string(const Settings&)> text;
   // The value for summary.json (numbers as numbers).
@@ -53,6 +56,10 @@ struct OptionDeclaration {
   std::string Section() const { return name.substr(0, name.find('.')); }
   std::string Key() const { return name.substr(name.find('.') + 1); }
 };
+
+// A boolean option's value: 1, true, on, yes, enable (any case) are true; what else passes
+// OptionValueProblem is false.
+bool OptionBoolValue(const std::string& text);
 
 // What is wrong with `text` as a value of an option of this type, range and choices; empty when
 // nothing is ("must be a finite number >= 1, got 0", "'x' is not an integer").
@@ -76,9 +83,7 @@ OptionDeclaration<Settings> BoolOption(std::string name, Access access, std::str
   d.help = std::move(help);
   d.text = [access](const Settings& s) -> std::string { return access(s) ? "1" : "0"; };
   d.json = [access](const Settings& s) -> nlohmann::json { return static_cast<bool>(access(s)); };
-  d.store = [access](Settings& s, const std::string& text) {
-    access(s) = text == "1" || text == "true" || text == "on" || text == "yes";
-  };
+  d.store = [access](Settings& s, const std::string& text) { access(s) = OptionBoolValue(text); };
   return d;
 }
 
@@ -90,6 +95,18 @@ OptionDeclaration<Settings> NumberOption(std::string name, Access access, Option
   d.name = std::move(name);
   d.type = std::is_integral_v<Value> ? OptionType::kInteger : OptionType::kNumber;
   d.range = range;
+  if constexpr (std::is_integral_v<Value>) {
+    // What the field can hold bounds what is accepted: 4294967296 never wraps to 0.
+    d.check = [](const std::string& text) -> std::string {
+      const double value = std::stod(text);
+      if (value >= static_cast<double>(std::numeric_limits<Value>::lowest()) &&
+          value <= static_cast<double>(std::numeric_limits<Value>::max())) {
+        return "";
+      }
+      return "must be at most " + std::to_string(std::numeric_limits<Value>::max()) + ", got " +
+             text;
+    };
+  }
   d.help = std::move(help);
   d.text = [access](const Settings& s) -> std::string {
     if constexpr (std::is_integral_v<Value>) return std::to_string(access(s));
@@ -185,10 +202,18 @@ std::vector<std::string> OptionNames(const OptionTable<Settings>& table) {
   return names;
 }
 
+// What is wrong with `text` as this option's value ("" when nothing is).
+template <typename Settings>
+std::string OptionProblem(const OptionDeclaration<Settings>& d, const std::string& text) {
+  std::string problem = OptionValueProblem(d.type, d.range, d.choices, text);
+  if (problem.empty() && d.check) problem = d.check(text);
+  return problem;
+}
+
 // Checks `text` against the declaration and stores it; throws InputError("--name", problem).
 template <typename Settings>
 void SetOption(const OptionDeclaration<Settings>& d, const std::string& text, Settings* settings) {
-  const std::string problem = OptionValueProblem(d.type, d.range, d.choices, text);
+  const std::string problem = OptionProblem(d, text);
   if (!problem.empty()) throw InputError("--" + d.name, problem);
   d.store(*settings, text);
 }
@@ -209,8 +234,7 @@ void SetOption(const OptionTable<Settings>& table, const std::string& name, cons
 template <typename Settings>
 void CheckOptionValues(const OptionTable<Settings>& table, const Settings& settings) {
   for (const OptionDeclaration<Settings>& d : table) {
-    const std::string text = d.text(settings);
-    const std::string problem = OptionValueProblem(d.type, d.range, d.choices, text);
+    const std::string problem = OptionProblem(d, d.text(settings));
     if (!problem.empty()) throw InputError("--" + d.name, problem);
   }
 }

@@ -27,7 +27,7 @@ void CheckForStop() {
   if (observer == nullptr) return;
   if (!observer->stopped_ && observer->owner_ == std::this_thread::get_id()) {
     const auto now = std::chrono::steady_clock::now();
-    if (now - last_asked >= std::chrono::milliseconds(20)) {
+    if (now - last_asked >= std::chrono::milliseconds(50)) {
       last_asked = now;
       if (observer->StopRequested()) observer->stopped_ = true;
     }

@@ -16,7 +16,7 @@ class RunObserver {
   // A stage ended (the mapper's stage names, pipeline/stage_log.h).
   virtual void OnStage(const std::string& /*stage*/, double /*seconds*/,
                        const std::string& /*message*/) {}
-  // Asked only in the thread that installed the observer, at most every 20 ms; true stops the run.
+  // Asked only in the thread that installed the observer, at most every 50 ms; true stops the run.
   virtual bool StopRequested() { return false; }
 
  private:
@@ -50,7 +50,7 @@ class ScopedRunObserver {
 RunObserver* CurrentRunObserver();
 
 // Throws RunStopped when the current observer asked to stop (asking it first, when this is its
-// thread and 20 ms have passed since it was last asked). Cheap enough for every work item.
+// thread and 50 ms have passed since it was last asked). Cheap enough for every work item.
 void CheckForStop();
 
 // Tells the current observer, if any, that a stage ended.

@@ -12,13 +12,15 @@
 #include "commands.h"
 #include "ramap/util/error.h"
 #include "ramap/util/staged_output.h"
+#include "ramap_version.h"
 
 namespace {
 
 void PrintUsage(std::ostream& out) {
   out << "ramap: structure from motion by motion averaging, COLMAP in and out.\n\n"
          "Usage: ramap <command> [--option value ...]\n"
-         "       ramap <command> -h   (options of one command)\n\nCommands:\n";
+         "       ramap <command> -h   (options of one command)\n"
+         "       ramap --version      (version and commit)\n\nCommands:\n";
   for (const ramap::cli::Command& command : ramap::cli::AllCommands()) {
     out << "  " << command.name << std::string(22 - std::min<size_t>(20, command.name.size()), ' ')
         << command.summary << "\n";
@@ -32,6 +34,10 @@ void PrintUsage(std::ostream& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 2 && (!std::strcmp(argv[1], "--version") || !std::strcmp(argv[1], "version"))) {
+    std::cout << "ramap " << RAMAP_VERSION << " (commit " << RAMAP_COMMIT << ")\n";
+    return 0;
+  }
   if (argc < 2 || !std::strcmp(argv[1], "help") || !std::strcmp(argv[1], "-h") ||
       !std::strcmp(argv[1], "--help")) {
     PrintUsage(std::cout);

@@ -2,6 +2,7 @@
 // the exit code, that the message names the file or option at fault, that nothing crashed, and
 // that the user's files are as they were: the tree is compared before and after.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -113,6 +114,31 @@ TEST_F(BadInput, FileOutputIsAnExistingFolder) {
       "evaluate --model_path sparse/0 --ground_truth ground_truth"
       " --ground_truth_format colmap --output_path sparse",
       "--output_path sparse");
+}
+
+// An output under a regular file is refused before any work, naming the file in the way
+// (it was "internal error: filesystem error" after the whole run).
+TEST_F(BadInput, OutputUnderAFile) {
+  ExpectRefused("mapper --database_path database.db --output_path ground_truth.txt/out",
+                "ground_truth.txt is a file, not a folder");
+  ExpectRefused(
+      "relative_poses --database_path database.db --output_path ground_truth.txt/a/edges.txt",
+      "ground_truth.txt is a file, not a folder");
+  ExpectRefused(
+      "evaluate --model_path sparse/0 --ground_truth ground_truth.txt --ground_truth_format tum "
+      "--output_path ground_truth.txt/evaluation.json",
+      "--output_path ground_truth.txt/evaluation.json");
+}
+
+// A folder the user cannot write into is named before any work (root writes anywhere: skipped).
+TEST_F(BadInput, OutputInAnUnwritableFolder) {
+  if (::geteuid() == 0) GTEST_SKIP() << "running as root, every folder is writable";
+  fs::create_directories(W("locked"));
+  fs::permissions(W("locked"), fs::perms::owner_read | fs::perms::owner_exec);
+  before_ = Snapshot(work_.path());
+  ExpectRefused("mapper --database_path database.db --output_path locked/out",
+                "no permission to create or change files in locked");
+  fs::permissions(W("locked"), fs::perms::owner_all);
 }
 
 TEST_F(BadInput, FileOutputIsAnInput) {

@@ -1,5 +1,11 @@
 #include "ramap/pipeline/mapper_output.h"
 
+#include <fcntl.h>
+#include <stdio.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
 
@@ -210,6 +216,30 @@ void WriteContents(const MapperResult& result, const std::string& folder, ModelF
 
 }  // namespace
 
+namespace {
+
+// Puts `from` at `to`: a plain rename when nothing is there, else an atomic exchange of the two
+// (Linux's renameat2 RENAME_EXCHANGE), so that `to` is never missing; where the filesystem cannot
+// exchange, the old entry is removed first and `to` is missing for a moment.
+bool MoveIntoPlace(const fs::path& from, const fs::path& to, std::string* problem) {
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(to, ec))) {
+    if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_EXCHANGE) == 0) {
+      return true;
+    }
+    if (errno != EINVAL && errno != ENOSYS) {
+      *problem = std::strerror(errno);
+      return false;
+    }
+    fs::remove_all(to, ec);
+  }
+  fs::rename(from, to, ec);
+  if (ec) *problem = ec.message();
+  return !ec;
+}
+
+}  // namespace
+
 void WriteMapperOutput(const MapperResult& result, const std::string& output_path,
                        ModelFormat format, const nlohmann::json& run_info) {
   if (!fs::exists(output_path)) {
@@ -250,14 +280,24 @@ void WriteMapperOutput(const MapperResult& result, const std::string& output_pat
   }
   StagedPath staged(output_path + "/.ramap-output");
   WriteContents(result, staged.path(), format, run_info);
-  std::error_code ec;
-  for (const fs::path& target : replaced) fs::remove_all(target, ec);
+  // Each new entry takes its old one's place in one atomic exchange, the old one going to the
+  // staged folder that is removed after: an interrupt at any moment leaves every model whole,
+  // either the earlier run's or this one's, never neither.
+  std::vector<fs::path> swapped;
   for (const auto& entry : fs::directory_iterator(staged.path())) {
     const fs::path target = fs::path(output_path) / entry.path().filename();
-    fs::rename(entry.path(), target, ec);
-    if (ec)
-      throw InputError(output_path,
-                       "cannot move " + target.string() + " into place: " + ec.message());
+    std::string problem;
+    if (!MoveIntoPlace(entry.path(), target, &problem)) {
+      throw InputError(output_path, "cannot move " + target.string() + " into place: " + problem);
+    }
+    swapped.push_back(target);
+  }
+  // Models of the earlier run beyond this run's count go last.
+  std::error_code ec;
+  for (const fs::path& target : replaced) {
+    if (std::find(swapped.begin(), swapped.end(), target) == swapped.end()) {
+      fs::remove_all(target, ec);
+    }
   }
 }
 

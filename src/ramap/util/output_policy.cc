@@ -1,5 +1,7 @@
 #include "ramap/util/output_policy.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <filesystem>
@@ -32,6 +34,29 @@ std::string Named(const std::string& option, const std::string& path) {
   return option + " " + path;
 }
 
+// The nearest folder at or above `start` that exists: where an output that may not exist yet
+// would be created. Throws InputError naming the option when a file stands in the way, or when
+// that folder cannot be written (caught here, before any work, instead of as a filesystem error
+// after it).
+void CheckWritablePlace(const std::string& option, const std::string& path, fs::path start) {
+  std::error_code ec;
+  if (start.empty()) start = ".";
+  while (!fs::exists(start, ec)) {
+    const fs::path parent = start.parent_path();
+    start = parent.empty() || parent == start ? fs::path(".") : parent;
+    if (start == ".") break;
+  }
+  if (!fs::is_directory(start, ec)) {
+    throw InputError(Named(option, path),
+                     "cannot be created: " + start.string() + " is a file, not a folder");
+  }
+  if (::access(start.c_str(), W_OK | X_OK) != 0) {
+    throw InputError(
+        Named(option, path),
+        "cannot be written: no permission to create or change files in " + start.string());
+  }
+}
+
 }  // namespace
 
 void CheckFileOutput(const std::string& option, const std::string& path,
@@ -46,6 +71,7 @@ void CheckFileOutput(const std::string& option, const std::string& path,
     throw InputError(Named(option, path),
                      "is a folder; ramap writes a file here and never replaces a folder");
   }
+  CheckWritablePlace(option, path, as_path.parent_path());
   for (const std::string& input : inputs) {
     if (input.empty()) continue;
     // A model folder given as input is read file by file: its model files are inputs too.
@@ -67,6 +93,7 @@ void CheckFolderOutput(const std::string& option, const std::string& path,
   if (fs::exists(path, ec) && !fs::is_directory(path, ec)) {
     throw InputError(Named(option, path), "exists and is not a folder");
   }
+  CheckWritablePlace(option, path, path);
   for (const std::string& input : inputs) {
     if (!input.empty() && SameFile(path, input)) {
       throw InputError(Named(option, path), "is an input of this run (" + input +

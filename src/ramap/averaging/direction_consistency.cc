@@ -19,9 +19,9 @@ void DirectionConsistencyOptions::Check() const {
   CheckOption(max_residual_deg > 0 && max_residual_deg <= 180, s + "max_residual_deg",
               "in (0, 180]", max_residual_deg);
   CheckOption(min_num_cycles >= 1, s + "min_num_cycles", ">= 1", min_num_cycles);
-  CheckOption(max_num_cycles >= min_num_cycles, s + "max_num_cycles", ">= direction_min_num_cycles",
-              max_num_cycles);
-  CheckOption(num_rounds >= 1, s + "num_rounds", ">= 1", num_rounds);
+  CheckOption(max_num_cycles >= min_num_cycles, "DirectionConsistencyOptions::max_num_cycles",
+              ">= direction_min_num_cycles", max_num_cycles);
+  CheckOption(num_rounds >= 1, "DirectionConsistencyOptions::num_rounds", ">= 1", num_rounds);
 }
 
 double AngleToCone(const Eigen::Vector3d& direction, const Eigen::Vector3d& u,

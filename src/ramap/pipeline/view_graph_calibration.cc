@@ -152,16 +152,17 @@ void ViewGraphCalibrationOptions::Check() const {
                      "must satisfy 0 < min < 1 < max");
   }
   CheckOption(min_num_pairs >= 1, "--ViewGraphCalibration.min_num_pairs", ">= 1", min_num_pairs);
-  CheckOption(min_num_inliers >= 8, "--ViewGraphCalibration.min_num_inliers", ">= 8",
+  CheckOption(min_num_inliers >= 8, "ViewGraphCalibrationOptions::min_num_inliers", ">= 8",
               min_num_inliers);
-  CheckOption(max_pairs_per_camera >= 1, "--ViewGraphCalibration.max_pairs_per_camera", ">= 1",
-              max_pairs_per_camera);
-  CheckOption(loss_scale > 0, "--ViewGraphCalibration.loss_scale", "> 0", loss_scale);
-  CheckOption(prior_weight >= 0, "--ViewGraphCalibration.prior_weight", ">= 0", prior_weight);
-  CheckOption(num_rounds >= 1, "--ViewGraphCalibration.num_rounds", ">= 1", num_rounds);
+  CheckOption(max_pairs_per_camera >= 1, "ViewGraphCalibrationOptions::max_pairs_per_camera",
+              ">= 1", max_pairs_per_camera);
+  CheckOption(loss_scale > 0, "ViewGraphCalibrationOptions::loss_scale", "> 0", loss_scale);
+  CheckOption(prior_weight >= 0, "ViewGraphCalibrationOptions::prior_weight", ">= 0", prior_weight);
+  CheckOption(num_rounds >= 1, "ViewGraphCalibrationOptions::num_rounds", ">= 1", num_rounds);
   CheckOption(max_median_cost > 0, "--ViewGraphCalibration.max_median_cost", "> 0",
               max_median_cost);
-  CheckOption(min_cost_rise >= 0, "--ViewGraphCalibration.min_cost_rise", ">= 0", min_cost_rise);
+  CheckOption(min_cost_rise >= 0, "ViewGraphCalibrationOptions::min_cost_rise", ">= 0",
+              min_cost_rise);
 }
 
 double EssentialMatrixCost(const Eigen::Matrix3d& F, const Eigen::Matrix3d& K1,

@@ -365,17 +365,20 @@ void BundleAdjustmentOptions::Check() const {
   CheckOption(max_num_iterations >= 0, s + "max_num_iterations", ">= 0", max_num_iterations);
   CheckOption(function_tolerance >= 0, s + "function_tolerance", ">= 0", function_tolerance);
   CheckOption(loss_scale_px > 0, s + "loss_scale_px", "> 0", loss_scale_px);
-  CheckOption(min_bearing_z > 0 && min_bearing_z < 1, s + "min_bearing_z", "in (0, 1)",
-              min_bearing_z);
-  CheckOption(num_threads >= 1, s + "num_threads", ">= 1", num_threads);
-  CheckOption(max_reprojection_error_px > 0, s + "max_reprojection_error_px", "> 0",
-              max_reprojection_error_px);
+  CheckOption(min_bearing_z > 0 && min_bearing_z < 1, "BundleAdjustmentOptions::min_bearing_z",
+              "in (0, 1)", min_bearing_z);
+  CheckOption(num_threads >= 1, "BundleAdjustmentOptions::num_threads", ">= 1", num_threads);
+  CheckOption(max_reprojection_error_px > 0, "BundleAdjustmentOptions::max_reprojection_error_px",
+              "> 0", max_reprojection_error_px);
   CheckOption(max_num_points >= 0, s + "max_num_points", ">= 0", max_num_points);
-  CheckOption(min_observations_per_image >= 0, s + "min_observations_per_image", ">= 0",
+  CheckOption(min_observations_per_image >= 0,
+              "BundleAdjustmentOptions::min_observations_per_image", ">= 0",
               min_observations_per_image);
-  CheckOption(intrinsics_function_tolerance >= 0, s + "intrinsics_function_tolerance", ">= 0",
+  CheckOption(intrinsics_function_tolerance >= 0,
+              "BundleAdjustmentOptions::intrinsics_function_tolerance", ">= 0",
               intrinsics_function_tolerance);
-  CheckOption(intrinsics_max_num_iterations >= 0, s + "intrinsics_max_num_iterations", ">= 0",
+  CheckOption(intrinsics_max_num_iterations >= 0,
+              "BundleAdjustmentOptions::intrinsics_max_num_iterations", ">= 0",
               intrinsics_max_num_iterations);
 }
 

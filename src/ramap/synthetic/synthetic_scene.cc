@@ -329,7 +329,7 @@ Camera SyntheticSceneOptions::DefaultCamera() {
 void SyntheticSceneOptions::Check() const {
   if (layout == SyntheticLayout::kSequential && path == SyntheticPath::kGiven) {
     if (given_poses.size() < 2) {
-      throw InputError("--Synthetic.trajectory",
+      throw InputError("SyntheticSceneOptions::trajectory",
                        "needs at least 2 given poses, got " + std::to_string(given_poses.size()));
     }
     if (num_images < 0 || static_cast<size_t>(num_images) > given_poses.size() || num_images == 1) {
@@ -341,7 +341,8 @@ void SyntheticSceneOptions::Check() const {
     for (const Rigid3d& pose : given_poses) {
       if (!pose.rotation.coeffs().allFinite() || !pose.translation.allFinite() ||
           std::abs(pose.rotation.norm() - 1.0) > 1e-6) {
-        throw InputError("--Synthetic.trajectory", "a given pose is not a finite rigid transform");
+        throw InputError("SyntheticSceneOptions::trajectory",
+                         "a given pose is not a finite rigid transform");
       }
     }
   } else if (num_images < 2) {
@@ -350,12 +351,13 @@ void SyntheticSceneOptions::Check() const {
   }
   CheckCameraParams(camera, "Synthetic.camera");
   if (camera.width == 0 || camera.height == 0) {
-    throw InputError("--Synthetic.camera", "image width and height must be positive");
+    throw InputError("SyntheticSceneOptions::camera", "image width and height must be positive");
   }
   if (second_camera) {
     CheckCameraParams(*second_camera, "Synthetic.second_camera");
     if (second_camera->width != camera.width || second_camera->height != camera.height) {
-      throw InputError("--Synthetic.second_camera", "must have the first camera's image size");
+      throw InputError("SyntheticSceneOptions::second_camera",
+                       "must have the first camera's image size");
     }
   }
   if (num_points < 1) {
@@ -372,7 +374,8 @@ void SyntheticSceneOptions::Check() const {
   CheckNonNegative(position_jitter, "position_jitter");
   CheckPositive(object_radius, "object_radius");
   if (!(camera_distance > object_radius) || !std::isfinite(camera_distance)) {
-    throw InputError("--Synthetic.camera_distance", "must exceed Synthetic.object_radius");
+    throw InputError("SyntheticSceneOptions::camera_distance",
+                     "must exceed Synthetic.object_radius");
   }
   CheckNonNegative(pixel_noise_sigma, "pixel_noise");
   if (!(outlier_ratio >= 0.0 && outlier_ratio <= 0.9)) {
@@ -383,7 +386,7 @@ void SyntheticSceneOptions::Check() const {
     throw InputError("--Synthetic.num_outlier_pairs", "must be zero or positive");
   }
   if (num_outlier_pair_matches < 1) {
-    throw InputError("--Synthetic.num_outlier_pair_matches", "must be at least 1");
+    throw InputError("SyntheticSceneOptions::num_outlier_pair_matches", "must be at least 1");
   }
   if (overlap < 1) {
     throw InputError("--Synthetic.overlap", "must be at least 1, got " + std::to_string(overlap));

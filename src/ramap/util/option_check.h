@@ -1,5 +1,7 @@
 // The one way an options struct rejects a value: InputError naming the option as the command line
-// spells it, the requirement and the value given ("--Section.option: must be > 0, got -1").
+// spells it, the requirement and the value given ("--Section.option: must be > 0, got -1"). A
+// setting no command line option reaches (only code sets it) is named as Struct::field instead,
+// so that no message names an option that does not exist (tests/python/test_option_reference.py).
 #pragma once
 
 #include <sstream>

@@ -91,6 +91,24 @@ TEST(EvalEvaluateCommand, MatchesInProcessEvaluation) {
   EXPECT_NE(bad.output.find("nonsense"), std::string::npos) << bad.output;
 }
 
+// The ground truth of another scene (no image name in common with the model) is an error naming
+// both, not an evaluation of nothing (it printed "0 of 47 with ground truth" and exited 0).
+TEST(EvalEvaluateCommand, GroundTruthOfAnotherSceneIsRefused) {
+  std::mt19937_64 rng(31);
+  const auto gt = RandomCameras(6, rng);
+  std::map<std::string, Rigid3d> other;
+  for (const auto& [name, pose] : gt) other["other_" + name] = pose;
+  TempDir dir;
+  WriteColmapModel(ModelOf(gt), dir / "gt", ModelFormat::kText);
+  WriteColmapModel(ModelOf(other), dir / "est");
+  const CommandResult run =
+      RunCommand(RamapBinary() + " evaluate --model_path " + (dir / "est") + " --ground_truth " +
+                 (dir / "gt") + " --ground_truth_format colmap --output_path " + (dir / "e.json"));
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("none of the 6 images of the model"), std::string::npos) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "e.json"));
+}
+
 // Ground truth without image names (TUM here) is matched by timestamp or index, so the input
 // images must be known: from the model only when it registered every image.
 TEST(EvalEvaluateCommand, IndexMatchedGroundTruthNeedsTheInputImages) {

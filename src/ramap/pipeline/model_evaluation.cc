@@ -69,6 +69,14 @@ PoseEvaluation EvaluateModel(const ModelEvaluationInput& input,
                      "none of the " + std::to_string(input_names.size()) + " images of " + inputs +
                          " has a ground-truth pose here (another scene, or names that differ?)");
   }
+  // Without a list the inputs are the model's names and the ground truth's together, so the
+  // ground truth of another scene passes the check above with every one of its own names.
+  if (evaluation.num_evaluated == 0 && !estimated.empty()) {
+    throw InputError(input.ground_truth_path,
+                     "none of the " + std::to_string(estimated.size()) + " images of the model " +
+                         input.model_path +
+                         " has a ground-truth pose here (another scene, or names that differ?)");
+  }
   return evaluation;
 }
 

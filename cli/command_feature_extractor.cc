@@ -3,10 +3,7 @@
 #include <iostream>
 
 #include "options.h"
-#include "ramap/io/colmap_database.h"
 #include "ramap/pipeline/reconstruct_job.h"
-#include "ramap/util/error.h"
-#include "ramap/util/output_policy.h"
 
 namespace ramap::cli {
 
@@ -21,11 +18,7 @@ int RunFeatureExtractor(int argc, char** argv) {
   FeatureOptions options;
   AddOptionTable(app, ExtractionOptionTable(), &options);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  ResolveFeatureOptions(&options);
-  CheckNewDatabasePath("--database_path", database_path, {image_path, image_list});
-  const FeatureDatabase database =
-      ExtractFeatures(image_path, image_list, options, &std::cout, &std::cerr);
-  WriteColmapDatabase(database, database_path, options.generation);
+  ExtractFeaturesToDatabase(image_path, image_list, database_path, options, &std::cout, &std::cerr);
   std::cout << "Wrote " << database_path << "\n";
   return 0;
 }

@@ -4,7 +4,6 @@
 #include <iostream>
 
 #include "options.h"
-#include "ramap/io/colmap_database.h"
 #include "ramap/pipeline/reconstruct_job.h"
 
 namespace ramap::cli {
@@ -18,13 +17,7 @@ int RunMatcher(int argc, char** argv) {
   FeatureOptions options;
   AddOptionTable(app, MatchingOptionTable(), &options);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  ResolveFeatureOptions(&options);
-  DatabaseReadOptions read_options;
-  read_options.read_descriptors = true;
-  read_options.read_matches = false;
-  FeatureDatabase database = ReadColmapDatabase(database_path, read_options);
-  MatchFeatures(&database, &options, &std::cout);
-  WriteColmapDatabaseMatches(database, database_path);
+  MatchDatabaseFile(database_path, options, &std::cout);
   std::cout << "Wrote " << database_path << "\n";
   return 0;
 }

@@ -7,7 +7,6 @@
 #include <iostream>
 
 #include "model_bindings.h"
-#include "ramap/io/colmap_database.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/pipeline/mapper_job.h"
 #include "ramap/pipeline/mapper_option_table.h"
@@ -15,7 +14,6 @@
 #include "ramap/pipeline/model_evaluation.h"
 #include "ramap/pipeline/reconstruct_job.h"
 #include "ramap/util/error.h"
-#include "ramap/util/output_policy.h"
 #include "ramap/util/run_observer.h"
 
 namespace py = pybind11;
@@ -113,12 +111,24 @@ void RunObserved(PythonRunObserver* observer, Work&& work) {
   if (failure) std::rethrow_exception(failure);
 }
 
-// The models of a run as __init__.py wants them: (models moved into Python, summary JSON, why
-// nothing was reconstructed).
-py::tuple MappingOutcome(MapperResult* result, const std::string& failure) {
+// Runs `map` (which returns a MapperResult) under a Python observer and gives __init__.py what it
+// wants: (models moved into Python, largest first; the summary as JSON text; why nothing was
+// reconstructed, empty when something was).
+template <typename Map>
+py::tuple ObservedMapping(const py::object& progress, Map map) {
+  PythonRunObserver observer(progress);
+  MapperResult result;
+  std::string failure;
+  RunObserved(&observer, [&]() {
+    try {
+      result = map();
+    } catch (const NothingReconstructed& nothing) {
+      failure = nothing.what();
+    }
+  });
   py::list models;
-  for (Reconstruction& model : result->reconstructions) models.append(py::cast(std::move(model)));
-  const std::string summary = failure.empty() ? MapperSummaryToJson(result->summary).dump() : "{}";
+  for (Reconstruction& model : result.reconstructions) models.append(py::cast(std::move(model)));
+  const std::string summary = failure.empty() ? MapperSummaryToJson(result.summary).dump() : "{}";
   return py::make_tuple(models, summary, failure);
 }
 
@@ -134,17 +144,8 @@ py::tuple GlobalMapping(const std::string& database_path, const std::string& ima
   job.output_path = output_path;
   job.options = MapperOptionsFromText(options);
   job.command = "ramap.global_mapping";
-  PythonRunObserver observer(progress);
-  MapperResult result;
-  std::string failure;
-  RunObserved(&observer, [&]() {
-    try {
-      result = RunMapperJob(job, log ? &std::cout : nullptr, &std::cerr);
-    } catch (const NothingReconstructed& nothing) {
-      failure = nothing.what();
-    }
-  });
-  return MappingOutcome(&result, failure);
+  return ObservedMapping(
+      progress, [&]() { return RunMapperJob(job, log ? &std::cout : nullptr, &std::cerr); });
 }
 
 py::tuple Reconstruct(const std::string& image_path, const std::string& output_path,
@@ -156,50 +157,33 @@ py::tuple Reconstruct(const std::string& image_path, const std::string& output_p
   job.output_path = output_path;
   job.options = SettingsFromText(ReconstructOptionTable(), options);
   job.command = "ramap.reconstruct";
-  PythonRunObserver observer(progress);
-  ReconstructResult result;
-  std::string failure;
-  RunObserved(&observer, [&]() {
-    try {
-      result = RunReconstructJob(job, log ? &std::cout : nullptr, &std::cerr);
-    } catch (const NothingReconstructed& nothing) {
-      failure = nothing.what();
-    }
+  return ObservedMapping(progress, [&]() {
+    return RunReconstructJob(job, log ? &std::cout : nullptr, &std::cerr).mapping;
   });
-  return MappingOutcome(&result.mapping, failure);
 }
 
 size_t ExtractFeaturesInto(const std::string& image_path, const std::string& database_path,
                            const std::map<std::string, std::string>& options,
                            const std::string& image_list, bool log) {
-  FeatureOptions settings = SettingsFromText(ExtractionOptionTable(), options);
-  ResolveFeatureOptions(&settings);
-  CheckNewDatabasePath("database_path", database_path, {image_path, image_list});
+  const FeatureOptions settings = SettingsFromText(ExtractionOptionTable(), options);
   PythonRunObserver observer{py::none()};
   size_t num_images = 0;
   RunObserved(&observer, [&]() {
-    const FeatureDatabase database =
-        ExtractFeatures(image_path, image_list, settings, log ? &std::cout : nullptr, &std::cerr);
-    WriteColmapDatabase(database, database_path, settings.generation);
-    num_images = database.images.size();
+    num_images = ExtractFeaturesToDatabase(image_path, image_list, database_path, settings,
+                                           log ? &std::cout : nullptr, &std::cerr);
   });
   return num_images;
 }
 
 py::object MatchDatabaseFeatures(const std::string& database_path,
                                  const std::map<std::string, std::string>& options, bool log) {
-  FeatureOptions settings = SettingsFromText(MatchingOptionTable(), options);
-  ResolveFeatureOptions(&settings);
+  const FeatureOptions settings = SettingsFromText(MatchingOptionTable(), options);
   PythonRunObserver observer{py::none()};
   std::string summary;
   RunObserved(&observer, [&]() {
-    DatabaseReadOptions read_options;
-    read_options.read_descriptors = true;
-    read_options.read_matches = false;
-    FeatureDatabase database = ReadColmapDatabase(database_path, read_options);
-    summary = MatchingSummaryToJson(MatchFeatures(&database, &settings, log ? &std::cout : nullptr))
+    summary = MatchingSummaryToJson(
+                  MatchDatabaseFile(database_path, settings, log ? &std::cout : nullptr))
                   .dump();
-    WriteColmapDatabaseMatches(database, database_path);
   });
   return py::module_::import("json").attr("loads")(summary);
 }

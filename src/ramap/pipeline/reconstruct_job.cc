@@ -88,6 +88,29 @@ nlohmann::json MatchingSummaryToJson(const DatabaseMatchingSummary& summary) {
           {"seconds", summary.seconds}};
 }
 
+size_t ExtractFeaturesToDatabase(const std::string& image_path, const std::string& image_list,
+                                 const std::string& database_path, FeatureOptions options,
+                                 std::ostream* progress, std::ostream* warnings) {
+  ResolveFeatureOptions(&options);
+  CheckNewDatabasePath("--database_path", database_path, {image_path, image_list});
+  const FeatureDatabase database =
+      ExtractFeatures(image_path, image_list, options, progress, warnings);
+  WriteColmapDatabase(database, database_path, options.generation);
+  return database.images.size();
+}
+
+DatabaseMatchingSummary MatchDatabaseFile(const std::string& database_path, FeatureOptions options,
+                                          std::ostream* progress) {
+  ResolveFeatureOptions(&options);
+  DatabaseReadOptions read_options;
+  read_options.read_descriptors = true;
+  read_options.read_matches = false;
+  FeatureDatabase database = ReadColmapDatabase(database_path, read_options);
+  const DatabaseMatchingSummary summary = MatchFeatures(&database, &options, progress);
+  WriteColmapDatabaseMatches(database, database_path);
+  return summary;
+}
+
 ReconstructResult RunReconstructJob(const ReconstructJob& job, std::ostream* progress,
                                     std::ostream* warnings) {
   ReconstructOptions options = job.options;

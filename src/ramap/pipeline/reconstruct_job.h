@@ -28,6 +28,17 @@ DatabaseMatchingSummary MatchFeatures(FeatureDatabase* database, FeatureOptions*
 
 nlohmann::json MatchingSummaryToJson(const DatabaseMatchingSummary& summary);
 
+// `ramap feature_extractor`: options resolved, the new database's path checked (refused when it
+// exists or is an input), the features extracted and written there. Returns how many images.
+size_t ExtractFeaturesToDatabase(const std::string& image_path, const std::string& image_list,
+                                 const std::string& database_path, FeatureOptions options,
+                                 std::ostream* progress, std::ostream* warnings);
+
+// `ramap matcher`: options resolved, the database's descriptors read, its pairs matched and
+// verified, the matches written back.
+DatabaseMatchingSummary MatchDatabaseFile(const std::string& database_path, FeatureOptions options,
+                                          std::ostream* progress);
+
 struct ReconstructJob {
   std::string image_path;
   std::string image_list;   // optional: only these images (names relative to image_path)

@@ -225,9 +225,9 @@ void ResolveFeatureOptions(FeatureOptions* options) {
 }
 
 void ResolveReconstructOptions(ReconstructOptions* options) {
+  // Each part checked once, by its own resolver; loop closure's ranges are its struct's.
   ResolveFeatureOptions(&options->features);
   ResolveMapperOptions(&options->mapper);
-  CheckOptionValues(ReconstructOptionTable(), *options);
   options->loop_closure.Check();
 }
 

@@ -34,14 +34,6 @@ int BlasThreads() {
   return get_threads == nullptr ? 0 : get_threads();
 }
 
-SingleBlasThread::SingleBlasThread() : previous_(BlasThreads()) {
-  if (previous_ > 1) LimitBlasThreads(1);
-}
-
-SingleBlasThread::~SingleBlasThread() {
-  if (previous_ > 1) LimitBlasThreads(previous_);
-}
-
 ScopedBlasThreads::ScopedBlasThreads(int num_threads) : previous_(BlasThreads()) {
   LimitBlasThreads(num_threads);
 }

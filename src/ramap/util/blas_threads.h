@@ -11,21 +11,6 @@ bool LimitBlasThreads(int num_threads);
 // The BLAS's current thread limit; 0 when the BLAS is not OpenBLAS.
 int BlasThreads();
 
-// One BLAS thread for as long as it lives, then the limit there was before. For stages that
-// factorise many small systems on several threads of their own: each factorisation is too small
-// to share, and OpenBLAS's extra threads only spin (yielding) beside the busy ones. On a
-// 4541-frame drive this took the 148 translation windows' solves from 2.9-3.2 s to 1.6-2.1 s.
-class SingleBlasThread {
- public:
-  SingleBlasThread();
-  ~SingleBlasThread();
-  SingleBlasThread(const SingleBlasThread&) = delete;
-  SingleBlasThread& operator=(const SingleBlasThread&) = delete;
-
- private:
-  int previous_ = 0;
-};
-
 // `num_threads` BLAS threads for as long as it lives, then the limit there was before: a run of the
 // mapper sets its own and leaves the process (a Python interpreter, say) as it found it.
 class ScopedBlasThreads {
@@ -37,6 +22,15 @@ class ScopedBlasThreads {
 
  private:
   int previous_ = 0;
+};
+
+// One BLAS thread for as long as it lives, then the limit there was before. For stages that
+// factorise many small systems on several threads of their own: each factorisation is too small
+// to share, and OpenBLAS's extra threads only spin (yielding) beside the busy ones. On a
+// 4541-frame drive this took the 148 translation windows' solves from 2.9-3.2 s to 1.6-2.1 s.
+class SingleBlasThread : public ScopedBlasThreads {
+ public:
+  SingleBlasThread() : ScopedBlasThreads(1) {}
 };
 
 }  // namespace ramap

@@ -1,29 +1,78 @@
 // `ramap model_converter`: converts a COLMAP sparse model between the binary and text formats,
-// with COLMAP's option names. The input is read and checked whole before any output appears.
+// with COLMAP's option names, or exports it for other tools (PLY points, nerfstudio's
+// transforms.json, a TUM trajectory). The input is read and checked whole before any output
+// appears.
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cctype>
 #include <iostream>
 #include <string>
 
 #include "options.h"
 #include "ramap/io/colmap_model.h"
+#include "ramap/io/model_export.h"
+#include "ramap/io/trajectory.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 
 namespace ramap::cli {
+namespace {
+
+void Export(const Reconstruction& model, ExportFormat format, const std::string& input_path,
+            const std::string& output_path, bool export_cameras) {
+  switch (format) {
+    case ExportFormat::kPly:
+      CheckFileOutput("--output_path", output_path, {input_path});
+      WritePointCloudPly(model, output_path, export_cameras, input_path);
+      std::cout << "Wrote the points" << (export_cameras ? " and camera centres" : "") << " of "
+                << input_path << " to " << output_path << " (PLY)\n";
+      return;
+    case ExportFormat::kNerfstudio:
+      CheckFolderOutput("--output_path", output_path, {input_path});
+      WriteNerfstudioExport(model, output_path, input_path);
+      std::cout << "Wrote " << output_path << "/transforms.json (" << model.images.size()
+                << " frames) and " << output_path << "/sparse_pc.ply (NERFSTUDIO)\n";
+      return;
+    case ExportFormat::kTum:
+      CheckFileOutput("--output_path", output_path, {input_path});
+      if (model.images.empty()) {
+        throw InputError(input_path, "the model has no image: nothing to export");
+      }
+      WriteTumTrajectory(model, output_path);
+      std::cout << "Wrote the trajectory of " << model.images.size() << " images to " << output_path
+                << " (TUM)\n";
+      return;
+  }
+}
+
+}  // namespace
 
 int RunModelConverter(int argc, char** argv) {
-  CLI::App app("Convert a COLMAP sparse model between .bin and .txt", "ramap model_converter");
+  CLI::App app("Convert a COLMAP sparse model between .bin and .txt, or export it",
+               "ramap model_converter");
   std::string input_path;
   std::string output_path;
   std::string output_type;
+  bool export_cameras = false;
   app.add_option("--input_path", input_path, "Folder of the model to read (.bin or .txt)")
       ->required();
-  app.add_option("--output_path", output_path, "Folder to write (created)")->required();
-  app.add_option("--output_type", output_type, "BIN or TXT")->required();
+  app.add_option("--output_path", output_path,
+                 "BIN, TXT, NERFSTUDIO: folder to write (created); PLY, TUM: file to write")
+      ->required();
+  app.add_option("--output_type", output_type,
+                 "BIN or TXT (COLMAP model), PLY (points), NERFSTUDIO (transforms.json and "
+                 "sparse_pc.ply), TUM (trajectory)")
+      ->required();
+  app.add_option("--export_cameras", export_cameras, "PLY: add each camera centre, in red")
+      ->capture_default_str();
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
 
+  std::string upper = output_type;
+  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  if (upper != "BIN" && upper != "TXT") {
+    const ExportFormat format = ExportFormatFromName(output_type, "--output_type");
+    Export(ReadColmapModel(input_path), format, input_path, output_path, export_cameras);
+    return 0;
+  }
   const ModelFormat format = ModelFormatFromName(output_type, "--output_type");
   CheckFolderOutput("--output_path", output_path, {input_path});
   const Reconstruction model = ReadColmapModel(input_path);

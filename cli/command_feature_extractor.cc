@@ -17,8 +17,10 @@ int RunFeatureExtractor(int argc, char** argv) {
   app.add_option("--database_path", database_path, "the COLMAP database to write")->required();
   FeatureOptions options;
   AddOptionTable(app, ExtractionOptionTable(), &options);
+  const LogLevelOption log_level(app);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  ExtractFeaturesToDatabase(image_path, image_list, database_path, options, &std::cout, &std::cerr);
+  ExtractFeaturesToDatabase(image_path, image_list, database_path, options, log_level.progress(),
+                            &std::cerr);
   std::cout << "Wrote " << database_path << "\n";
   return 0;
 }

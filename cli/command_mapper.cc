@@ -14,7 +14,6 @@ int RunMapper(int argc, char** argv) {
                "ramap mapper");
   MapperJob job;
   std::string output_type = "BIN";
-  int log_level = 1;
   app.add_option("--database_path", job.database_path,
                  "COLMAP database (features and verified matches)")
       ->required();
@@ -24,12 +23,11 @@ int RunMapper(int argc, char** argv) {
                  "folder for the models 0, 1, ... and summary.json")
       ->required();
   app.add_option("--output_type", output_type, "BIN or TXT")->capture_default_str();
-  app.add_option("--log_level", log_level, "0: summary only, 1: one line per stage")
-      ->capture_default_str();
+  const LogLevelOption log_level(app);
   AddMapperOptions(app, &job.options);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   job.output_format = ModelFormatFromName(output_type, "--output_type");
-  const MapperResult result = RunMapperJob(job, log_level > 0 ? &std::cout : nullptr, &std::cerr);
+  const MapperResult result = RunMapperJob(job, log_level.progress(), &std::cerr);
   PrintMapperSummary(result.summary, job.output_path, std::cout);
   return 0;
 }

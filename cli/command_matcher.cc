@@ -16,8 +16,9 @@ int RunMatcher(int argc, char** argv) {
   app.add_option("--database_path", database_path, "COLMAP database with descriptors")->required();
   FeatureOptions options;
   AddOptionTable(app, MatchingOptionTable(), &options);
+  const LogLevelOption log_level(app);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  MatchDatabaseFile(database_path, options, &std::cout);
+  MatchDatabaseFile(database_path, options, log_level.progress());
   std::cout << "Wrote " << database_path << "\n";
   return 0;
 }

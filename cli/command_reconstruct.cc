@@ -21,8 +21,9 @@ int RunReconstruct(int argc, char** argv) {
   app.add_option("--output_path", job.output_path, "folder for database.db and sparse/")
       ->required();
   AddOptionTable(app, ReconstructOptionTable(), &job.options);
+  const LogLevelOption log_level(app);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  const ReconstructResult result = RunReconstructJob(job, &std::cout, &std::cerr);
+  const ReconstructResult result = RunReconstructJob(job, log_level.progress(), &std::cerr);
   std::cout << "ramap reconstruct: " << result.mapping.summary.num_registered_images << " of "
             << result.num_images << " images registered in "
             << result.mapping.reconstructions.size() << " model(s) -> " << job.output_path

@@ -79,6 +79,24 @@ inline std::optional<int> ParseOptions(CLI::App& app, int argc, char** argv) {
   return std::nullopt;
 }
 
+// --log_level of the commands that do long work: 0 prints the result alone; 1 (the default, and
+// any higher level) also
+// one line per stage and, on a terminal, a progress line redrawn in place while a stage works
+// (util/progress_line.h). Returns where the progress goes: std::cout, or nullptr at 0.
+class LogLevelOption {
+ public:
+  explicit LogLevelOption(CLI::App& app) {
+    app.add_option("--log_level", level_,
+                   "0: the result alone; 1: one line per stage, and a progress line on a terminal")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+  }
+  std::ostream* progress() const { return level_ > 0 ? &std::cout : nullptr; }
+
+ private:
+  int level_ = 1;
+};
+
 // Range checks for numeric options, attached where the option is declared so that every value is
 // checked before any work starts. CLI11 reports a failure as "--Section.option: <message>"; the
 // message says the allowed range and the value given. NaN and infinities never pass.

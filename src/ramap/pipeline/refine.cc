@@ -113,7 +113,7 @@ void AdjustComponent(const MapperContext& context, const BundleAdjustmentOptions
   const MapperOptions& options = context.options;
   BundleAdjustmentSummary& ba = component->bundle_adjustment;
   ba = BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, adjusted,
-                    ba_options, priors);
+                    ba_options, priors, context.log.progress());
   LogBundleAdjustment(context, ba, "");
   GivenIntrinsicsTestSummary& test = component->given_intrinsics_test;
   test = TestGivenIntrinsics(context.bearings.bearings, context.bearings.focal_lengths_px,
@@ -124,7 +124,8 @@ void AdjustComponent(const MapperContext& context, const BundleAdjustmentOptions
   std::map<uint32_t, Camera> cameras;
   const ImageBearings bearings = BearingsThrough(context, *adjusted, &cameras);
   const BundleAdjustmentSummary first = ba;
-  ba = BundleAdjust(bearings.bearings, bearings.focal_lengths_px, adjusted, ba_options, priors);
+  ba = BundleAdjust(bearings.bearings, bearings.focal_lengths_px, adjusted, ba_options, priors,
+                    context.log.progress());
   LogBundleAdjustment(context, ba, "again through the tested intrinsics: ");
   ba.seconds += first.seconds + test.seconds;
   ba.num_filtered_observations += first.num_filtered_observations;

@@ -41,6 +41,8 @@ class StageLog {
       : summary_(summary), progress_(progress) {}
 
   void Record(const std::string& stage, double seconds, const std::string& message);
+  // Where stages draw their progress lines (util/progress_line.h); nullptr: nowhere.
+  std::ostream* progress() const { return progress_; }
 
  private:
   MapperSummary* summary_;

@@ -12,17 +12,20 @@
 
 #include "ramap/geometry/camera_distortion.h"
 #include "ramap/util/option_check.h"
+#include "ramap/util/progress_line.h"
 #include "ramap/util/run_observer.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
 namespace {
 
-// Ends Ceres's iterations when the run's observer asks to stop (util/run_observer.h); the caller
-// then throws RunStopped.
-class StopBetweenIterations : public ceres::IterationCallback {
+// Between Ceres's iterations: draws the progress line, and ends the iterations when the run's
+// observer asks to stop (util/run_observer.h; the caller then throws RunStopped).
+class BetweenIterations : public ceres::IterationCallback {
  public:
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary& /*summary*/) override {
+  explicit BetweenIterations(ProgressLine* line) : line_(line) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    line_->Update(static_cast<size_t>(summary.iteration) + 1);
     try {
       CheckForStop();
     } catch (const RunStopped&) {
@@ -30,6 +33,9 @@ class StopBetweenIterations : public ceres::IterationCallback {
     }
     return ceres::SOLVER_CONTINUE;
   }
+
+ private:
+  ProgressLine* line_;
 };
 
 // Pixel-scaled error on the normalised plane; parameters: quaternion (x, y, z, w as Eigen stores
@@ -253,7 +259,8 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
                              const std::map<uint32_t, PositionPrior>& priors,
                              const BundleAdjustmentOptions& options,
                              const std::map<uint32_t, uint32_t>& shared,
-                             Reconstruction* reconstruction) {
+                             Reconstruction* reconstruction, std::ostream* progress,
+                             const std::string& what) {
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -308,10 +315,13 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
       });
   ceres::Solver::Options solver_options =
       SolverOptions(options, refines_focal_length, reconstruction->images.size());
-  StopBetweenIterations stop;
-  solver_options.callbacks.push_back(&stop);
+  ProgressLine line(progress, what, static_cast<size_t>(solver_options.max_num_iterations),
+                    "iterations");
+  BetweenIterations between(&line);
+  solver_options.callbacks.push_back(&between);
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options, &problem, &summary);
+  line.Finish(summary.iterations.size(), summary.termination_type != ceres::USER_FAILURE);
   CheckForStop();
   for (auto& [image_id, image] : reconstruction->images) image.cam_from_world.rotation.normalize();
   for (auto& [camera_id, camera] : reconstruction->cameras)
@@ -453,7 +463,8 @@ BundleAdjustmentSummary BundleAdjust(const KeypointBearings& bearings,
                                      const std::map<uint32_t, double>& focal_lengths_px,
                                      Reconstruction* reconstruction,
                                      const BundleAdjustmentOptions& options,
-                                     const std::map<uint32_t, PositionPrior>& priors) {
+                                     const std::map<uint32_t, PositionPrior>& priors,
+                                     std::ostream* progress) {
   options.Check();
   Timer timer;
   BundleAdjustmentSummary summary;
@@ -468,7 +479,8 @@ BundleAdjustmentSummary BundleAdjust(const KeypointBearings& bearings,
   // Solve, detach what still disagrees, and solve once more without it (as COLMAP's global BA).
   for (int round = 0; round < 2 && !observations.empty(); ++round) {
     const ceres::Solver::Summary solve =
-        Solve(observations, priors, options, shared, reconstruction);
+        Solve(observations, priors, options, shared, reconstruction, progress,
+              round == 0 ? "bundle adjustment" : "bundle adjustment without the outliers");
     summary.num_iterations += static_cast<int>(solve.iterations.size());
     summary.converged = solve.termination_type == ceres::CONVERGENCE;
     const int filtered = FilterObservations(observations, options.max_reprojection_error_px,

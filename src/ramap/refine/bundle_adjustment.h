@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
+#include <ostream>
 #include <vector>
 
 #include "ramap/scene/features.h"
@@ -110,11 +111,12 @@ std::map<uint32_t, uint32_t> SharedIntrinsics(const BundleAdjustmentOptions& opt
 // of each of its points2D (same order). `focal_lengths_px` holds each camera's mean focal length.
 // Refined intrinsics are written to reconstruction->cameras; `bearings` are then stale for them.
 // The first registered image's pose is held fixed (gauge), unless `priors` (keyed by image id, in
-// the reconstruction's frame) cover three or more registered images.
+// the reconstruction's frame) cover three or more registered images. With `progress`, each solve
+// draws its iterations there (util/progress_line.h).
 BundleAdjustmentSummary BundleAdjust(
     const KeypointBearings& bearings, const std::map<uint32_t, double>& focal_lengths_px,
     Reconstruction* reconstruction,
     const BundleAdjustmentOptions& options = BundleAdjustmentOptions(),
-    const std::map<uint32_t, PositionPrior>& priors = {});
+    const std::map<uint32_t, PositionPrior>& priors = {}, std::ostream* progress = nullptr);
 
 }  // namespace ramap

@@ -6,6 +6,7 @@
 #include <thread>
 #include <vector>
 
+#include "ramap/util/progress_line.h"
 #include "ramap/util/run_observer.h"
 
 namespace ramap {
@@ -20,12 +21,8 @@ void ParallelFor(size_t count, int num_threads, const std::function<void(size_t)
   std::exception_ptr first_error;
   std::mutex error_mutex;
   std::atomic<bool> failed{false};
-  size_t reported = 0;  // tens of percent shown so far; touched by the calling thread only
-  auto report = [&](size_t finished) {
-    if (reported == 0) *progress << "[ramap] " << what << " of " << count << " " << unit << ":";
-    reported = finished * 10 / count;
-    *progress << " " << 10 * reported << "%" << std::flush;
-  };
+  // Drawn by the calling thread only.
+  ProgressLine line(progress, what, count, unit);
   // Workers see the caller's observer, so a stop asked for reaches every thread's next item.
   RunObserver* const observer = CurrentRunObserver();
   auto run = [&](bool reporting) {
@@ -41,19 +38,15 @@ void ParallelFor(size_t count, int num_threads, const std::function<void(size_t)
         return;
       }
       const size_t finished = ++done;
-      if (reporting && progress != nullptr && finished * 10 / count > reported) report(finished);
+      if (reporting) line.Update(finished);
     }
   };
   std::vector<std::thread> threads;
   for (int t = 1; t < num_threads; ++t) threads.emplace_back(run, false);
   run(true);
   for (std::thread& thread : threads) thread.join();
-  if (progress != nullptr && reported > 0 && failed) *progress << "\n" << std::flush;
+  if (count > 0) line.Finish(done, done == count);
   if (first_error) std::rethrow_exception(first_error);
-  if (progress != nullptr && count > 0) {
-    if (reported < 10) report(count);
-    *progress << "\n" << std::flush;
-  }
 }
 
 }  // namespace ramap

@@ -1,5 +1,4 @@
-// Independent work items on a few threads, with one progress line that grows by tens of percent
-// (readable on a terminal and in a log alike).
+// Independent work items on a few threads, with one progress line (util/progress_line.h).
 #pragma once
 
 #include <cstddef>
@@ -10,8 +9,9 @@
 namespace ramap {
 
 // Runs work(k) for k in [0, count) on `num_threads` threads (the calling thread among them).
-// With `progress`, "[ramap] <what> of <count> <unit>: 10% 20% ... 100%" is written there by the
-// calling thread only (streams are not thread-safe), ending with a newline. The first exception
+// With `progress`, a ProgressLine of <what> and <unit> is written there by the calling thread
+// only (streams are not thread-safe): redrawn in place on a terminal, the closing line alone
+// elsewhere. The first exception
 // thrown by any work item stops the loop (items under way finish) and is rethrown to the caller.
 void ParallelFor(size_t count, int num_threads, const std::function<void(size_t)>& work,
                  std::ostream* progress = nullptr, const std::string& what = "",

@@ -42,6 +42,19 @@ TEST(ProgressLine, TerminalRedrawsDoneTotalRateAndTimeLeft) {
   EXPECT_NE(out.str().find("[ramap] matching: 100 pairs in "), std::string::npos) << out.str();
 }
 
+TEST(ProgressLine, AnIterationLimitIsNoPromiseOfTimeLeft) {
+  std::ostringstream out;
+  ProgressLine line(&out, "bundle adjustment", 200, "iterations", /*terminal=*/true);
+  line.SetTotalIsALimit();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  line.Update(3);
+  EXPECT_NE(out.str().find("3 of at most 200 iterations, "), std::string::npos) << out.str();
+  EXPECT_EQ(out.str().find("left"), std::string::npos) << out.str();
+  line.Finish(5, true);
+  EXPECT_NE(out.str().find("[ramap] bundle adjustment: 5 iterations in "), std::string::npos)
+      << out.str();
+}
+
 TEST(ProgressLine, AStoppedStageSaysWhereItStopped) {
   std::ostringstream out;
   ProgressLine line(&out, "bundle adjustment", 50, "iterations", /*terminal=*/false);

@@ -317,6 +317,7 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
       SolverOptions(options, refines_focal_length, reconstruction->images.size());
   ProgressLine line(progress, what, static_cast<size_t>(solver_options.max_num_iterations),
                     "iterations");
+  line.SetTotalIsALimit();
   BetweenIterations between(&line);
   solver_options.callbacks.push_back(&between);
   ceres::Solver::Summary summary;

@@ -42,11 +42,12 @@ void ProgressLine::Update(size_t done) {
   last_draw_ = now;
   const double seconds = std::chrono::duration<double>(now - start_).count();
   char left[48] = "";
-  if (done > 0 && done < total_) {
+  if (done > 0 && done < total_ && !total_is_a_limit_) {
     std::snprintf(left, sizeof(left), ", %.0f s left",
                   std::ceil(seconds * static_cast<double>(total_ - done) / done));
   }
-  *out_ << "\r\033[K[ramap] " << what_ << ": " << done << " / " << total_ << " " << unit_ << ", "
+  *out_ << "\r\033[K[ramap] " << what_ << ": " << done
+        << (total_is_a_limit_ ? " of at most " : " / ") << total_ << " " << unit_ << ", "
         << Rate(done, seconds) << left << std::flush;
 }
 

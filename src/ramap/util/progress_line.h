@@ -22,6 +22,9 @@ class ProgressLine {
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
 
+  // The total is a limit the work may stop well before (a solver's iteration limit): the line says
+  // "N of at most T" and guesses no time left.
+  void SetTotalIsALimit() { total_is_a_limit_ = true; }
   // `done` of the total are finished. From one thread only (streams are not thread-safe).
   void Update(size_t done);
   // The closing line: "N unit in S s (R/s)" when the work completed (for an upper bound such as
@@ -36,6 +39,7 @@ class ProgressLine {
   size_t total_;
   std::string unit_;
   bool terminal_;
+  bool total_is_a_limit_ = false;
   bool finished_ = false;
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_draw_;

@@ -1,7 +1,8 @@
 // `ramap compare --database_path DB --output_path DIR [--image_path DIR] [--ground_truth PATH
 // --ground_truth_format FORMAT] [--peer_colmap PATH]`: COLMAP's BA mapper, the peers (COLMAP 4's
 // incremental mapper and GLOMAP) when given, and ramap's averaging mapper with and without BA, on
-// the same database (compare/compare_mappers.h). Writes DIR/report.md, DIR/report.json and figures.
+// the same database (compare/compare_mappers.h). Writes DIR/report.html, DIR/report.md and
+// DIR/report.json.
 #include <CLI/CLI.hpp>
 
 #include "options.h"
@@ -37,6 +38,9 @@ int RunCompare(int argc, char** argv) {
   app.add_option("--Compare.num_threads", options.num_threads, "threads of every mapper")
       ->capture_default_str()
       ->check(AtLeast(1, 256));
+  app.add_option("--Compare.png_figures", options.png_figures,
+                 "1: also the figures as PNG files (report.html shows them interactively)")
+      ->capture_default_str();
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   CompareMappers(options);
   return 0;

@@ -22,10 +22,10 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 intrinsics=${RAMAP_INTRINSICS:-known}
 if [[ $intrinsics == unknown ]]; then
   bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench-unknown-intrinsics}
-  compare_options=(--Compare.refine_intrinsics 1)
+  compare_options=(--Compare.refine_intrinsics 1 --Compare.png_figures 1)
 else
   bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench}
-  compare_options=()
+  compare_options=(--Compare.png_figures 1)
 fi
 ramap=${RAMAP_BINARY:-$root/build/ramap}
 source "$root/scripts/datasets/list.sh"

@@ -6,7 +6,7 @@ import re
 import sys
 
 LAYERS = ["util", "scene", "geometry", "synthetic", "graph", "averaging", "refine", "eval", "io",
-          "features", "pipeline", "compare"]
+          "features", "report", "pipeline", "compare"]
 RANK = {layer: k for k, layer in enumerate(LAYERS)}
 
 root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".") / "src" / "ramap"

@@ -24,7 +24,25 @@ packages=(
   clang libclang-rt-14-dev    # libFuzzer and the sanitizers for the readers' fuzz harnesses
   python3-dev pybind11-dev    # the Python module, `import ramap`
   python3-numpy python3-pytest  # its arrays and its tests
+  chromium                    # the browser test of report.html (tests/browser)
 )
+
+# The browser test's driver, playwright-core, at the version tests/browser/package-lock.json pins
+# (npm's registry; it drives Debian's Chromium and downloads no browser of its own).
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+
+install_browser_test_driver() {
+  local dir
+  dir=$(cd "$(dirname "$0")/../tests/browser" && pwd)
+  if [[ -d $dir/node_modules/playwright-core ]]; then return; fi
+  if ! command -v npm >/dev/null; then
+    ${SUDO:-} apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive ${SUDO:-} apt-get install -y -qq --no-install-recommends nodejs npm
+  fi
+  echo "install-deps: npm ci in $dir"
+  npm ci --prefix "$dir" --ignore-scripts --no-audit --no-fund >/dev/null
+}
 
 missing=()
 for p in "${packages[@]}"; do
@@ -33,11 +51,11 @@ done
 
 if ((${#missing[@]} == 0)); then
   echo "install-deps: all ${#packages[@]} packages already installed"
+  install_browser_test_driver
   exit 0
 fi
 
-SUDO=""
-if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
 echo "install-deps: installing ${missing[*]}"
 $SUDO apt-get update -qq
 DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+install_browser_test_driver

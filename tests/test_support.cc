@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 
 #include "ramap/util/error.h"
 
@@ -41,6 +42,19 @@ std::string Colmap4Binary() {
 }
 
 std::string RamapBinary() { return RAMAP_CLI_PATH; }
+
+nlohmann::json ReportPageData(const std::string& report_path) {
+  std::ifstream in(report_path);
+  const std::string page((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string open = "<script type=\"application/json\" id=\"ramap-data\">";
+  const size_t begin = page.find(open);
+  const size_t end = begin == std::string::npos ? begin : page.find("</script>", begin);
+  if (end == std::string::npos) {
+    ADD_FAILURE() << report_path << " holds no page data";
+    return nullptr;
+  }
+  return nlohmann::json::parse(page.substr(begin + open.size(), end - begin - open.size()));
+}
 
 void ExpectInputError(const std::function<void()>& action, const std::vector<std::string>& parts) {
   try {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,10 @@ SyntheticSceneOptions WithFacadeRepeats(SyntheticSceneOptions options, int num_p
 // one centre and turn a little, and image 11's only verified pairs are its pure rotations to 10
 // and 12, so that it has no direction to any camera.
 SyntheticScene StandstillLineScene();
+
+// The data a report.html was drawn from (its <script id="ramap-data">); a test failure and null
+// when the page has none.
+nlohmann::json ReportPageData(const std::string& report_path);
 
 // Runs `action` and expects an InputError whose message contains every one of `parts`.
 void ExpectInputError(const std::function<void()>& action, const std::vector<std::string>& parts);

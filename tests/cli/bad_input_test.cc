@@ -6,12 +6,14 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 #include <sstream>
 
 #include "ramap/io/colmap_database.h"
+#include "ramap/io/colmap_model.h"
 #include "ramap/io/sqlite.h"
 #include "test_support.h"
 
@@ -169,6 +171,44 @@ TEST_F(BadInput, ModelOfTheOtherFormatInTheFolder) {
       "already holds a binary model");
   ExpectRefused("model_converter --input_path sparse/0 --output_path sparse/0 --output_type BIN",
                 "is an input");
+}
+
+// A model an export cannot express: refused by name, nothing written (the tree is unchanged).
+TEST_F(BadInput, ExportOfAModelTheFormatCannotExpress) {
+  const Reconstruction model = ReadColmapModel(W("sparse/0"));
+  Reconstruction no_images = model;
+  no_images.images.clear();
+  no_images.points3D.clear();
+  WriteColmapModel(no_images, W("empty"));
+  // ramap writes no NaN pose: the first image's tx (after the count, the id and the quaternion)
+  // made NaN by hand.
+  fs::copy(W("sparse/0"), W("nan"));
+  {
+    std::fstream images(W("nan/images.bin"), std::ios::in | std::ios::out | std::ios::binary);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    images.seekp(sizeof(uint64_t) + sizeof(uint32_t) + 4 * sizeof(double));
+    images.write(reinterpret_cast<const char*>(&nan), sizeof(nan));
+  }
+  Reconstruction fisheye = model;
+  fisheye.cameras.begin()->second.model = CameraModel::kFullOpenCV;
+  fisheye.cameras.begin()->second.params.resize(12, 0.0);
+  WriteColmapModel(fisheye, W("full_opencv"));
+  before_ = Snapshot(work_.path());
+  for (const std::string type : {"NERFSTUDIO", "TUM"}) {
+    ExpectRefused("model_converter --input_path empty --output_path out --output_type " + type,
+                  "no image");
+  }
+  ExpectRefused("model_converter --input_path nan --output_path out --output_type NERFSTUDIO",
+                "NaN");
+  ExpectRefused("model_converter --input_path nan --output_path out.txt --output_type TUM", "NaN");
+  ExpectRefused(
+      "model_converter --input_path nan --output_path out.ply --output_type PLY --export_cameras 1",
+      "NaN");
+  ExpectRefused(
+      "model_converter --input_path full_opencv --output_path out --output_type NERFSTUDIO",
+      "FULL_OPENCV");
+  ExpectRefused("model_converter --input_path sparse/0 --output_path out --output_type VRML",
+                "--output_type");
 }
 
 TEST_F(BadInput, MapperOutputWithTheUsersFiles) {

@@ -82,8 +82,9 @@ TEST(CompareCommand, ReportAgreesWithEvaluateAndColmapModelComparer) {
   ASSERT_FALSE(db.empty());
 
   // Without ground truth: the ramap models are scored against COLMAP's.
-  const CommandResult compare = RunCommand(ramap + "compare --database_path '" + db +
-                                           "' --output_path '" + (dir / "cmp") + "'");
+  const CommandResult compare =
+      RunCommand(ramap + "compare --database_path '" + db + "' --output_path '" + (dir / "cmp") +
+                 "' --Compare.png_figures 1");
   ASSERT_EQ(compare.exit_code, 0) << compare.output;
   const nlohmann::json report = ReadJson(dir / "cmp/report.json");
   for (const std::string figure : {"trajectories.png", "rotation_error_cdf.png",
@@ -92,6 +93,15 @@ TEST(CompareCommand, ReportAgreesWithEvaluateAndColmapModelComparer) {
   }
   EXPECT_TRUE(std::filesystem::exists(dir / "cmp/report.md"));
   ASSERT_EQ(report["runs"].size(), 3u);
+  // report.html draws each run's model: as many cameras as the run registered.
+  const nlohmann::json page = test::ReportPageData(dir / "cmp/report.html");
+  ASSERT_EQ(page["models"].size(), 3u);
+  for (size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(page["models"][k]["name"], report["runs"][k]["name"]);
+    EXPECT_EQ(page["models"][k]["images"]["name"].size(),
+              report["runs"][k]["num_registered"].get<size_t>());
+  }
+  EXPECT_EQ(page["recall_curves"].size(), 2u) << "COLMAP is the reference: two scored runs";
   const nlohmann::json& colmap_run = RunNamed(report, "COLMAP");
   ASSERT_TRUE(colmap_run["succeeded"].get<bool>());
   EXPECT_TRUE(colmap_run["evaluation"].is_null());  // it is the reference

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -312,6 +313,27 @@ TEST(EvalPoseMetrics, JsonAndTable) {
   const std::string table = FormatPoseEvaluation(e);
   EXPECT_NE(table.find("5 / 6"), std::string::npos) << table;
   EXPECT_NE(table.find("AUC"), std::string::npos);
+}
+
+// The report plots the recall curve whose area the AUC is: integrated, it gives the AUC back (to
+// its 0.1-degree sampling), and it ends at the share of pairs within the largest threshold.
+TEST(EvalPoseMetrics, RecallCurveIntegratesToTheAuc) {
+  std::mt19937_64 rng(21);
+  const PoseMap gt = RandomCameras(30, rng);
+  PoseMap est = NoisyCopy(gt, 0.02, 2.0, rng);
+  est.erase("img_07");
+  const PoseEvaluation e = EvaluatePoses(est, gt, Names(gt));
+  ASSERT_EQ(e.recall_curve.size(), 101u);
+  EXPECT_DOUBLE_EQ(e.recall_curve_thresholds_deg.back(), 10.0);
+  EXPECT_DOUBLE_EQ(e.recall_curve.front(), 0.0);
+  EXPECT_TRUE(std::is_sorted(e.recall_curve.begin(), e.recall_curve.end()));
+  EXPECT_LE(e.recall_curve.back(), 1.0 - static_cast<double>(e.num_failed_pairs) / e.num_pairs);
+  double area = 0.0;
+  for (size_t k = 1; k < e.recall_curve.size(); ++k) {
+    area += 0.5 * (e.recall_curve[k] + e.recall_curve[k - 1]) *
+            (e.recall_curve_thresholds_deg[k] - e.recall_curve_thresholds_deg[k - 1]);
+  }
+  EXPECT_NEAR(area / 10.0, e.auc.back(), 0.01) << "AUC@10 from the curve and from the errors";
 }
 
 }  // namespace

@@ -532,9 +532,11 @@ TEST(ColmapModelConverterCli, TruncatedModelFailsCleanly) {
       << result.output;
   EXPECT_FALSE(fs::exists(dir / "out"));
 
-  const test::CommandResult bad_type = test::RunCommand(cli + "PLY");
+  const test::CommandResult bad_type = test::RunCommand(cli + "VRML");
   EXPECT_NE(bad_type.exit_code, 0);
-  EXPECT_NE(bad_type.output.find("PLY"), std::string::npos) << bad_type.output;
+  EXPECT_NE(bad_type.output.find("'VRML' is not BIN, TXT, PLY, NERFSTUDIO or TUM"),
+            std::string::npos)
+      << bad_type.output;
 }
 
 }  // namespace

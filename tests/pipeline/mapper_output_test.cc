@@ -44,13 +44,13 @@ TEST(MapperOutput, ReplacingAModelNeverLeavesItMissing) {
   watcher.join();
   EXPECT_GT(looks.load(), 1000);
   EXPECT_EQ(missing.load(), 0) << "of " << looks.load() << " looks";
-  // Only the models and the summary are left: no staged or exchanged folder.
+  // Only the models, the summary and the report are left: no staged or exchanged folder.
   std::vector<std::string> names;
   for (const auto& entry : fs::directory_iterator(output)) {
     names.push_back(entry.path().filename().string());
   }
   std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"0", "summary.json"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"0", "report.html", "summary.json"}));
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "ramap/compare/comparison_figures.h"
+#include "ramap/compare/comparison_page.h"
 #include "ramap/compare/mapper_plans.h"
 #include "ramap/compare/mapper_process.h"
 #include "ramap/eval/pose_metrics.h"
@@ -115,8 +116,11 @@ Comparison CompareMappers(const CompareOptions& given) {
 
   // The data set's name, as the folder of its database.
   const std::string title = fs::absolute(options.database_path).parent_path().filename().string();
-  DrawComparisonFigures(names, reference, against_colmap, poses, title, options.output_path,
-                        &comparison);
+  if (options.png_figures) {
+    DrawComparisonFigures(names, reference, against_colmap, poses, title, options.output_path,
+                          &comparison);
+  }
+  WriteComparisonPage(comparison, names, gt_poses, given.image_path, title, options.output_path);
   WriteReports(comparison, options.output_path);
   ThrowIfAnyRunFailed(comparison, options.output_path);
   return comparison;

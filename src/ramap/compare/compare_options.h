@@ -29,6 +29,9 @@ struct CompareOptions {
   // refines them as its defaults do.
   bool refine_intrinsics = false;
   int num_threads = 2;  // of every mapper (the project's machine has 2 cores)
+  // Also draw the figures as PNG files (trajectories, error distributions, stage times), for
+  // pages that want a static picture (BENCHMARKS.md); report.html has them all, interactive.
+  bool png_figures = false;
 };
 
 }  // namespace ramap

@@ -148,6 +148,8 @@ std::string ComparisonToMarkdown(const Comparison& comparison) {
   for (const MapperRun& run : comparison.runs) {
     out << "- " << run.name << ": `" << run.command << "`\n";
   }
+  out << "\nreport.html beside this file shows the models in 3D, the recall curves, the per-image "
+         "errors and the stage times.\n";
   if (!comparison.figures.empty()) out << "\n## Figures\n\n";
   for (const std::string& figure : comparison.figures) {
     out << "![" << figure << "](" << figure << ")\n\n";

@@ -23,8 +23,8 @@ std::vector<Eigen::Vector3d> Centers(const std::map<std::string, Rigid3d>& poses
   return centers;
 }
 
-// Each run's bar: its stages, and what they do not cover (reading the database, writing the
-// model; all of COLMAP's time).
+}  // namespace
+
 std::vector<StageBar> StageBars(const std::vector<MapperRun>& runs) {
   std::vector<StageBar> bars;
   for (const MapperRun& run : runs) {
@@ -38,8 +38,6 @@ std::vector<StageBar> StageBars(const std::vector<MapperRun>& runs) {
   }
   return bars;
 }
-
-}  // namespace
 
 void DrawComparisonFigures(const std::vector<std::string>& names,
                            const std::map<std::string, Rigid3d>& reference, bool against_colmap,

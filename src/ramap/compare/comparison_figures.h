@@ -7,9 +7,14 @@
 #include <vector>
 
 #include "ramap/compare/comparison.h"
+#include "ramap/eval/plots.h"
 #include "ramap/scene/rigid3.h"
 
 namespace ramap {
+
+// Each succeeded run's stages, and what they do not cover (reading the database, writing the
+// model; all of COLMAP's time) as one more: the stage-time figure's and report.html's bars.
+std::vector<StageBar> StageBars(const std::vector<MapperRun>& runs);
 
 // Draws the figures into `output_path` and adds their file names to comparison->figures.
 // `names` are the database's images, `reference` the poses every run was evaluated against

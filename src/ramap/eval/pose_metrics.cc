@@ -205,6 +205,23 @@ void AbsoluteErrors(const EvaluatedImages& images, const PoseEvaluationOptions& 
   result->rotation_error_max_deg = Max(rotation_errors);
 }
 
+// The share of pairs within each of kRecallCurveSteps + 1 thresholds from 0 to the largest AUC
+// threshold: the curve whose area the AUC is, for plotting.
+void RecallCurve(std::vector<double> pair_errors, const std::vector<double>& auc_thresholds_deg,
+                 PoseEvaluation* result) {
+  constexpr int kRecallCurveSteps = 100;
+  if (pair_errors.empty() || auc_thresholds_deg.empty()) return;
+  std::sort(pair_errors.begin(), pair_errors.end());
+  const double largest = *std::max_element(auc_thresholds_deg.begin(), auc_thresholds_deg.end());
+  for (int k = 0; k <= kRecallCurveSteps; ++k) {
+    const double threshold = largest * k / kRecallCurveSteps;
+    const auto within = std::upper_bound(pair_errors.begin(), pair_errors.end(), threshold);
+    result->recall_curve_thresholds_deg.push_back(threshold);
+    result->recall_curve.push_back(static_cast<double>(within - pair_errors.begin()) /
+                                   static_cast<double>(pair_errors.size()));
+  }
+}
+
 // Relative pose errors over every pair with ground truth (no alignment involved); a pair with an
 // unregistered image is a failure. Then their medians and AUC.
 void RelativeErrors(const EvaluatedImages& images, const PoseEvaluationOptions& options,
@@ -238,6 +255,7 @@ void RelativeErrors(const EvaluatedImages& images, const PoseEvaluationOptions& 
   result->relative_translation_error_median_deg = Median(relative_translation_errors);
   result->pair_error_median_deg = Median(pair_errors);
   result->auc = ComputeAuc(pair_errors, options.auc_thresholds_deg, options.auc_definition);
+  RecallCurve(pair_errors, options.auc_thresholds_deg, result);
 }
 
 }  // namespace

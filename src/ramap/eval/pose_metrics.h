@@ -94,6 +94,10 @@ struct PoseEvaluation {
   std::vector<double> auc_thresholds_deg;
   std::vector<double> auc;  // in [0, 1], one per threshold
   AucDefinition auc_definition = AucDefinition::kBenchmarkTrapezoid;
+  // The recall (share of all pairs, failures included, within a threshold) at 101 thresholds
+  // evenly from 0 to the largest AUC threshold: the curve under the AUC, for the report's plot.
+  std::vector<double> recall_curve_thresholds_deg;
+  std::vector<double> recall_curve;
 
   std::vector<ImageEvaluation> images;  // in input order
 };

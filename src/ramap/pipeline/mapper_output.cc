@@ -11,6 +11,8 @@
 
 #include "ramap/io/geo_export.h"
 #include "ramap/io/trajectory.h"
+#include "ramap/report/html_report.h"
+#include "ramap/report/mapper_page.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
@@ -195,6 +197,24 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
 
 namespace {
 
+// The stages' seconds in the order they ran (each stage once: the log sums its passes).
+std::vector<std::pair<std::string, double>> StageSeconds(const MapperSummary& summary) {
+  std::vector<std::pair<std::string, double>> stages;
+  for (const MapperStageTiming& timing : summary.timings) {
+    stages.push_back({timing.stage, timing.seconds});
+  }
+  return stages;
+}
+
+// The data set's name, as the folder of its database.
+std::string PageTitle(const nlohmann::json& run_info) {
+  if (!run_info.is_object()) return "ramap mapper";
+  const std::string database = run_info.value("database_path", std::string());
+  if (database.empty()) return "ramap mapper";
+  const std::string name = fs::absolute(database).parent_path().filename().string();
+  return name.empty() ? "ramap mapper" : name;
+}
+
 void WriteContents(const MapperResult& result, const std::string& folder, ModelFormat format,
                    const nlohmann::json& run_info) {
   fs::create_directories(folder);
@@ -212,6 +232,9 @@ void WriteContents(const MapperResult& result, const std::string& folder, ModelF
   summary["run"] = run_info;
   WriteFileAtomically(folder + "/summary.json",
                       [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
+  WriteHtmlReport(MapperPageData(result.reconstructions, summary, StageSeconds(result.summary),
+                                 PageTitle(run_info)),
+                  folder + "/report.html");
 }
 
 }  // namespace
@@ -275,8 +298,11 @@ void WriteMapperOutput(const MapperResult& result, const std::string& output_pat
     check_model_target(target);
     replaced.push_back(target);
   }
-  if (fs::is_directory(fs::path(output_path) / "summary.json")) {
-    throw InputError(output_path, "summary.json there is a folder; ramap does not replace it");
+  for (const char* file : {"summary.json", "report.html"}) {
+    if (fs::is_directory(fs::path(output_path) / file)) {
+      throw InputError(output_path,
+                       std::string(file) + " there is a folder; ramap does not replace it");
+    }
   }
   StagedPath staged(output_path + "/.ramap-output");
   WriteContents(result, staged.path(), format, run_info);

@@ -164,7 +164,8 @@ bool IsReplaceableMapperOutput(const std::string& folder, std::string* foreign) 
                         [](const fs::directory_entry& entry, std::string* inner) {
                           const std::string name = entry.path().filename().string();
                           std::error_code ec;
-                          if (name == "summary.json" || name == "project.ini") {
+                          if (name == "summary.json" || name == "report.html" ||
+                              name == "project.ini") {
                             return entry.is_regular_file(ec);
                           }
                           const bool numbered =

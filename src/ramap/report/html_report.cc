@@ -1,0 +1,102 @@
+#include "ramap/report/html_report.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "ramap/util/error.h"
+#include "ramap/util/staged_output.h"
+
+namespace ramap {
+namespace report_assets {
+// Compiled in from report/assets by cmake/embed_assets.cmake.
+extern const char kPage[];
+extern const char kStyle[];
+extern const char kScript[];
+extern const char kThreeBundle[];
+extern const char kThreeLicense[];
+}  // namespace report_assets
+
+namespace {
+
+// The data as a JSON text that is safe inside a <script> element: "</" cannot close it early
+// ("<\/" is the same string to JSON).
+std::string ScriptSafeJson(const nlohmann::json& data) {
+  const std::string text = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  std::string safe;
+  safe.reserve(text.size());
+  for (size_t k = 0; k < text.size(); ++k) {
+    safe += text[k];
+    if (text[k] == '<' && k + 1 < text.size() && (text[k + 1] == '/' || text[k + 1] == '!')) {
+      safe += '\\';
+    }
+  }
+  return safe;
+}
+
+std::string HtmlEscaped(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+// The page with each /*@NAME@*/ marker of the template replaced once, in one pass over the
+// template (a marker's text inside an inserted part is left alone).
+std::string FillTemplate(const std::string& page,
+                         const std::vector<std::pair<std::string, std::string>>& parts) {
+  std::string out;
+  size_t position = 0;
+  while (true) {
+    size_t next = std::string::npos;
+    const std::pair<std::string, std::string>* part = nullptr;
+    for (const auto& candidate : parts) {
+      const size_t at = page.find(candidate.first, position);
+      if (at < next) {
+        next = at;
+        part = &candidate;
+      }
+    }
+    if (part == nullptr) break;
+    out.append(page, position, next - position);
+    out += part->second;
+    position = next + part->first.size();
+  }
+  out.append(page, position, std::string::npos);
+  return out;
+}
+
+}  // namespace
+
+std::string RenderHtmlReport(const nlohmann::json& data) {
+  const std::string title = data.value("title", std::string("ramap report"));
+  return FillTemplate(report_assets::kPage, {{"/*@TITLE@*/", HtmlEscaped(title)},
+                                             {"/*@STYLE@*/", report_assets::kStyle},
+                                             {"/*@DATA@*/", ScriptSafeJson(data)},
+                                             {"/*@THREE@*/", report_assets::kThreeBundle},
+                                             {"/*@THREE_LICENSE@*/", report_assets::kThreeLicense},
+                                             {"/*@SCRIPT@*/", report_assets::kScript}});
+}
+
+void WriteHtmlReport(const nlohmann::json& data, const std::string& path) {
+  const std::string page = RenderHtmlReport(data);
+  WriteFileAtomically(path, [&](std::ostream& out) { out << page; });
+}
+
+}  // namespace ramap

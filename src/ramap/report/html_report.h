@@ -1,0 +1,20 @@
+// report.html: one self-contained page (its style, script and the pinned three.js inlined, no
+// network, opens from file://) that shows what report_scene.h and the caller put in its data: the
+// models in 3D, plots as SVG, the tables and the mapper's summary. The page's code lives in
+// report/assets and is compiled in.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace ramap {
+
+// The page for `data`: {"kind": "mapper"|"compare", "title", "subtitle", "models": [...],
+// "reference": {...}|null, "recall_curves": [...], "stage_seconds": [{"name", "stages": [[stage,
+// seconds], ...]}], "comparison": report.json|null, "summary": summary.json|null}.
+std::string RenderHtmlReport(const nlohmann::json& data);
+
+// Writes RenderHtmlReport(data) to `path` atomically; InputError naming the path when it cannot.
+void WriteHtmlReport(const nlohmann::json& data, const std::string& path);
+
+}  // namespace ramap

@@ -17,4 +17,5 @@ rm -rf "$scene"
   --ground_truth_format colmap --database_path "$scene/database.db" --output_path "$scene/evaluation.json"
 echo
 echo "quickstart: COLMAP model in $scene/sparse/0 (open it with: colmap gui --database_path" \
-  "$scene/database.db --import_path $scene/sparse/0), evaluation in $scene/evaluation.json"
+  "$scene/database.db --import_path $scene/sparse/0), evaluation in $scene/evaluation.json," \
+  "the run to look at in a browser: $scene/sparse/report.html"

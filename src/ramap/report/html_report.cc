@@ -1,11 +1,13 @@
 #include "ramap/report/html_report.h"
 
+#include <ctime>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "ramap/util/error.h"
 #include "ramap/util/staged_output.h"
+#include "ramap_version.h"
 
 namespace ramap {
 namespace report_assets {
@@ -82,9 +84,21 @@ std::string FillTemplate(const std::string& page,
   return out;
 }
 
+// "ramap 0.1.0 (commit 1a2b3c4d5e), 2026-12-05 12:00 UTC": who wrote the page, and when.
+std::string WrittenBy() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char when[32];
+  std::strftime(when, sizeof(when), "%Y-%m-%d %H:%M UTC", &utc);
+  return std::string("ramap ") + RAMAP_VERSION + " (commit " + RAMAP_COMMIT + "), " + when;
+}
+
 }  // namespace
 
-std::string RenderHtmlReport(const nlohmann::json& data) {
+std::string RenderHtmlReport(const nlohmann::json& given) {
+  nlohmann::json data = given;
+  data["written_by"] = WrittenBy();
   const std::string title = data.value("title", std::string("ramap report"));
   return FillTemplate(report_assets::kPage, {{"/*@TITLE@*/", HtmlEscaped(title)},
                                              {"/*@STYLE@*/", report_assets::kStyle},

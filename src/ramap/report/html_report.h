@@ -11,7 +11,8 @@ namespace ramap {
 
 // The page for `data`: {"kind": "mapper"|"compare", "title", "subtitle", "models": [...],
 // "reference": {...}|null, "recall_curves": [...], "stage_seconds": [{"name", "stages": [[stage,
-// seconds], ...]}], "comparison": report.json|null, "summary": summary.json|null}.
+// seconds], ...]}], "comparison": report.json|null, "summary": summary.json|null}; the page
+// adds who wrote it (version, commit) and when.
 std::string RenderHtmlReport(const nlohmann::json& data);
 
 // Writes RenderHtmlReport(data) to `path` atomically; InputError naming the path when it cannot.

@@ -72,8 +72,7 @@ const reference = data.reference || null;
 function renderHeader() {
   document.getElementById('title').textContent = data.title || 'ramap report';
   document.getElementById('subtitle').textContent = data.subtitle || '';
-  document.getElementById('footer').textContent = 'Written by ramap' +
-      (data.generated_at ? ' on ' + data.generated_at : '') +
+  document.getElementById('footer').textContent = 'Written by ' + (data.written_by || 'ramap') +
       '. One self-contained file: it needs no network and no server.';
 }
 

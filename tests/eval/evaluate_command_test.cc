@@ -20,18 +20,7 @@ namespace ramap::test {
 namespace {
 
 Reconstruction ModelOf(const std::map<std::string, Rigid3d>& poses) {
-  Reconstruction model;
-  model.cameras[1] = VgaPinholeCamera();
-  uint32_t id = 1;
-  for (const auto& [name, pose] : poses) {
-    Image image;
-    image.image_id = id;
-    image.name = name;
-    image.camera_id = 1;
-    image.cam_from_world = pose;
-    model.images[id++] = image;
-  }
-  return model;
+  return ModelOfPoses(poses, VgaPinholeCamera());
 }
 
 nlohmann::json ReadJson(const std::string& path) {

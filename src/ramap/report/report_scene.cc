@@ -154,22 +154,11 @@ nlohmann::json ReportModelJson(const std::string& name, const Reconstruction& mo
 nlohmann::json ReportReferenceJson(const std::string& name,
                                    const std::map<std::string, Rigid3d>& poses,
                                    const Reconstruction* like, const ReportSceneOptions& options) {
-  Reconstruction model;
-  if (like != nullptr && !like->cameras.empty()) {
-    model.cameras[1] = like->cameras.begin()->second;
-  } else {
-    model.cameras[1] = Camera{1, CameraModel::kSimplePinhole, 640, 480, {500, 320, 240}, false};
-  }
-  model.cameras[1].camera_id = 1;
-  uint32_t image_id = 1;
-  for (const auto& [image_name, pose] : poses) {
-    Image image;
-    image.image_id = image_id;
-    image.name = image_name;
-    image.camera_id = 1;
-    image.cam_from_world = pose;
-    model.images[image_id++] = image;
-  }
+  const Camera camera =
+      like != nullptr && !like->cameras.empty()
+          ? like->cameras.begin()->second
+          : Camera{1, CameraModel::kSimplePinhole, 640, 480, {500, 320, 240}, false};
+  const Reconstruction model = ModelOfPoses(poses, camera);
   nlohmann::json json = ReportModelJson(name, model, Sim3d(), nullptr, 0, options);
   json["images"]["reprojection_error_px"] = nullptr;
   return json;

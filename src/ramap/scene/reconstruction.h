@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
+#include <string>
 #include <vector>
 
 #include "ramap/scene/camera.h"
@@ -34,5 +35,10 @@ struct Reconstruction {
   Rigs rigs;
   Frames frames;
 };
+
+// A model of cameras alone: one image per pose (ids 1, 2, ... in name order), all seen through
+// `camera` (given id 1), no points. What a trajectory or ground truth is drawn and scored as.
+Reconstruction ModelOfPoses(const std::map<std::string, Rigid3d>& cam_from_world,
+                            const Camera& camera);
 
 }  // namespace ramap

@@ -17,23 +17,33 @@
 namespace ramap::cli {
 namespace {
 
+// The output is checked before the model is read.
+void CheckExportOutput(ExportFormat format, const std::string& input_path,
+                       const std::string& output_path, bool export_cameras) {
+  if (export_cameras && format != ExportFormat::kPly) {
+    throw InputError("--export_cameras", "applies to --output_type PLY only");
+  }
+  if (format == ExportFormat::kNerfstudio) {
+    CheckFolderOutput("--output_path", output_path, {input_path});
+  } else {
+    CheckFileOutput("--output_path", output_path, {input_path});
+  }
+}
+
 void Export(const Reconstruction& model, ExportFormat format, const std::string& input_path,
             const std::string& output_path, bool export_cameras) {
   switch (format) {
     case ExportFormat::kPly:
-      CheckFileOutput("--output_path", output_path, {input_path});
       WritePointCloudPly(model, output_path, export_cameras, input_path);
       std::cout << "Wrote the points" << (export_cameras ? " and camera centres" : "") << " of "
                 << input_path << " to " << output_path << " (PLY)\n";
       return;
     case ExportFormat::kNerfstudio:
-      CheckFolderOutput("--output_path", output_path, {input_path});
       WriteNerfstudioExport(model, output_path, input_path);
       std::cout << "Wrote " << output_path << "/transforms.json (" << model.images.size()
                 << " frames) and " << output_path << "/sparse_pc.ply (NERFSTUDIO)\n";
       return;
     case ExportFormat::kTum:
-      CheckFileOutput("--output_path", output_path, {input_path});
       if (model.images.empty()) {
         throw InputError(input_path, "the model has no image: nothing to export");
       }
@@ -70,6 +80,7 @@ int RunModelConverter(int argc, char** argv) {
   for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   if (upper != "BIN" && upper != "TXT") {
     const ExportFormat format = ExportFormatFromName(output_type, "--output_type");
+    CheckExportOutput(format, input_path, output_path, export_cameras);
     Export(ReadColmapModel(input_path), format, input_path, output_path, export_cameras);
     return 0;
   }

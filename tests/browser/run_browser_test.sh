@@ -3,8 +3,8 @@
 # in Debian's Chromium (report_test.mjs): `ramap mapper` on the bundled default scene
 # (data/default_scene.args) and, where COLMAP is installed, `ramap compare` on a 16-image
 # synthetic orbit with ground truth (COLMAP's mapper finds no initial pair in the bundled loop and
-# spends 90 s saying so). Exits 77 (skipped, with the reason) without Node.js, Chromium or
-# playwright-core.
+# spends 90 s saying so). Exits 77 (skipped, with the reason) without Node.js 20 or later,
+# Chromium or playwright-core.
 #
 #   run_browser_test.sh RAMAP_BINARY WORK_DIR [SCREENSHOT_DIR]
 set -euo pipefail
@@ -15,6 +15,9 @@ work=$2
 shots=${3:-$work}
 chromium=${RAMAP_CHROMIUM:-/usr/bin/chromium}
 if ! command -v node >/dev/null; then echo "browser test skipped: no node (apt-get install nodejs)"; exit 77; fi
+if (( $(node -p 'process.versions.node.split(".")[0]') < 20 )); then
+  echo "browser test skipped: playwright-core needs Node.js 20 or later, this is $(node --version)"; exit 77
+fi
 if [[ ! -x $chromium ]]; then echo "browser test skipped: no Chromium at $chromium (apt-get install chromium)"; exit 77; fi
 if [[ ! -d $here/node_modules/playwright-core ]]; then
   echo "browser test skipped: playwright-core is not installed (npm ci --prefix tests/browser)"; exit 77

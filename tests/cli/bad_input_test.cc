@@ -221,6 +221,11 @@ TEST_F(BadInput, MapperOutputWithTheUsersFiles) {
   std::ofstream(W("sparse/1/notes.txt")) << "mine";
   before_ = Snapshot(work_.path());
   ExpectRefused("mapper --database_path database.db --output_path sparse", "notes.txt");
+  // A report.html of the user's own (not ramap's page) is not replaced.
+  fs::remove_all(W("sparse/1"));
+  std::ofstream(W("sparse/report.html"), std::ios::trunc) << "<html>my own notes</html>";
+  before_ = Snapshot(work_.path());
+  ExpectRefused("mapper --database_path database.db --output_path sparse", "report.html");
 }
 
 TEST_F(BadInput, MapperRerunReplacesOnlyItsOwnOutput) {

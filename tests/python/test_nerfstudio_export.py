@@ -35,8 +35,10 @@ def test_transforms_match_nerfstudios_steps(default_scene, tmp_path):
             "--output_path", tmp_path / "ns", "--output_type", "NERFSTUDIO")
     transforms = json.loads((tmp_path / "ns/transforms.json").read_text())
 
-    records = [line.split() for line in (tmp_path / "text/images.txt").read_text().splitlines()
-               if line and not line.startswith("#")][::2]
+    # images.txt: two lines an image, the second (its points) empty for an image without any.
+    lines = [line for line in (tmp_path / "text/images.txt").read_text().splitlines()
+             if not line.startswith("#")]
+    records = [line.split() for line in lines[::2]]
     records.sort(key=lambda record: int(record[0]))
     assert len(transforms["frames"]) == len(records) > 0
     for frame, record in zip(transforms["frames"], records):

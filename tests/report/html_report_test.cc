@@ -39,6 +39,7 @@ Reconstruction ThreeCameraModel() {
 TEST(HtmlReport, PageIsSelfContainedAndItsDataSurvivesScriptText) {
   Reconstruction model = ThreeCameraModel();
   model.images[2].name = "</script><script>alert(1)</script>.png";
+  model.images[3].name = "<!--<script>-->.png";
   const nlohmann::json data =
       MapperPageData({model}, {{"num_images", 3}, {"num_registered_images", 3}},
                      {{"relative poses", 1.5}}, "a <title> & more");
@@ -60,9 +61,9 @@ TEST(HtmlReport, PageIsSelfContainedAndItsDataSurvivesScriptText) {
   const nlohmann::json read = test::ReportPageData(dir / "report.html");
   ASSERT_EQ(read["models"].size(), 1u);
   const nlohmann::json& names = read["models"][0]["images"]["name"];
-  EXPECT_NE(std::find(names.begin(), names.end(), "</script><script>alert(1)</script>.png"),
-            names.end())
-      << names;
+  for (const char* name : {"</script><script>alert(1)</script>.png", "<!--<script>-->.png"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << names;
+  }
   EXPECT_EQ(read["stage_seconds"][0]["stages"][0][0], "relative poses");
 }
 
@@ -88,6 +89,20 @@ TEST(HtmlReport, ModelJsonHoldsEveryImageInCaptureOrderWithItsErrors) {
   const nlohmann::json scaled = ReportModelJson("m", model, doubled, nullptr, 0);
   EXPECT_DOUBLE_EQ(scaled["images"]["center"][0].get<double>(), -2.0);
   EXPECT_EQ(scaled["points"]["count"], 0) << "a budget of no points";
+}
+
+// A scene in UTM coordinates, cameras a millimetre apart 5000 km from the frame's origin: the page
+// writes coordinates about the scene's middle, so 7 digits still tell them apart.
+TEST(HtmlReport, FarFromTheFramesOriginMillimetresSurvive) {
+  Reconstruction model = ThreeCameraModel();
+  for (auto& [image_id, image] : model.images) {
+    image.cam_from_world.translation = -Eigen::Vector3d(5e6 + 0.001 * image_id, 4e6, 100);
+  }
+  const nlohmann::json data = MapperPageData({model}, nlohmann::json::object(), {}, "utm");
+  EXPECT_NEAR(data["origin"][0].get<double>(), 5e6 + 0.002, 1e-6);
+  const nlohmann::json& centers = data["models"][0]["images"]["center"];
+  EXPECT_NEAR(centers[3].get<double>() - centers[0].get<double>(), 0.001, 1e-6);
+  EXPECT_NEAR(centers[1].get<double>(), 0.0, 1e-6);
 }
 
 TEST(HtmlReport, MapperWritesItBesideTheSummary) {

@@ -120,8 +120,14 @@ Comparison CompareMappers(const CompareOptions& given) {
     DrawComparisonFigures(names, reference, against_colmap, poses, title, options.output_path,
                           &comparison);
   }
-  WriteComparisonPage(comparison, names, gt_poses, given.image_path, title, options.output_path);
   WriteReports(comparison, options.output_path);
+  // The page is for looking at the comparison; report.md and report.json are its result. A page
+  // that cannot be made costs a warning.
+  try {
+    WriteComparisonPage(comparison, names, gt_poses, given.image_path, title, options.output_path);
+  } catch (const std::exception& error) {
+    std::cerr << "ramap compare: warning: report.html not written: " << error.what() << "\n";
+  }
   ThrowIfAnyRunFailed(comparison, options.output_path);
   return comparison;
 }

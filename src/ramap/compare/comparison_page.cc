@@ -72,7 +72,16 @@ void WriteComparisonPage(const Comparison& comparison, const std::vector<std::st
                          const std::string& output_path) {
   std::string unreadable;
   const std::vector<PageModel> models = ReadRunModels(comparison, image_path, &unreadable);
-  const ReportSceneOptions options;
+  ReportSceneOptions options;
+  // The page's origin: the middle of the reference's cameras (the ground truth's, else the
+  // first model's, COLMAP's, which is the reference then).
+  if (!ground_truth.empty()) {
+    options.origin = SceneMiddle(ModelOfPoses(ground_truth, Camera()));
+  } else if (!models.empty()) {
+    const MapperRun& first = *models.front().run;
+    options.origin = SceneMiddle(models.front().model,
+                                 first.evaluation ? first.evaluation->gt_from_estimate : Sim3d());
+  }
   size_t num_points = 0;
   for (const PageModel& page_model : models) num_points += page_model.model.points3D.size();
 
@@ -110,6 +119,8 @@ void WriteComparisonPage(const Comparison& comparison, const std::vector<std::st
       {"subtitle", subtitle},
       {"models", models_json},
       {"reference", reference},
+      {"origin",
+       nlohmann::json::array({options.origin.x(), options.origin.y(), options.origin.z()})},
       {"position_unit", ground_truth.empty() ? "COLMAP model units" : "ground-truth units"},
       {"image_order", ImageOrderJson(names)},
       {"recall_curves", recall_curves},

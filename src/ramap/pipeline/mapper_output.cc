@@ -216,7 +216,7 @@ std::string PageTitle(const nlohmann::json& run_info) {
 }
 
 void WriteContents(const MapperResult& result, const std::string& folder, ModelFormat format,
-                   const nlohmann::json& run_info) {
+                   const nlohmann::json& run_info, std::ostream* warnings) {
   fs::create_directories(folder);
   for (size_t k = 0; k < result.reconstructions.size(); ++k) {
     const std::string model_path = folder + "/" + std::to_string(k);
@@ -232,9 +232,17 @@ void WriteContents(const MapperResult& result, const std::string& folder, ModelF
   summary["run"] = run_info;
   WriteFileAtomically(folder + "/summary.json",
                       [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
-  WriteHtmlReport(MapperPageData(result.reconstructions, summary, StageSeconds(result.summary),
-                                 PageTitle(run_info)),
-                  folder + "/report.html");
+  // The page is for looking at the run; the models are the result. A page that cannot be made
+  // costs a warning, never the models.
+  try {
+    WriteHtmlReport(MapperPageData(result.reconstructions, summary, StageSeconds(result.summary),
+                                   PageTitle(run_info)),
+                    folder + "/report.html");
+  } catch (const std::exception& error) {
+    if (warnings != nullptr) {
+      *warnings << "ramap: warning: report.html not written: " << error.what() << "\n";
+    }
+  }
 }
 
 }  // namespace
@@ -264,18 +272,18 @@ bool MoveIntoPlace(const fs::path& from, const fs::path& to, std::string* proble
 }  // namespace
 
 void WriteMapperOutput(const MapperResult& result, const std::string& output_path,
-                       ModelFormat format, const nlohmann::json& run_info) {
+                       ModelFormat format, const nlohmann::json& run_info, std::ostream* warnings) {
   if (!fs::exists(output_path)) {
     // A new folder appears whole, by one rename.
     StagedPath staged(output_path);
-    WriteContents(result, staged.path(), format, run_info);
+    WriteContents(result, staged.path(), format, run_info, warnings);
     staged.Commit();
     return;
   }
   if (!fs::is_directory(output_path)) throw InputError(output_path, "exists and is not a folder");
   // An existing folder (perhaps holding the user's other files) gets each entry moved in once
-  // everything has been written beside it. Only model folders and summary.json are replaced, and
-  // only after every one of them has been checked.
+  // everything has been written beside it. Only model folders, summary.json and ramap's own
+  // report.html are replaced, and only after every one of them has been checked.
   std::vector<fs::path> replaced;
   auto check_model_target = [&](const fs::path& target) {
     std::string foreign;
@@ -304,8 +312,14 @@ void WriteMapperOutput(const MapperResult& result, const std::string& output_pat
                        std::string(file) + " there is a folder; ramap does not replace it");
     }
   }
+  const fs::path report = fs::path(output_path) / "report.html";
+  if (fs::exists(report) && !IsRamapReport(report.string())) {
+    throw InputError(report.string(),
+                     "ramap did not write this page and does not replace it (move it, or choose "
+                     "another --output_path)");
+  }
   StagedPath staged(output_path + "/.ramap-output");
-  WriteContents(result, staged.path(), format, run_info);
+  WriteContents(result, staged.path(), format, run_info, warnings);
   // Each new entry takes its old one's place in one atomic exchange, the old one going to the
   // staged folder that is removed after: an interrupt at any moment leaves every model whole,
   // either the earlier run's or this one's, never neither.

@@ -153,7 +153,8 @@ ReconstructResult RunReconstructJob(const ReconstructJob& job, std::ostream* pro
        PosePriorOptionsToJson(options.mapper.prior_source, options.mapper.georegistration)},
       {"loop_closure",
        LoopClosureToJson(options.close_loops, options.loop_closure, closed.closure)}};
-  WriteMapperOutput(result.mapping, job.output_path + "/sparse", ModelFormat::kBinary, run);
+  WriteMapperOutput(result.mapping, job.output_path + "/sparse", ModelFormat::kBinary, run,
+                    warnings);
   created_database.Keep();
   created_folder.Keep();
   return result;

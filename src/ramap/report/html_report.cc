@@ -21,16 +21,18 @@ extern const char kThreeLicense[];
 
 namespace {
 
-// The data as a JSON text that is safe inside a <script> element: "</" cannot close it early
-// ("<\/" is the same string to JSON).
+// The data as a JSON text that is safe inside a <script> element: every "<" written as the JSON
+// escape \u003c (the same string to JSON), so that no "</script>" or "<!--" in an image name or
+// path can end the element early.
 std::string ScriptSafeJson(const nlohmann::json& data) {
   const std::string text = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   std::string safe;
   safe.reserve(text.size());
-  for (size_t k = 0; k < text.size(); ++k) {
-    safe += text[k];
-    if (text[k] == '<' && k + 1 < text.size() && (text[k + 1] == '/' || text[k + 1] == '!')) {
-      safe += '\\';
+  for (const char c : text) {
+    if (c == '<') {
+      safe += "\\u003c";
+    } else {
+      safe += c;
     }
   }
   return safe;

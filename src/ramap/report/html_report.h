@@ -9,10 +9,12 @@
 
 namespace ramap {
 
-// The page for `data`: {"kind": "mapper"|"compare", "title", "subtitle", "models": [...],
-// "reference": {...}|null, "recall_curves": [...], "stage_seconds": [{"name", "stages": [[stage,
-// seconds], ...]}], "comparison": report.json|null, "summary": summary.json|null}; the page
-// adds who wrote it (version, commit) and when.
+// The page for `data`: {"kind": "mapper"|"compare", "title", "subtitle", "models": [...] and
+// "reference": {...}|null (report_scene.h), "origin" (what the coordinates are relative to),
+// "image_order" (names in capture order: the per-image plots' x axis), "position_unit",
+// "recall_curves": [...], "stage_seconds": [{"name", "stages": [[stage, seconds], ...]}],
+// "comparison": report.json|null, "summary": summary.json|null, "summary_title"}; the page adds
+// who wrote it (version, commit) and when.
 std::string RenderHtmlReport(const nlohmann::json& data);
 
 // Writes RenderHtmlReport(data) to `path` atomically; InputError naming the path when it cannot.

@@ -22,7 +22,9 @@ nlohmann::json ImageOrderJson(const std::vector<std::string>& names) {
 nlohmann::json MapperPageData(const std::vector<Reconstruction>& models,
                               const nlohmann::json& summary,
                               const std::vector<std::pair<std::string, double>>& stage_seconds,
-                              const std::string& title, const ReportSceneOptions& options) {
+                              const std::string& title, const ReportSceneOptions& given) {
+  ReportSceneOptions options = given;
+  if (!models.empty()) options.origin = SceneMiddle(models.front());
   size_t num_points = 0;
   std::vector<std::string> names;
   for (const Reconstruction& model : models) {
@@ -46,6 +48,8 @@ nlohmann::json MapperPageData(const std::vector<Reconstruction>& models,
                        " images registered in " + std::to_string(models.size()) + " model(s)"},
       {"models", models_json},
       {"reference", nullptr},
+      {"origin",
+       nlohmann::json::array({options.origin.x(), options.origin.y(), options.origin.z()})},
       {"image_order", ImageOrderJson(names)},
       {"stage_seconds", nlohmann::json::array({StageBarJson("ramap mapper", stage_seconds)})},
       {"summary", summary},

@@ -74,8 +74,8 @@ std::vector<const Image*> ImagesInCaptureOrder(const Reconstruction& model) {
   return ordered;
 }
 
-nlohmann::json PointsJson(const Reconstruction& model, const Sim3d& transform, size_t max_points,
-                          int digits) {
+nlohmann::json PointsJson(const Reconstruction& model, const Sim3d& transform,
+                          const Eigen::Vector3d& origin, size_t max_points, int digits) {
   nlohmann::json xyz = nlohmann::json::array();
   nlohmann::json rgb = nlohmann::json::array();
   const size_t total = model.points3D.size();
@@ -88,7 +88,7 @@ nlohmann::json PointsJson(const Reconstruction& model, const Sim3d& transform, s
     if (static_cast<double>(index++) < next) continue;
     next += stride;
     if (!point.xyz.allFinite()) continue;
-    AppendVector(transform * point.xyz, digits, &xyz);
+    AppendVector(transform * point.xyz - origin, digits, &xyz);
     for (int k = 0; k < 3; ++k) rgb.push_back(point.color[k]);
     coloured = coloured || point.color != Eigen::Matrix<uint8_t, 3, 1>::Zero();
   }
@@ -99,6 +99,18 @@ nlohmann::json PointsJson(const Reconstruction& model, const Sim3d& transform, s
 }
 
 }  // namespace
+
+Eigen::Vector3d SceneMiddle(const Reconstruction& model, const Sim3d& transform) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int count = 0;
+  for (const auto& [image_id, image] : model.images) {
+    const Eigen::Vector3d center = transform * image.cam_from_world.Inverse().translation;
+    if (!center.allFinite()) continue;
+    sum += center;
+    ++count;
+  }
+  return count > 0 ? Eigen::Vector3d(sum / count) : Eigen::Vector3d::Zero();
+}
 
 nlohmann::json ReportModelJson(const std::string& name, const Reconstruction& model,
                                const Sim3d& reference_from_model, const PoseEvaluation* evaluation,
@@ -121,7 +133,7 @@ nlohmann::json ReportModelJson(const std::string& name, const Reconstruction& mo
     names_json.push_back(image->name);
     const Rigid3d pose = TransformPose(reference_from_model, image->cam_from_world);
     const Rigid3d world_from_cam = pose.Inverse();
-    AppendVector(world_from_cam.translation, d, &centers);
+    AppendVector(world_from_cam.translation - options.origin, d, &centers);
     const Eigen::Quaterniond q = world_from_cam.rotation.normalized();
     for (const double c : {q.x(), q.y(), q.z(), q.w()}) rotations.push_back(Rounded(c, d));
     const auto camera = model.cameras.find(image->camera_id);
@@ -148,7 +160,7 @@ nlohmann::json ReportModelJson(const std::string& name, const Reconstruction& mo
             {"rotation_error_deg", evaluation != nullptr ? rotation_errors : nlohmann::json()},
             {"position_error", evaluation != nullptr ? position_errors : nlohmann::json()},
             {"reprojection_error_px", reprojection_errors}}},
-          {"points", PointsJson(model, reference_from_model, max_points, d)}};
+          {"points", PointsJson(model, reference_from_model, options.origin, max_points, d)}};
 }
 
 nlohmann::json ReportReferenceJson(const std::string& name,

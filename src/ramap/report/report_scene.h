@@ -20,7 +20,13 @@ struct ReportSceneOptions {
   size_t max_points = 120000;
   // Significant digits of coordinates in the page (millimetres on a kilometre-sized scene).
   int digits = 7;
+  // Coordinates are written relative to this point (SceneMiddle), so that those digits and the
+  // browser's 32-bit floats keep their precision in a scene far from its frame's origin (UTM).
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
 };
+
+// The mean camera centre of `model`, brought by `transform`: the page's origin.
+Eigen::Vector3d SceneMiddle(const Reconstruction& model, const Sim3d& transform = Sim3d());
 
 // One model for the page: `reference_from_model` brings it into the reference's frame (identity
 // without one); `evaluation`, when given, supplies each image's rotation and position error; each

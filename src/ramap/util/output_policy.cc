@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
+#include <fstream>
+#include <string>
 #include <system_error>
 
 #include "ramap/util/error.h"
@@ -158,15 +160,26 @@ bool IsReplaceableModelFolder(const std::string& folder, std::string* foreign) {
                      foreign);
 }
 
+bool IsRamapReport(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(512, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  return head.find("<meta name=\"generator\" content=\"ramap\">") != std::string::npos;
+}
+
 bool IsReplaceableMapperOutput(const std::string& folder, std::string* foreign) {
   return NoneForeign(
       FirstForeignEntry(folder,
                         [](const fs::directory_entry& entry, std::string* inner) {
                           const std::string name = entry.path().filename().string();
                           std::error_code ec;
-                          if (name == "summary.json" || name == "report.html" ||
-                              name == "project.ini") {
+                          if (name == "summary.json" || name == "project.ini") {
                             return entry.is_regular_file(ec);
+                          }
+                          if (name == "report.html") {
+                            return entry.is_regular_file(ec) &&
+                                   IsRamapReport(entry.path().string());
                           }
                           const bool numbered =
                               !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {

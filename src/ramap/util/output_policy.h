@@ -38,8 +38,13 @@ void CheckNewDatabasePath(const std::string& option, const std::string& path,
 // set to the first other entry.
 bool IsReplaceableModelFolder(const std::string& folder, std::string* foreign);
 
+// Whether the page at `path` is a report.html that ramap wrote (its generator tag, in its first
+// lines): a user's own report.html is never replaced.
+bool IsRamapReport(const std::string& path);
+
 // Whether `folder` holds only what a mapper's output folder holds (numbered replaceable model
-// folders, summary.json, COLMAP's project files), so that a rerun may replace it whole.
+// folders, summary.json, a report.html ramap wrote, COLMAP's project files), so that a rerun may
+// replace it whole.
 bool IsReplaceableMapperOutput(const std::string& folder, std::string* foreign);
 
 }  // namespace ramap

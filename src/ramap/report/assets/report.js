@@ -44,6 +44,21 @@ function fixed(value, digits) {
                                                                      Number(value).toFixed(digits);
 }
 
+// The least and greatest of `values` and `extra`, by a loop: spreading a long array into
+// Math.min overflows the call stack (past about 125000 values).
+function minimum(values, extra) {
+  let least = extra;
+  for (const v of values)
+    if (v < least) least = v;
+  return least;
+}
+function maximum(values, extra) {
+  let greatest = extra;
+  for (const v of values)
+    if (v > greatest) greatest = v;
+  return greatest;
+}
+
 function quantile(values, q) {
   const sorted = values.filter((v) => v !== null && isFinite(v)).sort((a, b) => a - b);
   if (sorted.length === 0) return null;
@@ -109,8 +124,8 @@ function renderComparison(section) {
           'span', {},
           [element('span', {class: 'swatch', style: 'background:' + colorOf(run.name)}), run.name]),
       run.succeeded ? run.num_registered + ' / ' + comparison.num_images : 'failed',
-      e ? auc('1') : '(ref.)', e ? auc('3') : '', e ? auc('5') : '', e ? auc('10') : '',
-      e && e.rotation_error_deg ? fixed(e.rotation_error_deg.median, 3) : '',
+      e ? auc('1') : (isReference(run) ? '(ref.)' : '-'), e ? auc('3') : '', e ? auc('5') : '',
+      e ? auc('10') : '', e && e.rotation_error_deg ? fixed(e.rotation_error_deg.median, 3) : '',
       e && e.ate ? fixed(e.ate.rmse, 4) : '',
       e && e.ate ? fixed(100 * e.ate.rmse_over_extent, 2) + '%' : '', fixed(run.seconds, 2),
       run.speedup_over_colmap ? fixed(run.speedup_over_colmap, 1) + 'x' : '-'
@@ -128,6 +143,11 @@ function renderComparison(section) {
   commands.append(element(
       'pre', {text: comparison.runs.map((run) => run.name + ':\n  ' + run.command).join('\n')}));
   section.append(commands);
+}
+
+// COLMAP's run is the reference of a comparison without ground truth.
+function isReference(run) {
+  return run.succeeded && run.name === 'COLMAP' && !data.reference;
 }
 
 function colorOf(name) {
@@ -263,10 +283,13 @@ const METRICS = [
   {key: 'model', label: 'one colour per model'},
 ];
 
+// The colourings some model has a value for (a model without points has no reprojection error).
 function availableMetrics() {
   return METRICS.filter(
-      (metric) =>
-          metric.key === 'model' || models.some((m) => Array.isArray(m.images[metric.key])));
+      (metric) => metric.key === 'model' ||
+          models.some(
+              (m) => Array.isArray(m.images[metric.key]) &&
+                  m.images[metric.key].some((v) => v !== null)));
 }
 
 function buildView() {
@@ -343,7 +366,10 @@ function colorFrusta(view, metric) {
   const values = [];
   for (const layer of visible) {
     const list = layer.set.images[metric];
-    if (Array.isArray(list)) values.push(...list.filter((v) => v !== null));
+    if (Array.isArray(list)) {
+      for (const v of list)
+        if (v !== null) values.push(v);
+    }
   }
   // From 0 to the 95th percentile, but never below what is small for the metric, so that
   // uniformly good cameras stay green.
@@ -468,17 +494,17 @@ function linePlot(container, options) {
       options.series.flatMap((s) => s.points.filter((p) => p[1] !== null && isFinite(p[1])));
   const xs = all.map((p) => p[0]);
   const ys = all.map((p) => p[1]);
-  const xMin = options.xMin !== undefined ? options.xMin : Math.min(...xs, 0);
-  const xMax = options.xMax !== undefined ? options.xMax : Math.max(...xs, 1);
-  let yMin = options.yMin !== undefined ? options.yMin : Math.min(...ys, 0);
-  let yMax = options.yMax !== undefined ? options.yMax : Math.max(...ys, 1e-12);
+  const xMin = options.xMin !== undefined ? options.xMin : minimum(xs, 0);
+  const xMax = options.xMax !== undefined ? options.xMax : maximum(xs, 1);
+  let yMin = options.yMin !== undefined ? options.yMin : minimum(ys, 0);
+  let yMax = options.yMax !== undefined ? options.yMax : maximum(ys, 1e-12);
   const log = options.logY && ys.some((y) => y > 0);
   if (log) {
     const positive = ys.filter((y) => y > 0);
     yMin = Math.pow(
         10,
-        Math.floor(Math.log10(Math.max(quantile(positive, 0.01), Math.max(...positive) * 1e-4))));
-    yMax = Math.pow(10, Math.ceil(Math.log10(Math.max(...positive))));
+        Math.floor(Math.log10(Math.max(quantile(positive, 0.01), maximum(positive, 0) * 1e-4))));
+    yMax = Math.pow(10, Math.ceil(Math.log10(maximum(positive, 0))));
     if (yMax <= yMin) yMax = yMin * 10;
   }
   const X = (x) => left + (x - xMin) / (xMax - xMin || 1) * (width - left - right);
@@ -618,12 +644,15 @@ function renderPerImagePlots(container) {
     {key: 'reprojection_error_px', title: 'Mean reprojection error per image', unit: 'px'},
   ];
   for (const spec of plots) {
-    const withValues = models.filter((m) => Array.isArray(m.images[spec.key]));
+    const withValues = models.filter(
+        (m) => Array.isArray(m.images[spec.key]) && m.images[spec.key].some((v) => v !== null));
     if (withValues.length === 0) continue;
     if (spec.key === 'reprojection_error_px' && data.kind === 'compare') continue;
     const series = withValues.map((model) => {
+      let extra = order.length;  // names the order lacks go after it, in the model's order
       const points = model.images.name.map(
-          (name, k) => [position.has(name) ? position.get(name) : k, model.images[spec.key][k]]);
+          (name,
+           k) => [position.has(name) ? position.get(name) : extra++, model.images[spec.key][k]]);
       points.sort((a, b) => a[0] - b[0]);
       return {name: model.name, color: model.color, points, width: 1.2};
     });
@@ -634,7 +663,8 @@ function renderPerImagePlots(container) {
       series,
       logY: true,
       xMin: 0,
-      xMax: Math.max(order.length - 1, 1),
+      xMax: Math.max(
+          order.length - 1, maximum(withValues.map((m) => m.images.name.length), 0) - 1, 1),
       readout: (x) => {
         const k = Math.round(x);
         const name = order[k] || '';
@@ -663,7 +693,7 @@ function renderStagePlot(container) {
   const axisY = top + bars.length * rowHeight + 2;
   const legend = flowLegend(stageNames, left, width, axisY + 28);
   const height = legend.bottom + 12;
-  const total = Math.max(...bars.map((bar) => bar.stages.reduce((sum, [, s]) => sum + s, 0)), 1e-9);
+  const total = maximum(bars.map((bar) => bar.stages.reduce((sum, [, s]) => sum + s, 0)), 1e-9);
   const X = (s) => left + s / total * (width - left - right);
   const plot = element('div', {class: 'plot'});
   const root = svg(
@@ -761,7 +791,8 @@ function renderSummary(section) {
           if (vg)
             estimate = vg.estimated ? fixed(vg.estimated_focal_px, 1) + ' px' :
                                       'kept the prior: ' + (vg.problem || 'not estimated');
-          const params = (p) => (p || []).map((v) => Number(v.toPrecision(6))).join(', ');
+          const params = (p) =>
+              (p || []).map((v) => (v === null ? 'NaN' : Number(v.toPrecision(6)))).join(', ');
           return [
             String(c.camera_id), c.model, c.prior_focal_length_known ? 'yes' : 'no (guess)',
             params(c.prior_params), element('span', {class: 'wrap', text: estimate}),
@@ -794,22 +825,50 @@ function renderSummary(section) {
 }
 
 // ---------------------------------------------------------------- assembly
+// How many cameras a layer should show, from outside the drawn model's own arrays: the mapper's
+// summary (its components' image counts) or the comparison (each run's registered images);
+// the reference's, from its poses.
+function expectedCameras(layer) {
+  if (layer.isReference) return layer.set.num_registered;
+  if (data.comparison) {
+    const run = data.comparison.runs.find((r) => r.name === layer.set.name);
+    return run ? run.num_registered : null;
+  }
+  const k = models.indexOf(layer.set);
+  const components = (data.summary && data.summary.components) || [];
+  return k >= 0 && k < components.length ? components[k].num_images : null;
+}
+
+// Runs one part of the page: a part that fails says so where it would have been (and on the
+// console, where the browser test sees it) and leaves the other parts whole.
+function drawPart(what, container, draw) {
+  try {
+    return draw();
+  } catch (error) {
+    console.error('report.html: ' + what + ' could not be drawn: ' + error);
+    container.append(element('p', {class: 'hint', text: what + ' could not be drawn: ' + error}));
+    return null;
+  }
+}
+
 function main() {
   renderHeader();
-  renderComparison(document.getElementById('results'));
+  const results = document.getElementById('results');
   const plots = document.getElementById('plots');
-  renderRecallPlot(plots);
-  renderPerImagePlots(plots);
-  renderStagePlot(plots);
-  renderSummary(document.getElementById('summary'));
-  const view = models.length ? buildView() : null;
+  const summary = document.getElementById('summary');
+  drawPart('the comparison table', results, () => renderComparison(results));
+  drawPart('the recall curves', plots, () => renderRecallPlot(plots));
+  drawPart('the per-image errors', plots, () => renderPerImagePlots(plots));
+  drawPart('the stage times', plots, () => renderStagePlot(plots));
+  drawPart('the summary', summary, () => renderSummary(summary));
+  const scene = document.getElementById('scene');
+  const view = models.length ? drawPart('the 3D view', scene, buildView) : null;
   if (view) {
-    const setVisible = renderViewControls(view);
-    view.resize();
     report.view = view;
-    report.setVisible = setVisible;
+    report.setVisible = drawPart('the view\'s controls', scene, () => renderViewControls(view));
+    view.resize();
   } else if (!models.length) {
-    document.getElementById('scene').hidden = true;
+    scene.hidden = true;
   }
   // What the browser test reads: every layer's drawn frusta against its registered images.
   report.state = () => ({
@@ -821,6 +880,7 @@ function main() {
                           visible: layer.group.visible,
                           frusta: layer.frusta.geometry.getAttribute('position').count / 16,
                           registered: layer.set.num_registered,
+                          expected: expectedCameras(layer),
                         })) :
         [],
     camera: view ? view.camera.position.toArray() : null,

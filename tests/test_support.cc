@@ -43,9 +43,29 @@ std::string Colmap4Binary() {
 
 std::string RamapBinary() { return RAMAP_CLI_PATH; }
 
+std::string RamapCommand() { return "'" + RamapBinary() + "' "; }
+
+std::string ReadFileBytes(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+}
+
+nlohmann::json ReadJsonFile(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+ColmapRun HerzJesusFourImages(const std::string& image_dir) {
+  ColmapRun run;
+  run.image_dir = image_dir;
+  run.image_names = {"0000.jpg", "0001.jpg", "0002.jpg", "0003.jpg"};
+  run.camera_params = "2759.48,2764.16,1520.69,1006.81";
+  run.max_image_size = 640;
+  return run;
+}
+
 nlohmann::json ReportPageData(const std::string& report_path) {
-  std::ifstream in(report_path);
-  const std::string page((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string page = ReadFileBytes(report_path);
   const std::string open = "<script type=\"application/json\" id=\"ramap-data\">";
   const size_t begin = page.find(open);
   const size_t end = begin == std::string::npos ? begin : page.find("</script>", begin);

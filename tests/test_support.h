@@ -29,6 +29,12 @@ std::string Colmap4Binary();
 
 // The built `ramap` binary.
 std::string RamapBinary();
+// The start of a shell command line that runs it: the quoted binary and a space.
+std::string RamapCommand();
+
+// A file's whole contents, byte for byte ("" when it cannot be read), and a JSON file parsed.
+std::string ReadFileBytes(const std::string& path);
+nlohmann::json ReadJsonFile(const std::string& path);
 
 struct CommandResult {
   int exit_code = -1;
@@ -48,6 +54,10 @@ struct ColmapRun {
   int max_image_size = 640;
   bool sequential_matching = false;  // exhaustive by default
 };
+// Four Herz-Jesus-P8 images (0000-0003 of `image_dir`) with their calibration, at 640 px: the
+// subset every test of real images shares, so that COLMAP runs once for all of them.
+ColmapRun HerzJesusFourImages(const std::string& image_dir);
+
 // Path of a database built by colmap feature_extractor + matcher; "" and a gtest failure if COLMAP
 // fails.
 std::string CachedColmapDatabase(const ColmapRun& run);

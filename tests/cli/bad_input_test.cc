@@ -22,7 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Ramap() { return "'" + test::RamapBinary() + "' "; }
 std::string Q(const std::string& path) { return "'" + path + "'"; }
 
 // Every entry under `root`: its kind, size and contents (files), by relative path.
@@ -50,13 +49,13 @@ class BadInput : public ::testing::Test {
   static void SetUpTestSuite() {
     scene_ = std::make_unique<test::TempDir>();
     const test::CommandResult synthesize = test::RunCommand(
-        Ramap() + "synthesize --output_path " + Q(*scene_ / "scene") +
+        test::RamapCommand() + "synthesize --output_path " + Q(*scene_ / "scene") +
         " --Synthetic.path circle --Synthetic.num_images 8 --Synthetic.num_points 600"
         " --Synthetic.pixel_noise 0.5 --Synthetic.seed 3");
     ASSERT_EQ(synthesize.exit_code, 0) << synthesize.output;
-    const test::CommandResult mapper =
-        test::RunCommand(Ramap() + "mapper --database_path " + Q(*scene_ / "scene/database.db") +
-                         " --output_path " + Q(*scene_ / "scene/sparse"));
+    const test::CommandResult mapper = test::RunCommand(
+        test::RamapCommand() + "mapper --database_path " + Q(*scene_ / "scene/database.db") +
+        " --output_path " + Q(*scene_ / "scene/sparse"));
     ASSERT_EQ(mapper.exit_code, 0) << mapper.output;
     // A few textured images for the image commands.
     fs::create_directories(*scene_ / "scene/images");
@@ -82,7 +81,7 @@ class BadInput : public ::testing::Test {
   // an unchanged tree.
   void ExpectRefused(const std::string& arguments, const std::string& named) {
     const test::CommandResult result =
-        test::RunCommand("cd " + Q(work_.path()) + " && " + Ramap() + arguments);
+        test::RunCommand("cd " + Q(work_.path()) + " && " + test::RamapCommand() + arguments);
     EXPECT_NE(result.exit_code, 0) << result.output;
     EXPECT_LT(result.exit_code, 128) << "killed by a signal:\n" << result.output;
     EXPECT_EQ(result.output.find("internal error"), std::string::npos) << result.output;
@@ -231,7 +230,7 @@ TEST_F(BadInput, MapperOutputWithTheUsersFiles) {
 TEST_F(BadInput, MapperRerunReplacesOnlyItsOwnOutput) {
   std::ofstream(W("sparse/readme.txt")) << "mine";
   const test::CommandResult result =
-      test::RunCommand(Ramap() + "mapper --database_path " + Q(W("database.db")) +
+      test::RunCommand(test::RamapCommand() + "mapper --database_path " + Q(W("database.db")) +
                        " --output_path " + Q(W("sparse")) + " --output_type TXT");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_TRUE(fs::exists(W("sparse/readme.txt")));
@@ -253,15 +252,16 @@ TEST_F(BadInput, CompareOutputWithTheUsersFiles) {
 
 TEST_F(BadInput, MatcherKeepsTablesItDoesNotOwn) {
   const test::CommandResult extract = test::RunCommand(
-      Ramap() + "feature_extractor --image_path " + Q(W("images")) + " --database_path " +
-      Q(W("new.db")) + " --ImageReader.camera_params 300,160,120,0");
+      test::RamapCommand() + "feature_extractor --image_path " + Q(W("images")) +
+      " --database_path " + Q(W("new.db")) + " --ImageReader.camera_params 300,160,120,0");
   ASSERT_EQ(extract.exit_code, 0) << extract.output;
   {
     sqlite::Connection db(W("new.db"), sqlite::Connection::OpenExisting(), "new.db");
     db.Execute("CREATE TABLE user_notes (note TEXT); INSERT INTO user_notes VALUES ('mine');");
   }
-  const test::CommandResult match = test::RunCommand(
-      Ramap() + "matcher --database_path " + Q(W("new.db")) + " --Matching.mode exhaustive");
+  const test::CommandResult match =
+      test::RunCommand(test::RamapCommand() + "matcher --database_path " + Q(W("new.db")) +
+                       " --Matching.mode exhaustive");
   ASSERT_EQ(match.exit_code, 0) << match.output;
   sqlite::Connection db(W("new.db"), sqlite::Connection::OpenExisting(), "new.db");
   sqlite::Statement row(db, "SELECT note FROM user_notes");
@@ -274,7 +274,7 @@ TEST_F(BadInput, MatcherKeepsTablesItDoesNotOwn) {
 TEST_F(BadInput, TinyImageIsSkippedByName) {
   cv::imwrite(W("images/tiny.png"), cv::Mat(1, 1, CV_8U, cv::Scalar(7)));
   const test::CommandResult result =
-      test::RunCommand(Ramap() + "feature_extractor --image_path " + Q(W("images")) +
+      test::RunCommand(test::RamapCommand() + "feature_extractor --image_path " + Q(W("images")) +
                        " --database_path " + Q(W("new.db")) + " --FeatureExtraction.type sift");
   EXPECT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("tiny.png: too small"), std::string::npos) << result.output;
@@ -288,7 +288,7 @@ TEST_F(BadInput, TinyImageIsSkippedByName) {
 
 TEST_F(BadInput, DescriptorsWithoutTheirKeypoints) {
   const test::CommandResult extract =
-      test::RunCommand(Ramap() + "feature_extractor --image_path " + Q(W("images")) +
+      test::RunCommand(test::RamapCommand() + "feature_extractor --image_path " + Q(W("images")) +
                        " --database_path " + Q(W("new.db")));
   ASSERT_EQ(extract.exit_code, 0) << extract.output;
   {
@@ -359,7 +359,7 @@ TEST_F(BadInput, ImageListSharingNoName) {
 
 TEST_F(BadInput, CompareFailsWhenColmapFails) {
   const test::CommandResult result = test::RunCommand(
-      "cd " + Q(work_.path()) + " && " + Ramap() +
+      "cd " + Q(work_.path()) + " && " + test::RamapCommand() +
       "compare --database_path database.db --output_path report --colmap_path false");
   EXPECT_NE(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("COLMAP failed"), std::string::npos) << result.output;
@@ -382,7 +382,7 @@ TEST_F(BadInput, NameWithBlankRefusedBeforeTheSolve) {
   }
   before_ = Snapshot(work_.path());
   const test::CommandResult result = test::RunCommand(
-      "cd " + Q(work_.path()) + " && " + Ramap() +
+      "cd " + Q(work_.path()) + " && " + test::RamapCommand() +
       "mapper --database_path database.db --output_path out --output_type TXT --log_level 1");
   EXPECT_EQ(result.exit_code, 2) << result.output;
   EXPECT_NE(result.output.find("database.db: image 1 'with blank.png'"), std::string::npos)
@@ -400,8 +400,8 @@ TEST_F(BadInput, PairWithEveryKeypointOnOnePixelIsDropped) {
   }
   WriteColmapDatabase(database, W("one_pixel.db"));
   const test::CommandResult result =
-      test::RunCommand(Ramap() + "relative_poses --database_path " + Q(W("one_pixel.db")) +
-                       " --output_path " + Q(W("edges.txt")));
+      test::RunCommand(test::RamapCommand() + "relative_poses --database_path " +
+                       Q(W("one_pixel.db")) + " --output_path " + Q(W("edges.txt")));
   ASSERT_EQ(result.exit_code, 0) << result.output;
   std::ifstream edges(W("edges.txt"));
   const std::string name = database.images.at(1).name;
@@ -411,8 +411,8 @@ TEST_F(BadInput, PairWithEveryKeypointOnOnePixelIsDropped) {
 }
 
 TEST_F(BadInput, DisconnectedGraphIsNotCalledPruned) {
-  ASSERT_EQ(test::RunCommand(Ramap() + "relative_poses --database_path " + Q(W("database.db")) +
-                             " --output_path " + Q(W("edges.txt")))
+  ASSERT_EQ(test::RunCommand(test::RamapCommand() + "relative_poses --database_path " +
+                             Q(W("database.db")) + " --output_path " + Q(W("edges.txt")))
                 .exit_code,
             0);
   // The same edges again under other names: a second component, as consistent as the first.
@@ -433,7 +433,7 @@ TEST_F(BadInput, DisconnectedGraphIsNotCalledPruned) {
   }
   out.close();
   const test::CommandResult result =
-      test::RunCommand(Ramap() + "rotation_averager --relative_poses " +
+      test::RunCommand(test::RamapCommand() + "rotation_averager --relative_poses " +
                        Q(W("two_components.txt")) + " --output_path " + Q(W("rotations.txt")));
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("(0 pruned, "), std::string::npos) << result.output;
@@ -465,7 +465,7 @@ TEST_F(BadInput, TerminatedRunRemovesItsStagedOutput) {
   // file exists (the script waits for one to appear).
   const std::string out = W("big");
   const test::CommandResult result = test::RunCommand(
-      Ramap() + "synthesize --output_path " + Q(out) +
+      test::RamapCommand() + "synthesize --output_path " + Q(out) +
       " --Synthetic.num_images 300 --Synthetic.num_points 40000 --Synthetic.seed 1 2>&1 & pid=$!; "
       "for i in $(seq 1 4000); do "
       "  if ls -a " +

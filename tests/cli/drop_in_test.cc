@@ -20,17 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Ramap() { return "'" + test::RamapBinary() + "' "; }
-
 test::CommandResult RunRamap(const std::string& arguments) {
-  return test::RunCommand(Ramap() + arguments + " 2>&1");
-}
-
-std::string ReadText(const std::string& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
+  return test::RunCommand(test::RamapCommand() + arguments + " 2>&1");
 }
 
 void ExpectSucceeds(const test::CommandResult& result, const std::string& note = "") {
@@ -56,7 +47,7 @@ TEST(DropIn, MapperBundleAdjusterAndAlignerLines) {
       "--Mapper.ba_global_function_tolerance read as --BundleAdjustment.function_tolerance");
   ExpectSucceeds(RunRamap("bundle_adjuster --input_path " + d + "/sparse/0 --output_path " + d +
                           "/sparse/0 --BundleAdjustment.refine_principal_point 1"));
-  const std::string trajectory_before = ReadText(d + "/sparse/0/trajectory_tum.txt");
+  const std::string trajectory_before = test::ReadFileBytes(d + "/sparse/0/trajectory_tum.txt");
   ExpectSucceeds(RunRamap("model_aligner --input_path " + d + "/sparse/0 --database_path " + d +
                           "/scene/database.db --alignment_max_error  0.1 --alignment_type  plane "
                           "--output_path " +
@@ -64,7 +55,7 @@ TEST(DropIn, MapperBundleAdjusterAndAlignerLines) {
   const Reconstruction model = ReadColmapModel(d + "/sparse/0");
   EXPECT_EQ(model.images.size(), 10u);
   // The mapper's trajectory beside the model follows it to the new frame.
-  EXPECT_NE(ReadText(d + "/sparse/0/trajectory_tum.txt"), trajectory_before);
+  EXPECT_NE(test::ReadFileBytes(d + "/sparse/0/trajectory_tum.txt"), trajectory_before);
   EXPECT_EQ(model.rigs.size(), model.cameras.size());
   // Upright on the principal plane: the points spread least along z, and are centred there.
   Eigen::Vector3d mean = Eigen::Vector3d::Zero(), spread = Eigen::Vector3d::Zero();

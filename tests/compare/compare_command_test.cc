@@ -18,11 +18,6 @@
 namespace ramap::test {
 namespace {
 
-nlohmann::json ReadJson(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
-
 // The "Median:" value of the section of `output` that starts with `heading`.
 double MedianAfter(const std::string& output, const std::string& heading) {
   const size_t at = output.find(heading);
@@ -86,7 +81,7 @@ TEST(CompareCommand, ReportAgreesWithEvaluateAndColmapModelComparer) {
       RunCommand(ramap + "compare --database_path '" + db + "' --output_path '" + (dir / "cmp") +
                  "' --Compare.png_figures 1");
   ASSERT_EQ(compare.exit_code, 0) << compare.output;
-  const nlohmann::json report = ReadJson(dir / "cmp/report.json");
+  const nlohmann::json report = test::ReadJsonFile(dir / "cmp/report.json");
   for (const std::string figure : {"trajectories.png", "rotation_error_cdf.png",
                                    "position_error_cdf.png", "stage_times.png"}) {
     EXPECT_TRUE(std::filesystem::exists(dir / ("cmp/" + figure))) << figure;
@@ -118,7 +113,7 @@ TEST(CompareCommand, ReportAgreesWithEvaluateAndColmapModelComparer) {
                    colmap_run["model_path"].get<std::string>() + "' --ground_truth_format colmap" +
                    " --database_path '" + db + "' --output_path '" + (dir / "eval.json") + "'");
     ASSERT_EQ(evaluate.exit_code, 0) << evaluate.output;
-    const nlohmann::json evaluation = ReadJson(dir / "eval.json");
+    const nlohmann::json evaluation = test::ReadJsonFile(dir / "eval.json");
     const nlohmann::json& reported = run["evaluation"];
     // (Both read the models from disk; summation order may differ in the last bits.)
     auto expect_same = [&](const nlohmann::json& a, const nlohmann::json& b) {
@@ -172,7 +167,7 @@ TEST(CompareCommand, ReportAgreesWithEvaluateAndColmapModelComparer) {
       ramap + "compare --database_path '" + db + "' --output_path '" + (dir / "cmp_gt") +
       "' --ground_truth '" + (dir / "scene/ground_truth") + "' --ground_truth_format colmap");
   ASSERT_EQ(with_gt.exit_code, 0) << with_gt.output;
-  const nlohmann::json gt_report = ReadJson(dir / "cmp_gt/report.json");
+  const nlohmann::json gt_report = test::ReadJsonFile(dir / "cmp_gt/report.json");
   for (const nlohmann::json& run : gt_report["runs"]) {
     ASSERT_FALSE(run["evaluation"].is_null()) << run["name"];
     EXPECT_LT(run["evaluation"]["ate"]["rmse_over_extent"].get<double>(), 0.01) << run["name"];
@@ -195,7 +190,7 @@ TEST(CompareCommand, ColmapMapsA38CopyOfA4xDatabase) {
   const CommandResult compare = RunCommand(ramap + "compare --database_path '" + db +
                                            "' --output_path '" + (dir / "cmp") + "'");
   ASSERT_EQ(compare.exit_code, 0) << compare.output;
-  const nlohmann::json report = ReadJson(dir / "cmp/report.json");
+  const nlohmann::json report = test::ReadJsonFile(dir / "cmp/report.json");
   EXPECT_TRUE(RunNamed(report, "COLMAP")["succeeded"].get<bool>()) << compare.output;
   EXPECT_EQ(RunNamed(report, "COLMAP")["num_registered"], 8);
   EXPECT_FALSE(std::filesystem::exists(dir / "cmp/colmap.database.db"));

@@ -17,11 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
 // A `colmap` that prints a version for `help` and, for `mapper` or `global_mapper`, appends its
 // arguments to CALLS, appends a line to the database it was given when `upgrades_database` (as
 // COLMAP 4 changes a 3.8 database) and copies MODEL into OUTPUT_PATH/0.
@@ -56,7 +51,7 @@ void WriteStandInColmap(const std::string& path, const std::string& version,
 // The lines of `calls` that ran `command` (a COLMAP sub-command).
 std::vector<std::string> CallsOf(const std::string& calls, const std::string& command) {
   std::vector<std::string> found;
-  std::istringstream in(ReadText(calls));
+  std::istringstream in(test::ReadFileBytes(calls));
   for (std::string line; std::getline(in, line);) {
     if (line.rfind(command + " ", 0) == 0) found.push_back(line);
   }
@@ -78,7 +73,7 @@ TEST(ComparePeers, ReportHasColmap4AndGlomapRowsRunOnCopiesOfTheDatabase) {
   const std::string ramap = "'" + RamapBinary() + "' ";
   ASSERT_NO_FATAL_FAILURE(SynthesizeOrbit(dir, 12, 3));
   const std::string db = dir / "scene/database.db", gt = dir / "scene/ground_truth";
-  const std::string database_before = ReadText(db);
+  const std::string database_before = test::ReadFileBytes(db);
   WriteStandInColmap(dir / "colmap38", "3.8", dir / "calls38.txt", gt, false);
   WriteStandInColmap(dir / "colmap4", "4.1.1", dir / "calls4.txt", gt, true);
 
@@ -110,7 +105,7 @@ TEST(ComparePeers, ReportHasColmap4AndGlomapRowsRunOnCopiesOfTheDatabase) {
   // GLOMAP's stages from its log (its total left out); COLMAP's incremental mapper prints none.
   EXPECT_EQ(report["runs"][2]["stage_seconds"], (nlohmann::json{{"Rotation averaging", 0.25}}));
   EXPECT_FALSE(report["runs"][1].contains("stage_seconds"));
-  const std::string markdown = ReadText(dir / "cmp/report.md");
+  const std::string markdown = test::ReadFileBytes(dir / "cmp/report.md");
   EXPECT_NE(markdown.find("speed-up over GLOMAP"), std::string::npos) << markdown;
   EXPECT_NE(markdown.find("Against GLOMAP (AUC@3 100.0"), std::string::npos) << markdown;
 
@@ -126,7 +121,7 @@ TEST(ComparePeers, ReportHasColmap4AndGlomapRowsRunOnCopiesOfTheDatabase) {
     EXPECT_EQ(call.find("--database_path " + db), std::string::npos) << call;
   }
   EXPECT_EQ(CallsOf(dir / "calls38.txt", "mapper").size(), 1u);
-  EXPECT_EQ(ReadText(db), database_before);
+  EXPECT_EQ(test::ReadFileBytes(db), database_before);
   for (const fs::directory_entry& entry : fs::directory_iterator(dir / "cmp")) {
     EXPECT_EQ(entry.path().string().find(".database.db"), std::string::npos) << entry.path();
   }
@@ -146,7 +141,7 @@ TEST(ComparePeers, WithoutAPeerTheReportHasNoPeerRows) {
   const nlohmann::json report = nlohmann::json::parse(in);
   ASSERT_EQ(report["runs"].size(), 3u);
   EXPECT_FALSE(report["runs"][1].contains("speedup_over_glomap"));
-  EXPECT_EQ(ReadText(dir / "cmp/report.md").find("GLOMAP"), std::string::npos);
+  EXPECT_EQ(test::ReadFileBytes(dir / "cmp/report.md").find("GLOMAP"), std::string::npos);
 }
 
 }  // namespace

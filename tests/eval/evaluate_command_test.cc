@@ -23,11 +23,6 @@ Reconstruction ModelOf(const std::map<std::string, Rigid3d>& poses) {
   return ModelOfPoses(poses, VgaPinholeCamera());
 }
 
-nlohmann::json ReadJson(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
-
 TEST(EvalEvaluateCommand, MatchesInProcessEvaluation) {
   std::mt19937_64 rng(30);
   const auto gt = RandomCameras(9, rng);
@@ -44,7 +39,7 @@ TEST(EvalEvaluateCommand, MatchesInProcessEvaluation) {
       (dir / "gt") + " --ground_truth_format colmap --output_path " + (dir / "report.json"));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("8 / 9"), std::string::npos) << run.output;
-  const nlohmann::json j = ReadJson(dir / "report.json");
+  const nlohmann::json j = test::ReadJsonFile(dir / "report.json");
 
   // The model files hold the poses exactly (binary) or to 17 digits (text).
   const PoseEvaluation expected =
@@ -71,7 +66,7 @@ TEST(EvalEvaluateCommand, MatchesInProcessEvaluation) {
                  (dir / "gt") + " --ground_truth_format colmap --image_list " + (dir / "list.txt") +
                  " --output_path " + (dir / "listed.json"));
   ASSERT_EQ(listed.exit_code, 0) << listed.output;
-  EXPECT_EQ(ReadJson(dir / "listed.json")["num_images"], 10);
+  EXPECT_EQ(test::ReadJsonFile(dir / "listed.json")["num_images"], 10);
 
   const CommandResult bad =
       RunCommand(RamapBinary() + " evaluate --model_path " + (dir / "est") + " --ground_truth " +
@@ -118,7 +113,7 @@ TEST(EvalEvaluateCommand, IndexMatchedGroundTruthNeedsTheInputImages) {
 
   CommandResult run = RunCommand(common + (dir / "all"));
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  nlohmann::json j = ReadJson(dir / "r.json");
+  nlohmann::json j = test::ReadJsonFile(dir / "r.json");
   EXPECT_EQ(j["num_evaluated"], 8);
   EXPECT_LT(j["ate"]["rmse"].get<double>(), 1e-9);
 
@@ -132,7 +127,7 @@ TEST(EvalEvaluateCommand, IndexMatchedGroundTruthNeedsTheInputImages) {
   }
   run = RunCommand(common + (dir / "partial") + " --image_list " + (dir / "list.txt"));
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  j = ReadJson(dir / "r.json");
+  j = test::ReadJsonFile(dir / "r.json");
   EXPECT_EQ(j["num_images"], 8);
   EXPECT_EQ(j["num_registered"], 7);
   EXPECT_EQ(j["relative"]["num_failed_pairs"], 7);
@@ -179,7 +174,7 @@ TEST(EvalColmapCrossCheck, FountainAgreesWithColmapModelAligner) {
       RamapBinary() + " evaluate --model_path '" + model_path + "' --ground_truth '" + gt_dir +
       "' --ground_truth_format strecha --output_path '" + (dir / "report.json") + "'");
   ASSERT_EQ(ours.exit_code, 0) << ours.output;
-  const nlohmann::json report = ReadJson(dir / "report.json");
+  const nlohmann::json report = test::ReadJsonFile(dir / "report.json");
   ASSERT_EQ(report["alignment"]["status"], "success");
   EXPECT_EQ(report["num_images"], 11);
 

@@ -52,11 +52,7 @@ TEST(RelativePoseRealData, HerzJesusPairsMatchGroundTruth) {
   RAMAP_REQUIRE_SHARED_DATA(images, "strecha/Herz-Jesus-P8/images");
   RAMAP_REQUIRE_SHARED_DATA(cameras, "strecha/Herz-Jesus-P8/gt_dense_cameras");
   // The same subset as the COLMAP fixture test, so the cached database is shared.
-  ColmapRun run;
-  run.image_dir = images;
-  run.image_names = {"0000.jpg", "0001.jpg", "0002.jpg", "0003.jpg"};
-  run.camera_params = "2759.48,2764.16,1520.69,1006.81";
-  run.max_image_size = 640;
+  const ColmapRun run = HerzJesusFourImages(images);
   const std::string database_path = CachedColmapDatabase(run);
   ASSERT_FALSE(database_path.empty());
   DatabaseReadOptions read_options;

@@ -39,11 +39,6 @@ FeatureDatabase SmallDatabase() {
   return database;
 }
 
-std::string ReadBytes(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-}
-
 void ExpectSameFeatures(const FeatureDatabase& expected, const FeatureDatabase& actual) {
   ASSERT_EQ(expected.images.size(), actual.images.size());
   for (const auto& [image_id, image] : expected.images) {
@@ -151,9 +146,9 @@ TEST(ColmapDatabase310, PosePriorsByImageFromColmapsSchema) {
 // Reading a defective database throws InputError naming each of `parts`, and leaves the file as
 // it was.
 void ExpectRefused(const std::string& path, const std::vector<std::string>& parts) {
-  const std::string before = ReadBytes(path);
+  const std::string before = test::ReadFileBytes(path);
   test::ExpectInputError([&] { ReadColmapDatabase(path); }, parts);
-  EXPECT_EQ(ReadBytes(path), before);
+  EXPECT_EQ(test::ReadFileBytes(path), before);
 }
 
 TEST(ColmapDatabaseGenerationsBadInput, EachDefectNamed) {

@@ -22,11 +22,6 @@ namespace {
 namespace fs = std::filesystem;
 using test::TempDir;
 
-std::string ReadBytes(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-}
-
 void WriteBytes(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
 }
@@ -142,8 +137,8 @@ void ExpectSameModel(const Reconstruction& a, const Reconstruction& b,
 
 void ExpectSameFiles(const std::string& dir_a, const std::string& dir_b, const std::string& ext) {
   for (const std::string name : {"cameras", "images", "points3D"}) {
-    const std::string a = ReadBytes(dir_a + "/" + name + ext);
-    const std::string b = ReadBytes(dir_b + "/" + name + ext);
+    const std::string a = test::ReadFileBytes(dir_a + "/" + name + ext);
+    const std::string b = test::ReadFileBytes(dir_b + "/" + name + ext);
     EXPECT_FALSE(a.empty()) << name << ext;
     EXPECT_TRUE(a == b) << name << ext << " differs between " << dir_a << " and " << dir_b;
   }
@@ -163,8 +158,9 @@ TEST(ColmapModel, BinaryRoundTripIsBitIdentical) {
   WriteColmapModel(read, dir / "first", ModelFormat::kBinary);
   ExpectSameFiles(dir / "first", dir / "second", ".bin");
   // Exact sizes: the header counts plus the records as COLMAP 3.8 lays them out.
-  EXPECT_EQ(ReadBytes(dir / "first/cameras.bin").size(), 8u + 3 * 24 + 8 * (4 + 8 + 12));
-  EXPECT_EQ(ReadBytes(dir / "first/points3D.bin").size(), 8u + 3 * (8 + 24 + 3 + 8 + 8) + 8 * 7);
+  EXPECT_EQ(test::ReadFileBytes(dir / "first/cameras.bin").size(), 8u + 3 * 24 + 8 * (4 + 8 + 12));
+  EXPECT_EQ(test::ReadFileBytes(dir / "first/points3D.bin").size(),
+            8u + 3 * (8 + 24 + 3 + 8 + 8) + 8 * 7);
 }
 
 TEST(ColmapModel, TextRoundTripIsBitIdenticalAndLossless) {
@@ -184,18 +180,18 @@ TEST(ColmapModel, TextRoundTripIsBitIdenticalAndLossless) {
 
   // The layout COLMAP 3.8 writes: header comments with counts, -1 for an unobserved point, an
   // empty observation line for an image without keypoints.
-  const std::string images = ReadBytes(dir / "txt/images.txt");
+  const std::string images = test::ReadFileBytes(dir / "txt/images.txt");
   EXPECT_NE(images.find("# Number of images: 5, mean observations per image: 1.3999999999999999\n"),
             std::string::npos)
       << images;
   EXPECT_NE(images.find("20 "), std::string::npos);
   EXPECT_NE(images.find(" 3 no_keypoints.png\n\n"), std::string::npos);
   EXPECT_NE(images.find(" -1 "), std::string::npos);
-  const std::string points = ReadBytes(dir / "txt/points3D.txt");
+  const std::string points = test::ReadFileBytes(dir / "txt/points3D.txt");
   EXPECT_NE(points.find("# Number of points: 3, mean track length: 2.3333333333333335\n"),
             std::string::npos);
   EXPECT_NE(points.find("\n4 -3 4 5 160 0 255 -1 5 0 2 4\n"), std::string::npos) << points;
-  const std::string cameras = ReadBytes(dir / "txt/cameras.txt");
+  const std::string cameras = test::ReadFileBytes(dir / "txt/cameras.txt");
   EXPECT_NE(cameras.find("# Number of cameras: 3\n3 SIMPLE_RADIAL 640 480 500.25 320 240.5"),
             std::string::npos)
       << cameras;
@@ -245,22 +241,13 @@ TEST(ColmapModel, ColmapBinaryReadsWhatRamapWrote) {
   }
 }
 
-test::ColmapRun HerzJesusRun(const std::string& images) {
-  test::ColmapRun run;
-  run.image_dir = images;
-  run.image_names = {"0000.jpg", "0001.jpg", "0002.jpg", "0003.jpg"};
-  run.camera_params = "2759.48,2764.16,1520.69,1006.81";
-  run.max_image_size = 640;
-  return run;
-}
-
 // A model COLMAP's mapper made from real images: read as .bin and as COLMAP's own text
 // conversion; both agree, and our text output equals COLMAP's line for line (COLMAP writes points
 // in hash order, we in id order).
 TEST(ColmapModel, ReadsModelColmapMadeFromRealImages) {
   RAMAP_REQUIRE_COLMAP();
   RAMAP_REQUIRE_SHARED_DATA(images, "strecha/Herz-Jesus-P8/images");
-  const std::string colmap_model = test::CachedColmapModel(HerzJesusRun(images));
+  const std::string colmap_model = test::CachedColmapModel(test::HerzJesusFourImages(images));
   ASSERT_FALSE(colmap_model.empty());
   TempDir dir;
   const std::string colmap_txt = dir / "colmap_txt";
@@ -285,10 +272,12 @@ TEST(ColmapModel, ReadsModelColmapMadeFromRealImages) {
   // cameras.bin and images.bin come out byte for byte as COLMAP wrote them (ids ascending there
   // too); points3D.bin holds the same records in another order.
   WriteColmapModel(from_bin, dir / "ours_bin", ModelFormat::kBinary);
-  EXPECT_EQ(ReadBytes(dir / "ours_bin/cameras.bin"), ReadBytes(colmap_model + "/cameras.bin"));
-  EXPECT_EQ(ReadBytes(dir / "ours_bin/images.bin"), ReadBytes(colmap_model + "/images.bin"));
-  EXPECT_EQ(ReadBytes(dir / "ours_bin/points3D.bin").size(),
-            ReadBytes(colmap_model + "/points3D.bin").size());
+  EXPECT_EQ(test::ReadFileBytes(dir / "ours_bin/cameras.bin"),
+            test::ReadFileBytes(colmap_model + "/cameras.bin"));
+  EXPECT_EQ(test::ReadFileBytes(dir / "ours_bin/images.bin"),
+            test::ReadFileBytes(colmap_model + "/images.bin"));
+  EXPECT_EQ(test::ReadFileBytes(dir / "ours_bin/points3D.bin").size(),
+            test::ReadFileBytes(colmap_model + "/points3D.bin").size());
 
   WriteColmapModel(from_bin, dir / "ours_txt", ModelFormat::kText);
   for (const std::string name : {"cameras.txt", "images.txt", "points3D.txt"}) {
@@ -318,14 +307,14 @@ class ColmapModelDefects : public ::testing::Test {
   std::string Txt(const std::string& file) { return dir_ / ("txt/" + file); }
   // Replaces `from` (which must occur) by `to` in a text file of the model.
   void EditText(const std::string& file, const std::string& from, const std::string& to) {
-    std::string text = ReadBytes(Txt(file));
+    std::string text = test::ReadFileBytes(Txt(file));
     const size_t at = text.find(from);
     ASSERT_NE(at, std::string::npos) << from;
     text.replace(at, from.size(), to);
     WriteBytes(Txt(file), text);
   }
   void PatchBinary(const std::string& file, size_t offset, const void* bytes, size_t size) {
-    std::string data = ReadBytes(Bin(file));
+    std::string data = test::ReadFileBytes(Bin(file));
     ASSERT_LE(offset + size, data.size());
     std::memcpy(&data[offset], bytes, size);
     WriteBytes(Bin(file), data);
@@ -352,7 +341,7 @@ TEST_F(ColmapModelDefects, MissingFilesAndFolders) {
 
 TEST_F(ColmapModelDefects, EveryTruncationOfEveryBinaryFileIsReported) {
   for (const std::string file : {"cameras.bin", "images.bin", "points3D.bin"}) {
-    const std::string whole = ReadBytes(Bin(file));
+    const std::string whole = test::ReadFileBytes(Bin(file));
     for (size_t size = 0; size < whole.size(); ++size) {
       WriteBytes(Bin(file), whole.substr(0, size));
       ExpectInputError([&] { ReadColmapModelBinary(dir_ / "bin"); },
@@ -363,7 +352,7 @@ TEST_F(ColmapModelDefects, EveryTruncationOfEveryBinaryFileIsReported) {
     WriteBytes(Bin(file), whole);
   }
   // The item is named with its position: image 1 takes 4 + 56 + 4 + 14 + 8 + 5 * 24 = 206 bytes.
-  const std::string images = ReadBytes(Bin("images.bin"));
+  const std::string images = test::ReadFileBytes(Bin("images.bin"));
   WriteBytes(Bin("images.bin"), images.substr(0, 8 + 206 + 100));
   ExpectBinaryError({"images.bin: truncated while reading image 2 (of 5)"});
   WriteBytes(Bin("images.bin"), images);
@@ -372,14 +361,14 @@ TEST_F(ColmapModelDefects, EveryTruncationOfEveryBinaryFileIsReported) {
 
 TEST_F(ColmapModelDefects, AbsurdCountIsTruncationNotAnAllocation) {
   const uint64_t huge = uint64_t{1} << 60;
-  const std::string points = ReadBytes(Bin("points3D.bin"));
+  const std::string points = test::ReadFileBytes(Bin("points3D.bin"));
   PatchBinary("points3D.bin", 0, &huge, 8);
   ExpectBinaryError(
       {"points3D.bin", "truncated while reading 3D point 4 (of 1152921504606846976)"});
   WriteBytes(Bin("points3D.bin"), points);
   PatchBinary("points3D.bin", 8 + 8 + 24 + 3 + 8, &huge, 8);  // track length of the first point
   ExpectBinaryError({"points3D.bin", "truncated while reading 3D point 1 (of 3)"});
-  const std::string images = ReadBytes(Bin("images.bin"));
+  const std::string images = test::ReadFileBytes(Bin("images.bin"));
   PatchBinary("images.bin", 8 + 4 + 56 + 4 + 14, &huge, 8);  // keypoint count of the first image
   ExpectBinaryError({"images.bin", "truncated while reading image 1 (of 5)"});
 }
@@ -405,7 +394,7 @@ TEST_F(ColmapModelDefects, NonFinitePoseOrIntrinsics) {
   PatchBinary("cameras.bin", 8 + 24 + 8, &inf, 8);  // camera 3's cx
   ExpectBinaryError({"cameras.bin", "camera 3", "parameter 2", "not a finite"});
 
-  std::string images = ReadBytes(Txt("images.txt"));
+  std::string images = test::ReadFileBytes(Txt("images.txt"));
   images = std::regex_replace(images, std::regex("\n12 [^ ]+ "), "\n12 inf ");
   WriteBytes(Txt("images.txt"), images);
   ExpectTextError({"images.txt", "image 12", "not a finite number"});
@@ -430,7 +419,7 @@ TEST_F(ColmapModelDefects, TrackNamingMissingImageOrPoint) {
 
 TEST_F(ColmapModelDefects, ImagePointNamingMissingPoint3D) {
   // Image 12 observes nothing; make its first observation name point 77.
-  std::string images = ReadBytes(Txt("images.txt"));
+  std::string images = test::ReadFileBytes(Txt("images.txt"));
   const size_t line = images.find("unobserved.png\n") + std::string("unobserved.png\n").size();
   const size_t first_id = images.find(" -1", line);
   images.replace(first_id, 3, " 77");
@@ -444,7 +433,7 @@ TEST_F(ColmapModelDefects, DuplicateIds) {
   const uint32_t image_id = 2;
   PatchBinary("images.bin", 8 + 206, &image_id, 4);
   ExpectBinaryError({"images.bin", "image 2 (of 5)", "duplicate image id 2"});
-  std::string cameras = ReadBytes(Txt("cameras.txt"));
+  std::string cameras = test::ReadFileBytes(Txt("cameras.txt"));
   WriteBytes(Txt("cameras.txt"), cameras + "7 PINHOLE 10 10 1 1 5 5\n");
   ExpectTextError({"cameras.txt", "line 7", "duplicate camera id 7"});
 }
@@ -494,11 +483,11 @@ TEST(ColmapModelWriter, RejectsBadModelAndWritesNothing) {
   EXPECT_EQ(ReadColmapModel(dir / "out").images.at(2).name, "with space.png");
 
   // An existing model is left untouched by a rejected write.
-  const std::string before = ReadBytes(dir / "out/images.bin");
+  const std::string before = test::ReadFileBytes(dir / "out/images.bin");
   model.images.at(5).camera_id = 4;
   ExpectInputError([&] { WriteColmapModel(model, dir / "out", ModelFormat::kBinary); },
                    {"camera 4"});
-  EXPECT_EQ(ReadBytes(dir / "out/images.bin"), before);
+  EXPECT_EQ(test::ReadFileBytes(dir / "out/images.bin"), before);
   // The three model files and COLMAP 4's rigs and frames.
   EXPECT_EQ(std::distance(fs::directory_iterator(dir / "out"), fs::directory_iterator()), 5);
 
@@ -523,7 +512,7 @@ TEST(ColmapModelConverterCli, TruncatedModelFailsCleanly) {
   ExpectSameModel(HandBuiltModel(), ReadColmapModelText(dir / "out"));
   fs::remove_all(dir / "out");
 
-  const std::string points = ReadBytes(dir / "in/points3D.bin");
+  const std::string points = test::ReadFileBytes(dir / "in/points3D.bin");
   WriteBytes(dir / "in/points3D.bin", points.substr(0, points.size() - 3));
   const test::CommandResult result = test::RunCommand(cli + "BIN");
   EXPECT_NE(result.exit_code, 0);

@@ -23,12 +23,7 @@ TEST(ImageList, AListNamingNothingOrMissingIsAnErrorNamingIt) {
   test::TempDir dir;
   const std::string empty = dir / "empty.txt";
   std::ofstream(empty) << "# nothing\n\n";
-  try {
-    ReadImageList(empty);
-    FAIL() << "an empty list was accepted";
-  } catch (const InputError& error) {
-    EXPECT_NE(std::string(error.what()).find("empty.txt"), std::string::npos) << error.what();
-  }
+  test::ExpectInputError([&] { ReadImageList(empty); }, {"empty.txt"});
   EXPECT_THROW(ReadImageList(dir / "missing.txt"), InputError);
 }
 

@@ -24,12 +24,10 @@ namespace fs = std::filesystem;
 
 const GeodeticPoint kOrigin{46.5197, 6.5663, 400.0};  // Lausanne
 
-std::string Ramap() { return "'" + test::RamapBinary() + "' "; }
-
 // A synthetic loop and WGS84 priors at its true centres (world units taken as metres, z up).
 Reconstruction SynthesizeWithPriors(const test::TempDir& dir, bool identical = false) {
   const test::CommandResult result = test::RunCommand(
-      Ramap() + "synthesize --output_path '" + (dir / "scene") +
+      test::RamapCommand() + "synthesize --output_path '" + (dir / "scene") +
       "' --Synthetic.path loop --Synthetic.num_images 30 --Synthetic.num_points 800"
       " --Synthetic.seed 5");
   EXPECT_EQ(result.exit_code, 0) << result.output;
@@ -64,9 +62,10 @@ double GeodeticError(const std::string& model_path, const Reconstruction& truth)
 TEST(GeoregistrationCommand, MapperWritesTheModelInEnuWithOriginAndGeoJson) {
   test::TempDir dir;
   const Reconstruction truth = SynthesizeWithPriors(dir);
-  const test::CommandResult mapper = test::RunCommand(
-      Ramap() + "mapper --database_path '" + (dir / "scene/database.db") + "' --output_path '" +
-      (dir / "sparse") + "' --PosePrior.path '" + (dir / "priors.txt") + "' --Mapper.refine 1");
+  const test::CommandResult mapper =
+      test::RunCommand(test::RamapCommand() + "mapper --database_path '" +
+                       (dir / "scene/database.db") + "' --output_path '" + (dir / "sparse") +
+                       "' --PosePrior.path '" + (dir / "priors.txt") + "' --Mapper.refine 1");
   ASSERT_EQ(mapper.exit_code, 0) << mapper.output;
   EXPECT_NE(mapper.output.find("model 0 georegistered: 30 of 30 priors"), std::string::npos)
       << mapper.output;
@@ -96,14 +95,16 @@ TEST(GeoregistrationCommand, MapperWritesTheModelInEnuWithOriginAndGeoJson) {
 TEST(GeoregistrationCommand, ModelAlignerGeoregistersAModelMadeWithoutPriors) {
   test::TempDir dir;
   const Reconstruction truth = SynthesizeWithPriors(dir);
-  ASSERT_EQ(test::RunCommand(Ramap() + "mapper --database_path '" + (dir / "scene/database.db") +
-                             "' --output_path '" + (dir / "sparse") + "'")
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      test::RunCommand(test::RamapCommand() + "mapper --database_path '" +
+                       (dir / "scene/database.db") + "' --output_path '" + (dir / "sparse") + "'")
+          .exit_code,
+      0);
   EXPECT_FALSE(fs::exists(dir / "sparse/0/geo_origin.txt"));
-  const test::CommandResult aligner = test::RunCommand(
-      Ramap() + "model_aligner --input_path '" + (dir / "sparse/0") + "' --output_path '" +
-      (dir / "aligned") + "' --PosePrior.path '" + (dir / "priors.txt") + "' --output_type TXT");
+  const test::CommandResult aligner =
+      test::RunCommand(test::RamapCommand() + "model_aligner --input_path '" + (dir / "sparse/0") +
+                       "' --output_path '" + (dir / "aligned") + "' --PosePrior.path '" +
+                       (dir / "priors.txt") + "' --output_type TXT");
   ASSERT_EQ(aligner.exit_code, 0) << aligner.output;
   EXPECT_NE(aligner.output.find("30 of 30 priors"), std::string::npos) << aligner.output;
   EXPECT_TRUE(fs::exists(dir / "aligned/images.txt"));
@@ -133,7 +134,7 @@ TEST(GeoregistrationCommand, ReconstructGeoregistersGeotaggedJpegs) {
                            fix.latitude_deg, fix.longitude_deg, fix.altitude_m);
   }
   const test::CommandResult run = test::RunCommand(
-      Ramap() + "reconstruct --image_path '" + (dir / "images") + "' --output_path '" +
+      test::RamapCommand() + "reconstruct --image_path '" + (dir / "images") + "' --output_path '" +
       (dir / "out") +
       "' --ImageReader.camera_model PINHOLE --ImageReader.camera_params "
       "1520.4,1525.9,302.32,246.87 --ImageReader.single_camera 1 --FeatureExtraction.type sift "
@@ -160,8 +161,8 @@ TEST(GeoregistrationCommand, PriorsThatCannotGeoregisterAreReported) {
   test::TempDir dir;
   SynthesizeWithPriors(dir, /*identical=*/true);
   const test::CommandResult mapper = test::RunCommand(
-      Ramap() + "mapper --database_path '" + (dir / "scene/database.db") + "' --output_path '" +
-      (dir / "sparse") + "' --PosePrior.path '" + (dir / "priors.txt") + "'");
+      test::RamapCommand() + "mapper --database_path '" + (dir / "scene/database.db") +
+      "' --output_path '" + (dir / "sparse") + "' --PosePrior.path '" + (dir / "priors.txt") + "'");
   ASSERT_EQ(mapper.exit_code, 0) << mapper.output;
   EXPECT_NE(mapper.output.find("model 0 not georegistered: the priors (or the model's centres) all "
                                "coincide"),
@@ -170,18 +171,20 @@ TEST(GeoregistrationCommand, PriorsThatCannotGeoregisterAreReported) {
   EXPECT_TRUE(fs::exists(dir / "sparse/0/images.bin"));
   EXPECT_FALSE(fs::exists(dir / "sparse/0/geo_origin.txt"));
 
-  const test::CommandResult aligner = test::RunCommand(
-      Ramap() + "model_aligner --input_path '" + (dir / "sparse/0") + "' --output_path '" +
-      (dir / "aligned") + "' --PosePrior.path '" + (dir / "priors.txt") + "'");
+  const test::CommandResult aligner =
+      test::RunCommand(test::RamapCommand() + "model_aligner --input_path '" + (dir / "sparse/0") +
+                       "' --output_path '" + (dir / "aligned") + "' --PosePrior.path '" +
+                       (dir / "priors.txt") + "'");
   EXPECT_NE(aligner.exit_code, 0);
   EXPECT_NE(aligner.output.find("cannot georegister the model"), std::string::npos)
       << aligner.output;
   EXPECT_FALSE(fs::exists(dir / "aligned"));
 
   std::ofstream(dir / "broken.txt") << "frame_000001.png 46.5 6.5\n";
-  const test::CommandResult broken = test::RunCommand(
-      Ramap() + "mapper --database_path '" + (dir / "scene/database.db") + "' --output_path '" +
-      (dir / "sparse2") + "' --PosePrior.path '" + (dir / "broken.txt") + "'");
+  const test::CommandResult broken =
+      test::RunCommand(test::RamapCommand() + "mapper --database_path '" +
+                       (dir / "scene/database.db") + "' --output_path '" + (dir / "sparse2") +
+                       "' --PosePrior.path '" + (dir / "broken.txt") + "'");
   EXPECT_NE(broken.exit_code, 0);
   EXPECT_NE(broken.output.find("broken.txt:1"), std::string::npos) << broken.output;
   EXPECT_FALSE(fs::exists(dir / "sparse2"));

@@ -14,11 +14,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Ramap() { return "'" + test::RamapBinary() + "' "; }
-
 void Synthesize(const test::TempDir& dir) {
   const test::CommandResult result = test::RunCommand(
-      Ramap() + "synthesize --output_path '" + (dir / "scene") +
+      test::RamapCommand() + "synthesize --output_path '" + (dir / "scene") +
       "' --Synthetic.path circle --Synthetic.num_images 16 --Synthetic.num_points 1500"
       " --Synthetic.pixel_noise 0.5 --Synthetic.seed 9");
   ASSERT_EQ(result.exit_code, 0) << result.output;
@@ -26,8 +24,9 @@ void Synthesize(const test::TempDir& dir) {
 
 // `ramap mapper` on the synthesized scene's database into dir/sparse, with `options`.
 test::CommandResult MapScene(const test::TempDir& dir, const std::string& options) {
-  return test::RunCommand(Ramap() + "mapper --database_path '" + (dir / "scene/database.db") +
-                          "' --output_path '" + (dir / "sparse") + "' " + options);
+  return test::RunCommand(test::RamapCommand() + "mapper --database_path '" +
+                          (dir / "scene/database.db") + "' --output_path '" + (dir / "sparse") +
+                          "' " + options);
 }
 
 TEST(MapperCommand, ColmapToolsOpenRefineAndCompareTheModel) {
@@ -35,8 +34,9 @@ TEST(MapperCommand, ColmapToolsOpenRefineAndCompareTheModel) {
   test::TempDir dir;
   Synthesize(dir);
   const std::string db = dir / "scene/database.db";
-  const test::CommandResult mapper = test::RunCommand(Ramap() + "mapper --database_path '" + db +
-                                                      "' --output_path '" + (dir / "sparse") + "'");
+  const test::CommandResult mapper =
+      test::RunCommand(test::RamapCommand() + "mapper --database_path '" + db +
+                       "' --output_path '" + (dir / "sparse") + "'");
   ASSERT_EQ(mapper.exit_code, 0) << mapper.output;
   EXPECT_NE(mapper.output.find("16 of 16 images registered"), std::string::npos) << mapper.output;
   EXPECT_TRUE(fs::exists(dir / "sparse/0/trajectory_tum.txt"));
@@ -114,8 +114,9 @@ TEST(MapperCommand, UnusableDatabaseLeavesNoOutput) {
   const std::string db = dir / "scene/database.db";
   ASSERT_EQ(test::RunCommand("sqlite3 '" + db + "' 'DELETE FROM two_view_geometries;'").exit_code,
             0);
-  const test::CommandResult mapper = test::RunCommand(Ramap() + "mapper --database_path '" + db +
-                                                      "' --output_path '" + (dir / "sparse") + "'");
+  const test::CommandResult mapper =
+      test::RunCommand(test::RamapCommand() + "mapper --database_path '" + db +
+                       "' --output_path '" + (dir / "sparse") + "'");
   EXPECT_EQ(mapper.exit_code, 2) << mapper.output;
   EXPECT_NE(mapper.output.find(db), std::string::npos) << mapper.output;
   EXPECT_NE(mapper.output.find("no image pair has verified matches"), std::string::npos);

@@ -190,15 +190,10 @@ TEST(Mapper, EveryConnectedComponentIsReconstructed) {
   EXPECT_TRUE(result.summary.dropped_images.empty());
 }
 
-void ExpectInputError(const FeatureDatabase& database, const std::string& message) {
-  try {
-    RunMapper(database, MapperOptions(), "db.sqlite");
-    ADD_FAILURE() << "no error, expected: " << message;
-  } catch (const InputError& error) {
-    const std::string what = error.what();
-    EXPECT_NE(what.find("db.sqlite"), std::string::npos) << what;
-    EXPECT_NE(what.find(message), std::string::npos) << what;
-  }
+// The mapper refuses `database` with an InputError naming it ("db.sqlite") and `message`.
+void ExpectMapperRefuses(const FeatureDatabase& database, const std::string& message) {
+  test::ExpectInputError([&] { RunMapper(database, MapperOptions(), "db.sqlite"); },
+                         {"db.sqlite", message});
 }
 
 TEST(Mapper, UnusableDatabasesAreClearErrors) {
@@ -206,16 +201,16 @@ TEST(Mapper, UnusableDatabasesAreClearErrors) {
       BuildSyntheticScene(test::NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 10));
   FeatureDatabase no_geometries = scene.database;
   no_geometries.two_view_geometries.clear();
-  ExpectInputError(no_geometries, "no image pair has verified matches");
+  ExpectMapperRefuses(no_geometries, "no image pair has verified matches");
 
   FeatureDatabase single = scene.database;
   single.images.erase(std::next(single.images.begin()), single.images.end());
   single.two_view_geometries.clear();
-  ExpectInputError(single, "no image pair has verified matches");
+  ExpectMapperRefuses(single, "no image pair has verified matches");
 
   FeatureDatabase empty = scene.database;
   empty.images.clear();
-  ExpectInputError(empty, "the database has no images");
+  ExpectMapperRefuses(empty, "the database has no images");
 
   // Every verified pair's inliers paired at random: no relative pose survives.
   FeatureDatabase outliers = scene.database;
@@ -229,7 +224,7 @@ TEST(Mapper, UnusableDatabasesAreClearErrors) {
     }
     ++shift;
   }
-  ExpectInputError(outliers, "rejected");
+  ExpectMapperRefuses(outliers, "rejected");
 }
 
 }  // namespace

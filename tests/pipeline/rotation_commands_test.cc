@@ -19,12 +19,10 @@ double AngleDeg(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   return Eigen::AngleAxisd(a.inverse() * b).angle() * 180.0 / M_PI;
 }
 
-std::string Ramap() { return "'" + test::RamapBinary() + "' "; }
-
 // A noise-free 40-frame loop; returns the true cam_from_world rotation of each image by name.
 std::map<std::string, Eigen::Quaterniond> MakeScene(const test::TempDir& dir) {
   const test::CommandResult result = test::RunCommand(
-      Ramap() + "synthesize --output_path '" + (dir / "scene") +
+      test::RamapCommand() + "synthesize --output_path '" + (dir / "scene") +
       "' --Synthetic.path loop --Synthetic.num_images 40 --Synthetic.num_points 1500"
       " --Synthetic.pixel_noise 0 --Synthetic.outlier_ratio 0 --Synthetic.seed 3");
   EXPECT_EQ(result.exit_code, 0) << result.output;
@@ -67,8 +65,8 @@ TEST(RotationCommands, NoiseFreeSceneIsRecoveredExactly) {
   const std::string db = dir / "scene/database.db";
 
   const test::CommandResult edges =
-      test::RunCommand(Ramap() + "relative_poses --database_path '" + db + "' --output_path '" +
-                       (dir / "edges.txt") + "'");
+      test::RunCommand(test::RamapCommand() + "relative_poses --database_path '" + db +
+                       "' --output_path '" + (dir / "edges.txt") + "'");
   ASSERT_EQ(edges.exit_code, 0) << edges.output;
   // Piped, the progress is one closing line for the stage.
   EXPECT_NE(edges.output.find("[ramap] relative poses: " +
@@ -89,8 +87,9 @@ TEST(RotationCommands, NoiseFreeSceneIsRecoveredExactly) {
 
   for (const std::string input :
        {"--relative_poses '" + (dir / "edges.txt") + "'", "--database_path '" + db + "'"}) {
-    const test::CommandResult averaged = test::RunCommand(
-        Ramap() + "rotation_averager " + input + " --output_path '" + (dir / "rot.txt") + "'");
+    const test::CommandResult averaged =
+        test::RunCommand(test::RamapCommand() + "rotation_averager " + input + " --output_path '" +
+                         (dir / "rot.txt") + "'");
     ASSERT_EQ(averaged.exit_code, 0) << averaged.output;
     EXPECT_NE(averaged.output.find("certified globally optimal"), std::string::npos)
         << averaged.output;
@@ -113,18 +112,18 @@ TEST(RotationCommands, UnusableInputFailsWithAMessageAndWritesNothing) {
   for (const std::string command :
        {std::string("relative_poses"), std::string("rotation_averager")}) {
     const test::CommandResult result =
-        test::RunCommand(Ramap() + command + " --database_path '" + (dir / "empty.db") +
-                         "' --output_path '" + (dir / "out.txt") + "'");
+        test::RunCommand(test::RamapCommand() + command + " --database_path '" +
+                         (dir / "empty.db") + "' --output_path '" + (dir / "out.txt") + "'");
     EXPECT_EQ(result.exit_code, 2) << result.output;
     EXPECT_NE(result.output.find(dir / "empty.db"), std::string::npos) << result.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "out.txt"));
   }
-  const test::CommandResult none =
-      test::RunCommand(Ramap() + "rotation_averager --output_path '" + (dir / "out.txt") + "'");
+  const test::CommandResult none = test::RunCommand(
+      test::RamapCommand() + "rotation_averager --output_path '" + (dir / "out.txt") + "'");
   EXPECT_EQ(none.exit_code, 2) << none.output;
   EXPECT_NE(none.output.find("--database_path or --relative_poses"), std::string::npos);
   const test::CommandResult both =
-      test::RunCommand(Ramap() + "rotation_averager --database_path '" + db +
+      test::RunCommand(test::RamapCommand() + "rotation_averager --database_path '" + db +
                        "' --relative_poses x --output_path '" + (dir / "out.txt") + "'");
   EXPECT_NE(both.exit_code, 0);
   EXPECT_FALSE(std::filesystem::exists(dir / "out.txt"));

@@ -28,11 +28,8 @@ TEST(OutputPolicy, FileOutputRefusesFoldersAndInputs) {
                InputError);
   EXPECT_NO_THROW(CheckFileOutput("--output_path", dir / "model/eval.json", {dir / "model"}));
   EXPECT_NO_THROW(CheckFileOutput("--output_path", dir / "new.txt", {dir / "input.db"}));
-  try {
-    CheckFileOutput("--output_path", dir / "model", {});
-  } catch (const InputError& error) {
-    EXPECT_NE(std::string(error.what()).find("--output_path"), std::string::npos);
-  }
+  test::ExpectInputError([&] { CheckFileOutput("--output_path", dir / "model", {}); },
+                         {"--output_path"});
 }
 
 TEST(OutputPolicy, NewDatabaseNeverOverwrites) {

@@ -143,10 +143,9 @@ struct TranslationAveragingOptions {
   // without the forecast: 17 factorisations at 4541 frames but 3.1 s in abandoned iterations.
   int max_pcg_iterations = 40;
   double pcg_tolerance = 1e-8;
-  // ADMM penalty parameter. The sphere makes the splitting nonconvex, which needs rho large enough:
-  // on a noisy synthetic ring rho = 1 and 10 oscillated, 30 to 1000 all reached the same L1 cost,
-  // 100 in the fewest iterations. Residual balancing (varying rho) made it oscillate, so rho is
-  // fixed.
+  // ADMM penalty parameter, the starting value. The sphere makes the splitting nonconvex, which
+  // needs rho large enough not to oscillate; with admm_adaptive_rho it is then balanced against
+  // the residuals as the iterations go.
   double admm_rho = 10.0;
   // Residual balancing: rho doubled or halved whenever the primal and dual residuals differ by
   // more than 10x (Boyd et al. 2011, sec. 3.4.1).

@@ -1,6 +1,6 @@
 // Relative rotation (and translation direction) of an image pair from bearing vectors.
 //
-// Method (DESIGN.md step 1; "Pushing the Envelope of Rotation Averaging for Visual SLAM", Li,
+// Method (docs/architecture.md, stage 1; "Pushing the Envelope of Rotation Averaging for Visual SLAM", Li,
 // Yuan, Latecki, Ling): six well-spread correspondences are chosen with a grid
 // (geometry/correspondence_sampling.h), the rotation is solved from them independently of the
 // translation with Kneip's rotation-only solvers (L. Kneip, R. Siegwart, M. Pollefeys, "Finding

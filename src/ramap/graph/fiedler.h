@@ -28,7 +28,7 @@ double FiedlerValue(const RotationGraph& graph, bool weighted = false,
 // TPAMI 2019 "Rotation averaging with the chordal distance: global minimizers and strong
 // duality") states the condition for the unweighted chordal cost, hence the unweighted Laplacian
 // and unweighted degrees; the sources reachable while writing this gave the abstract but not the
-// corollary's text, so the formula is the one of DESIGN.md, checked for consistency: K_3 gives
+// corollary's text, so the formula is the one of docs/architecture.md (stage 3), checked for consistency: K_3 gives
 // 60 deg, K_n tends to 42.9 deg, sparse view graphs (lambda_2 ~ 1e-3) give hundredths of a degree.
 // Example: a complete graph K_n, lambda_2 = n, d_max = n - 1, tends to 2 asin(sqrt(3/4) - 1/2)
 // = 42.9 deg.

@@ -48,7 +48,7 @@ struct LoopClosedMapperResult {
   bool database_changed = false;  // loop or bridge pairs were verified into the database
 };
 
-// The method's loop-closure step around the mapper (DESIGN.md): a first solve; with `close_loops`,
+// The method's loop-closure step around the mapper (docs/architecture.md, stage 7): a first solve; with `close_loops`,
 // its loop candidates and bridge pairs matched and verified into `database` and, when any was
 // verified, a second solve with them. `progress` gets the mapper's lines and one loop-closure line.
 LoopClosedMapperResult RunMapperWithLoopClosure(FeatureDatabase* database,

@@ -1,5 +1,5 @@
 // The mapper: a COLMAP database in, one COLMAP model per connected component out, by motion
-// averaging instead of incremental bundle adjustment. The stages follow DESIGN.md and the method
+// averaging instead of incremental bundle adjustment. The stages follow docs/architecture.md and the method
 // section of "Pushing the Envelope of Rotation Averaging for Visual SLAM" (Li, Yuan, Latecki,
 // Ling):
 //   1. relative rotations of every verified pair (grid-selected six points, Kneip's solvers);

@@ -1,5 +1,5 @@
 // Stage 3 of the mapper on one connected view graph: keyframe windows first for sequences, the
-// whole graph at once for unordered collections (DESIGN.md steps 2 and 3). The graph-level step is
+// whole graph at once for unordered collections (docs/architecture.md, stages 2 and 3). The graph-level step is
 // shared by `ramap mapper` and `ramap rotation_averager`.
 #pragma once
 

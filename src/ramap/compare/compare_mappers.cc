@@ -104,9 +104,13 @@ Comparison CompareMappers(const CompareOptions& given) {
   comparison.reference = gt_poses.empty() ? std::string("the COLMAP model (no ground truth given)")
                                           : "ground truth " + options.ground_truth_path + " (" +
                                                 options.ground_truth_format + ")";
+  std::map<std::string, Reconstruction> models;
   PosesByRun poses;
   for (const MapperPlan& plan : plans) {
-    comparison.runs.push_back(RunMapperPlan(plan, options, names.size(), &poses[plan.name]));
+    comparison.runs.push_back(RunMapperPlan(plan, options, names.size(), &models[plan.name]));
+    const MapperRun& run = comparison.runs.back();
+    poses[run.name] = run.succeeded ? PosesByName(models[run.name], run.model_path)
+                                    : std::map<std::string, Rigid3d>();
   }
 
   const bool against_colmap = gt_poses.empty();
@@ -124,7 +128,8 @@ Comparison CompareMappers(const CompareOptions& given) {
   // The page is for looking at the comparison; report.md and report.json are its result. A page
   // that cannot be made costs a warning.
   try {
-    WriteComparisonPage(comparison, names, gt_poses, given.image_path, title, options.output_path);
+    WriteComparisonPage(comparison, names, gt_poses, given.image_path, title, options.output_path,
+                        &models);
   } catch (const std::exception& error) {
     std::cerr << "ramap compare: warning: report.html not written: " << error.what() << "\n";
   }

@@ -3,15 +3,12 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <optional>
 
 #include "ramap/compare/comparison_figures.h"
-#include "ramap/io/colmap_model.h"
 #include "ramap/io/point_colors.h"
 #include "ramap/report/html_report.h"
 #include "ramap/report/mapper_page.h"
 #include "ramap/report/report_scene.h"
-#include "ramap/util/error.h"
 
 namespace ramap {
 namespace {
@@ -20,7 +17,7 @@ namespace fs = std::filesystem;
 
 struct PageModel {
   const MapperRun* run;
-  Reconstruction model;
+  const Reconstruction* model;
 };
 
 bool HasColors(const Reconstruction& model) {
@@ -29,24 +26,21 @@ bool HasColors(const Reconstruction& model) {
   });
 }
 
-// The largest model of each succeeded run, read again from where the run wrote it. Points the
-// run left without colours (ramap's runs are timed without reading the images) take them from
-// `image_path` here, outside every timing, when it is given.
-std::vector<PageModel> ReadRunModels(const Comparison& comparison, const std::string& image_path,
-                                     std::string* unreadable) {
-  std::vector<PageModel> models;
+// The largest model of each succeeded run. Points the run left without colours (ramap's runs are
+// timed without reading the images) take them from `image_path` here, outside every timing, when
+// it is given.
+std::vector<PageModel> RunModels(const Comparison& comparison, const std::string& image_path,
+                                 std::map<std::string, Reconstruction>* models) {
+  std::vector<PageModel> page_models;
   for (const MapperRun& run : comparison.runs) {
-    if (!run.succeeded || run.model_path.empty()) continue;
-    try {
-      models.push_back({&run, ReadColmapModel(run.model_path)});
-      if (!image_path.empty() && !HasColors(models.back().model)) {
-        ColorPointsFromImages(image_path, &models.back().model);
-      }
-    } catch (const InputError& error) {
-      *unreadable += (unreadable->empty() ? "" : "; ") + std::string(error.what());
+    const auto model = models->find(run.name);
+    if (!run.succeeded || model == models->end()) continue;
+    if (!image_path.empty() && !HasColors(model->second)) {
+      ColorPointsFromImages(image_path, &model->second);
     }
+    page_models.push_back({&run, &model->second});
   }
-  return models;
+  return page_models;
 }
 
 // summary.json of the last ramap run (with BA when there is one), or null.
@@ -69,9 +63,9 @@ nlohmann::json RamapSummary(const Comparison& comparison, std::string* whose) {
 void WriteComparisonPage(const Comparison& comparison, const std::vector<std::string>& names,
                          const std::map<std::string, Rigid3d>& ground_truth,
                          const std::string& image_path, const std::string& title,
-                         const std::string& output_path) {
-  std::string unreadable;
-  const std::vector<PageModel> models = ReadRunModels(comparison, image_path, &unreadable);
+                         const std::string& output_path,
+                         std::map<std::string, Reconstruction>* run_models) {
+  const std::vector<PageModel> models = RunModels(comparison, image_path, run_models);
   ReportSceneOptions options;
   // The page's origin: the middle of the reference's cameras (the ground truth's, else the
   // first model's, COLMAP's, which is the reference then).
@@ -79,11 +73,11 @@ void WriteComparisonPage(const Comparison& comparison, const std::vector<std::st
     options.origin = SceneMiddle(ModelOfPoses(ground_truth, Camera()));
   } else if (!models.empty()) {
     const MapperRun& first = *models.front().run;
-    options.origin = SceneMiddle(models.front().model,
+    options.origin = SceneMiddle(*models.front().model,
                                  first.evaluation ? first.evaluation->gt_from_estimate : Sim3d());
   }
   size_t num_points = 0;
-  for (const PageModel& page_model : models) num_points += page_model.model.points3D.size();
+  for (const PageModel& page_model : models) num_points += page_model.model->points3D.size();
 
   nlohmann::json models_json = nlohmann::json::array();
   nlohmann::json recall_curves = nlohmann::json::array();
@@ -92,15 +86,15 @@ void WriteComparisonPage(const Comparison& comparison, const std::vector<std::st
     const PoseEvaluation* evaluation = run.evaluation ? &*run.evaluation : nullptr;
     const Sim3d reference_from_model = evaluation ? evaluation->gt_from_estimate : Sim3d();
     const size_t budget =
-        num_points == 0 ? 0 : options.max_points * page_model.model.points3D.size() / num_points;
-    models_json.push_back(ReportModelJson(run.name, page_model.model, reference_from_model,
+        num_points == 0 ? 0 : options.max_points * page_model.model->points3D.size() / num_points;
+    models_json.push_back(ReportModelJson(run.name, *page_model.model, reference_from_model,
                                           evaluation, budget, options));
     if (evaluation) recall_curves.push_back(ReportRecallCurveJson(run.name, *evaluation));
   }
   nlohmann::json reference = nullptr;
   if (!ground_truth.empty()) {
     reference = ReportReferenceJson("ground truth", ground_truth,
-                                    models.empty() ? nullptr : &models.front().model, options);
+                                    models.empty() ? nullptr : models.front().model, options);
   }
   nlohmann::json stage_bars = nlohmann::json::array();
   for (const StageBar& bar : StageBars(comparison.runs)) {
@@ -112,7 +106,6 @@ void WriteComparisonPage(const Comparison& comparison, const std::vector<std::st
                          " mappers on " + comparison.database_path + " (" +
                          std::to_string(comparison.num_images) +
                          " images); reference: " + comparison.reference;
-  if (!unreadable.empty()) subtitle += ". Not in the view: " + unreadable;
   const nlohmann::json data = {
       {"kind", "compare"},
       {"title", title},

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ramap/compare/comparison.h"
+#include "ramap/scene/reconstruction.h"
 #include "ramap/scene/rigid3.h"
 
 namespace ramap {
@@ -16,11 +17,12 @@ namespace ramap {
 // Writes output_path/report.html for `comparison`, whose runs are evaluated already. `names` are
 // the database's images, `ground_truth` their ground-truth poses (empty when the reference is
 // COLMAP's model), `image_path` the images that colour the points of models without colours
-// ("": none), `title` the data set's name. Models that cannot be read again are left out of the
-// view with a note in the subtitle.
+// ("": none; they are coloured in place), `title` the data set's name, `models` each run's largest
+// model by run name, as the runs read it (empty for a failed run).
 void WriteComparisonPage(const Comparison& comparison, const std::vector<std::string>& names,
                          const std::map<std::string, Rigid3d>& ground_truth,
                          const std::string& image_path, const std::string& title,
-                         const std::string& output_path);
+                         const std::string& output_path,
+                         std::map<std::string, Reconstruction>* models);
 
 }  // namespace ramap

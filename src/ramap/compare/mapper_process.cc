@@ -139,7 +139,7 @@ void CheckRunFolder(const std::string& output_path, const MapperPlan& plan,
 }
 
 MapperRun RunMapperPlan(const MapperPlan& plan, const CompareOptions& options, size_t num_images,
-                        std::map<std::string, Rigid3d>* poses) {
+                        Reconstruction* model) {
   const std::string folder = options.output_path + "/" + plan.folder;
   fs::remove_all(folder);
   fs::create_directories(folder);
@@ -156,15 +156,15 @@ MapperRun RunMapperPlan(const MapperPlan& plan, const CompareOptions& options, s
     run.seconds = seconds;
     run.succeeded = exited_cleanly;
   }
-  const std::optional<Reconstruction> model = ReadLargestModel(folder, &run);
-  run.succeeded = run.succeeded && model.has_value();
+  std::optional<Reconstruction> largest = ReadLargestModel(folder, &run);
+  run.succeeded = run.succeeded && largest.has_value();
   if (!run.succeeded) {
     std::cerr << "ramap compare: " << plan.name << " failed (see " << folder << ".log)\n";
   } else {
-    *poses = PosesByName(*model, run.model_path);
-    for (const auto& [camera_id, camera] : model->cameras) {
+    for (const auto& [camera_id, camera] : largest->cameras) {
       run.focal_lengths_px[camera_id] = MeanFocalLength(camera);
     }
+    *model = std::move(*largest);
   }
   run.stage_seconds = StageSeconds(folder + "/summary.json");
   if (run.stage_seconds.empty()) run.stage_seconds = LoggedStageSeconds(folder + ".log");

@@ -8,7 +8,7 @@
 
 #include "ramap/compare/comparison.h"
 #include "ramap/compare/mapper_plans.h"
-#include "ramap/scene/rigid3.h"
+#include "ramap/scene/reconstruction.h"
 
 namespace ramap {
 
@@ -19,9 +19,9 @@ void CheckRunFolder(const std::string& output_path, const MapperPlan& plan,
                     const std::string& database_path);
 
 // Runs `plan` in its folder (replaced), its output in FOLDER.log, timed as a process (a peer's
-// database copy is made before the clock starts and removed after). The poses of its largest
-// model go to `poses`.
+// database copy is made before the clock starts and removed after). Its largest model, read
+// once, goes to `model` (left empty when the run failed).
 MapperRun RunMapperPlan(const MapperPlan& plan, const CompareOptions& options, size_t num_images,
-                        std::map<std::string, Rigid3d>* poses);
+                        Reconstruction* model);
 
 }  // namespace ramap

@@ -10,7 +10,6 @@
 #include "options.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/model_export.h"
-#include "ramap/io/trajectory.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 
@@ -44,10 +43,7 @@ void Export(const Reconstruction& model, ExportFormat format, const std::string&
                 << " frames) and " << output_path << "/sparse_pc.ply (NERFSTUDIO)\n";
       return;
     case ExportFormat::kTum:
-      if (model.images.empty()) {
-        throw InputError(input_path, "the model has no image: nothing to export");
-      }
-      WriteTumTrajectory(model, output_path);
+      WriteTumExport(model, output_path, input_path);
       std::cout << "Wrote the trajectory of " << model.images.size() << " images to " << output_path
                 << " (TUM)\n";
       return;

@@ -153,6 +153,10 @@ TEST(ModelExportBadInput, NothingIsWrittenForAModelNoExportCanExpress) {
                          {"sparse/0", "image 2", "b.png", "NaN"});
   test::ExpectInputError([&] { WritePointCloudPly(nan_pose, dir / "b.ply", true, "sparse/0"); },
                          {"image 2", "NaN"});
+  test::ExpectInputError([&] { WriteTumExport(nan_pose, dir / "b.txt", "sparse/0"); },
+                         {"sparse/0", "image 2", "NaN"});
+  test::ExpectInputError([&] { WriteTumExport(empty, dir / "a.txt", "sparse/0"); },
+                         {"sparse/0", "no image"});
 
   Reconstruction full_opencv = TwoCameraModel();
   full_opencv.cameras[2].model = CameraModel::kFullOpenCV;

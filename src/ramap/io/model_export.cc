@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "ramap/io/trajectory.h"
 #include "ramap/util/error.h"
 #include "ramap/util/staged_output.h"
 
@@ -193,6 +194,13 @@ void WritePointCloudPly(const Reconstruction& model, const std::string& path, bo
     }
   }
   WritePly(vertices, path);
+}
+
+void WriteTumExport(const Reconstruction& model, const std::string& path,
+                    const std::string& source) {
+  CheckHasImages(model, source);
+  CheckFinitePoses(model, source);
+  WriteTumTrajectory(model, path);
 }
 
 nlohmann::json NerfstudioTransforms(const Reconstruction& model, const std::string& source) {

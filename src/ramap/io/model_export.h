@@ -30,6 +30,11 @@ void WritePointCloudPly(const Reconstruction& model, const std::string& path, bo
 // not finite, or a camera model nerfstudio cannot express (FULL_OPENCV, FOV, THIN_PRISM_FISHEYE).
 nlohmann::json NerfstudioTransforms(const Reconstruction& model, const std::string& source);
 
+// The registered images' trajectory as io/trajectory.h writes it (TUM); InputError naming
+// `source` for a model without images or with a pose that is not finite.
+void WriteTumExport(const Reconstruction& model, const std::string& path,
+                    const std::string& source);
+
 // transforms.json and the points, in the same turned world, as sparse_pc.ply, into `folder`
 // (created when missing; neither file may exist in it yet).
 void WriteNerfstudioExport(const Reconstruction& model, const std::string& folder,

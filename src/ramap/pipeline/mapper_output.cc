@@ -245,10 +245,6 @@ void WriteContents(const MapperResult& result, const std::string& folder, ModelF
   }
 }
 
-}  // namespace
-
-namespace {
-
 // Puts `from` at `to`: a plain rename when nothing is there, else an atomic exchange of the two
 // (Linux's renameat2 RENAME_EXCHANGE), so that `to` is never missing; where the filesystem cannot
 // exchange, the old entry is removed first and `to` is missing for a moment.

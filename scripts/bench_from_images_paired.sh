@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # From images to model, timed the way speed ratios are quoted: `ramap reconstruct` against COLMAP
 # 3.8's pipeline (feature_extractor + the data set's matcher + mapper, CPU), both as
-# scripts/bench_image_input.sh runs them, in paired, alternated runs (A B A B ...) by farm-bench;
+# scripts/bench_image_input.sh runs them, in paired, alternated runs (A B A B ...);
 # the median of the pairs' ratios is printed per data set. Each run starts from an empty folder.
 #
 #   scripts/bench_from_images_paired.sh [NAME ...]   (default: templeRing lund_door)
@@ -41,7 +41,6 @@ for entry in "${RAMAP_DATASETS[@]}"; do
   colmap_cmd="rm -rf $out/colmap && mkdir -p $out/colmap/sparse && colmap feature_extractor --database_path $out/colmap/db --image_path $images $colmap_camera --SiftExtraction.use_gpu 0 --SiftExtraction.max_image_size 1600 && colmap ${matcher}_matcher --database_path $out/colmap/db --SiftMatching.use_gpu 0 && colmap mapper --database_path $out/colmap/db --image_path $images --output_path $out/colmap/sparse --Mapper.num_threads 2 $colmap_fixed"
   mkdir -p "$out"
   report=$work/$name.txt
-  farm-bench -n "$runs" --warmup 1 --timeout 3600 --vs "sh -c '$colmap_cmd'" -- sh -c "$ramap_cmd" \
-    >"$report" 2>&1
+  python3 "$root/scripts/paired_timing.py" "$runs" "$ramap_cmd" "$colmap_cmd" >"$report"
   awk -v first="$name" -v second="$intrinsics" -f "$root/scripts/paired_ratio.awk" "$report"
 done

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Speed ratios the way they are quoted: `ramap mapper` (its defaults, BA included) against GLOMAP
 # (COLMAP 4.1.1's global_mapper) and COLMAP 3.8's mapper, each with its defaults on the same
-# database, timed by farm-bench in paired, alternated runs (A B A B ...); the median of the pairs'
+# database, timed in paired, alternated runs (A B A B ...); the median of the pairs'
 # ratios is printed per data set. The peers run on copies of the database made (and, for COLMAP
 # 4, upgraded by a warm-up run) before the clock starts.
 #
@@ -45,8 +45,8 @@ for name in "${names[@]}"; do
     peer_cmd=$glomap_cmd
     [[ $peer_name == GLOMAP ]] || peer_cmd=$colmap_cmd
     report=$work/$name.$RANDOM.txt
-    farm-bench -n "$runs" --warmup 1 --timeout 3600 --vs "$peer_cmd" -- $ramap_cmd > "$report" 2>&1
-    # farm-bench's rows: "<figure> min median max"; A is ramap, B the peer, the ratio A/B.
+    python3 "$root/scripts/paired_timing.py" "$runs" "$ramap_cmd" "$peer_cmd" > "$report"
+    # The report's rows: "<figure> min median max"; A is ramap, B the peer, the ratio A/B.
     awk -v first="$name" -v second="$peer_name" -f "$root/scripts/paired_ratio.awk" "$report"
   done
 done

@@ -1,6 +1,6 @@
-# One table row from a farm-bench report of ramap (A) paired against a peer (B):
+# One table row from a scripts/paired_timing.py report of ramap (A) against a peer (B):
 #   | first | second | A's median wall | B's median wall | B / A (median of the pairs) | min-max |
-# farm-bench's rows are "<command> <figure> min median max", the ratio taken as A/B.
+# The report's rows are "<command> <figure> min median max", the ratio taken as A/B.
 #   awk -v first=NAME -v second=WHAT -f scripts/paired_ratio.awk REPORT
 $1 == "A" && $2 == "wall" { a = $4 }
 $1 == "B" && $2 == "wall" { b = $4 }

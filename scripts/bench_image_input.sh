@@ -19,6 +19,7 @@
 # kitti07_first160); ramap chooses its own plan (--Matching.mode auto). The last column splits
 # each run's time into feature extraction, matching and the rest (mapper, loop closure).
 # Settings: RAMAP_DATA_DIR (default ../shared/data), RAMAP_BENCH_DIR (default build/bench),
+# RAMAP_BINARY (default build/ramap),
 # RAMAP_MAX_IMAGE_SIZE (COLMAP's SIFT, default 1600, ramap's default too),
 # RAMAP_MAX_NUM_FEATURES (ramap with known intrinsics, default 4000).
 set -euo pipefail
@@ -30,7 +31,7 @@ intrinsics=${RAMAP_INTRINSICS:-known}
 suffix=""
 [[ $intrinsics == known ]] || suffix="-$intrinsics-intrinsics"
 bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench}/image_input$suffix
-ramap=$root/build/ramap
+ramap=${RAMAP_BINARY:-$root/build/ramap}
 max_image_size=${RAMAP_MAX_IMAGE_SIZE:-1600}
 max_num_features=${RAMAP_MAX_NUM_FEATURES:-4000}
 source "$root/scripts/datasets/list.sh"

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """What calling ramap from Python costs over the command line, on the prepared real databases.
 
-For each database of build/KIND/NAME/database.db (scripts/prepare_benchmarks.sh makes them), the
+For each database of build/KIND/NAME/database.db (scripts/prepare_datasets.sh makes them), the
 two are run in turn, A B A B ..., as whole processes:
   A  python3 -c "import ramap; ramap.global_mapping(DB, '', OUT)"   (interpreter start and import
      included)

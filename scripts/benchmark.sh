@@ -17,6 +17,7 @@
 # RAMAP_INTRINSICS=unknown: the same on databases made as a user without a calibration makes them
 # (COLMAP's SIMPLE_RADIAL guess, prior_focal_length 0), every mapper with its defaults (intrinsics
 # refined); rewrites the "Unknown intrinsics" table, with each mapper's focal length error.
+# RAMAP_BENCHMARKS_FILE: the file whose table is rewritten (default BENCHMARKS.md).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 intrinsics=${RAMAP_INTRINSICS:-known}
@@ -70,4 +71,5 @@ for entry in "${RAMAP_DATASETS[@]}"; do
 done
 
 ((${#ran[@]})) || { echo "benchmark: nothing ran" >&2; exit 1; }
-python3 "$root/scripts/benchmark_table.py" --intrinsics "$intrinsics" "$root/BENCHMARKS.md" "${ran[@]}"
+RAMAP_VERSION=$("$ramap" --version) python3 "$root/scripts/benchmark_table.py" \
+  --intrinsics "$intrinsics" "${RAMAP_BENCHMARKS_FILE:-$root/BENCHMARKS.md}" "${ran[@]}"

@@ -114,8 +114,9 @@ def table(folders, unknown):
     reference = ("Reference: the data set's ground truth; sceaux_castle has none, so its ramap "
                  "models are scored against COLMAP's (`ramap compare` without --ground_truth).")
     stamp = time.strftime("%Y-%m-%d", time.gmtime())
-    text = "\n".join(rows) + f"\n\n{reference} Run on {stamp}, {os.cpu_count()} cores, " \
-        f"{platform.machine()}.\n"
+    version = os.environ.get("RAMAP_VERSION", "ramap (version unknown)")
+    text = "\n".join(rows) + f"\n\n{reference} Run on {stamp} with {version}, " \
+        f"{os.cpu_count()} cores, {platform.machine()}.\n"
     if glomap_lines:
         text += "\nAgainst GLOMAP, at each one's AUC@3:\n\n" + "\n".join(glomap_lines) + "\n"
     return text

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -65,6 +66,14 @@ int main(int argc, char** argv) {
       return 2;
     } catch (const CLI::Error& error) {
       std::cerr << "ramap " << name << ": error: " << error.what() << "\n";
+      return 2;
+    } catch (const std::filesystem::filesystem_error& error) {
+      // A place that became unwritable during the run (a full disk, a mount gone read-only):
+      // named as the user gave it, without the staging suffix.
+      std::string path = error.path1().string();
+      path = path.substr(0, path.find(".ramap-tmp-"));
+      std::cerr << "ramap " << name << ": error: cannot write " << path << ": "
+                << error.code().message() << "\n";
       return 2;
     } catch (const std::exception& error) {
       std::cerr << "ramap " << name << ": internal error: " << error.what() << "\n";

@@ -142,6 +142,19 @@ TEST_F(BadInput, OutputInAnUnwritableFolder) {
   fs::permissions(W("locked"), fs::perms::owner_all);
 }
 
+// Where even root may not write (sysfs): named before any work, not a filesystem error after it.
+TEST_F(BadInput, OutputWhereNobodyMayWrite) {
+  std::error_code ec;
+  if (!fs::is_directory("/sys", ec) || fs::create_directory("/sys/ramap-bad-input-test", ec)) {
+    fs::remove("/sys/ramap-bad-input-test", ec);
+    GTEST_SKIP() << "/sys is missing or writable here";
+  }
+  ExpectRefused("mapper --database_path database.db --output_path /sys/ramap-out",
+                "--output_path /sys/ramap-out: cannot be written: creating files in /sys fails");
+  ExpectRefused("relative_poses --database_path database.db --output_path /sys/edges.txt",
+                "--output_path /sys/edges.txt: cannot be written");
+}
+
 TEST_F(BadInput, FileOutputIsAnInput) {
   ExpectRefused("relative_poses --database_path database.db --output_path database.db",
                 "is an input");

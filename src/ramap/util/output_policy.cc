@@ -57,6 +57,15 @@ void CheckWritablePlace(const std::string& option, const std::string& path, fs::
         Named(option, path),
         "cannot be written: no permission to create or change files in " + start.string());
   }
+  // Permission bits do not tell everything (root, a read-only mount, /sys): a folder made and
+  // removed again does.
+  const fs::path probe = start / (".ramap-probe-" + std::to_string(::getpid()));
+  const bool made = fs::create_directory(probe, ec);
+  if (ec) {
+    throw InputError(Named(option, path), "cannot be written: creating files in " + start.string() +
+                                              " fails (" + ec.message() + ")");
+  }
+  if (made) fs::remove(probe, ec);
 }
 
 }  // namespace

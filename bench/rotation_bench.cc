@@ -1,4 +1,4 @@
-// Rotation averaging benchmark: (a) the SE-Sync pose graphs (rotations only), robust averaging
+// Rotation averaging benchmark: (a) the SE-Sync g2o files (rotations only), robust averaging
 // versus the plain chordal solve; (b) a synthetic SfM-like graph of 10,000 cameras and ~200,000
 // edges. Usage: ramap_bench_rotation [sesync_dir] (default ../shared/data/sesync_posegraphs
 // relative to the working folder, or $RAMAP_DATA_DIR/sesync_posegraphs).
@@ -10,7 +10,7 @@
 
 #include "ramap/averaging/rotation_averaging.h"
 #include "ramap/graph/fiedler.h"
-#include "ramap/graph/synthetic_rotation_graph.h"
+#include "ramap/graph/synthetic_view_graph.h"
 #include "ramap/io/g2o_reader.h"
 #include "ramap/util/timer.h"
 
@@ -20,7 +20,7 @@ using namespace ramap;
 
 void BenchSeSync(const std::string& dir) {
   std::printf(
-      "(a) SE-Sync pose graphs, rotations only; chordal cost = sum ||R_j - R_ij R_i||_F^2, "
+      "(a) SE-Sync g2o files, rotations only; chordal cost = sum ||R_j - R_ij R_i||_F^2, "
       "unweighted, over all edges\n");
   std::printf("%-16s %6s %6s | %8s %12s %6s %6s %9s %9s %9s | %8s %12s\n", "graph", "nodes",
               "edges", "ours s", "ours cost", "pruned", "cert", "bound deg", "maxres", "lambda2",
@@ -31,7 +31,7 @@ void BenchSeSync(const std::string& dir) {
       std::printf("%-16s missing (%s)\n", name, path.c_str());
       continue;
     }
-    const G2oRotationGraph g2o = ReadG2oRotationGraph(path);
+    const G2oViewGraph g2o = ReadG2oViewGraph(path);
     RotationAveragingOptions options;
     const RotationAveragingResult ours = AverageRotations(g2o.graph, options);
     const ChordalAveragingResult chordal = AverageRotationsChordal(g2o.graph);
@@ -56,7 +56,7 @@ void BenchSeSync(const std::string& dir) {
 }
 
 void BenchSynthetic(bool windows) {
-  SyntheticRotationGraphOptions options;
+  SyntheticViewGraphOptions options;
   options.num_nodes = 10000;
   options.forward_neighbours = 20;  // ~40 nearest neighbours per camera
   options.num_loop_edges = 200;
@@ -65,7 +65,7 @@ void BenchSynthetic(bool windows) {
   options.outlier_fraction = 0.05;
   options.seed = 42;
   Timer timer;
-  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(options);
+  const SyntheticViewGraph synthetic = MakeSyntheticViewGraph(options);
   const double make_seconds = timer.ElapsedSeconds();
   size_t outliers = 0;
   for (bool o : synthetic.is_outlier) outliers += o;
@@ -105,7 +105,7 @@ void BenchSynthetic(bool windows) {
       result.pruned_edges.size(), outliers_kept, result.certificate.certified ? "yes" : "no",
       result.certificate.bound_deg, result.certificate.max_residual_deg);
   Timer chordal_timer;
-  RotationGraph inliers = synthetic.graph;
+  ViewGraph inliers = synthetic.graph;
   inliers.edges.clear();
   for (size_t e = 0; e < synthetic.graph.edges.size(); ++e) {
     if (!synthetic.is_outlier[e]) inliers.edges.push_back(synthetic.graph.edges[e]);

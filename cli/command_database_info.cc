@@ -51,7 +51,7 @@ int RunDatabaseInfo(int argc, char** argv) {
   for (const auto& [config, count] : c.verified_pairs_by_config) {
     std::cout << "    " << kConfigNames.at(static_cast<int>(config)) << ": " << count << "\n";
   }
-  std::cout << "  position priors:         " << c.num_position_priors
+  std::cout << "  pose priors:         " << c.num_pose_priors
             << " images (GPS from EXIF as latitude, longitude, altitude)\n"
             << "  rotation priors:         " << c.num_rotation_priors << " images\n"
             << "  descriptor ratios:       " << c.num_pairs_with_ratios

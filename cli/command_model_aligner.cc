@@ -1,4 +1,4 @@
-// `ramap model_aligner`: georegisters any COLMAP model (ramap's or COLMAP's) to position priors,
+// `ramap model_aligner`: aligns any COLMAP model (ramap's or COLMAP's) to pose priors,
 // like `colmap model_aligner --ref_is_gps 1 --alignment_type enu`, robustly: a similarity fitted
 // by RANSAC over camera centres, the outlier fixes listed. Writes the model in the priors' metric
 // frame, with geo_origin.txt and cameras.geojson when the priors are geodetic. With COLMAP's
@@ -13,10 +13,10 @@
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/geo_export.h"
-#include "ramap/pipeline/georegistration.h"
 #include "ramap/pipeline/mapper_option_table.h"
 #include "ramap/pipeline/plane_alignment.h"
 #include "ramap/pipeline/pose_prior_loading.h"
+#include "ramap/pipeline/prior_alignment.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
@@ -84,7 +84,7 @@ void AddPriorSourceOptions(CLI::App& app, MapperOptions* options) {
 
 int RunModelAligner(int argc, char** argv) {
   CLI::App app(
-      "Georegister a COLMAP model to position priors (GPS): robust similarity, ENU frame; or set "
+      "Align a COLMAP model to pose priors (GPS): robust similarity, ENU frame; or set "
       "it upright on its principal plane (--alignment_type plane)",
       "ramap model_aligner");
   std::string input_path, output_path, database_path, output_type = "BIN";
@@ -92,7 +92,7 @@ int RunModelAligner(int argc, char** argv) {
   app.add_option("--output_path", output_path, "folder for the aligned model (may be the input)")
       ->required();
   app.add_option("--database_path", database_path,
-                 "COLMAP database whose position priors are used (without --PosePrior.path)");
+                 "COLMAP database whose pose priors are used (without --PosePrior.path)");
   app.add_option("--output_type", output_type, "BIN or TXT")->capture_default_str();
   MapperOptions prior_options;
   AddPriorSourceOptions(app, &prior_options);
@@ -100,7 +100,7 @@ int RunModelAligner(int argc, char** argv) {
   AddColmapAlignerOptions(app, &colmap);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   PosePriorSource& prior_text = prior_options.prior_source;
-  GeoregistrationOptions& georegistration = prior_options.georegistration;
+  PriorAlignmentOptions& prior_alignment = prior_options.prior_alignment;
   const ModelFormat format = ModelFormatFromName(output_type, "--output_type");
   if (colmap.alignment_type != "plane" && colmap.alignment_type != "enu" &&
       colmap.alignment_type != "custom") {
@@ -113,7 +113,7 @@ int RunModelAligner(int argc, char** argv) {
     if (!app.count("--PosePrior.type")) prior_text.type = colmap.ref_is_gps ? "wgs84" : "xyz";
   }
   if (colmap.alignment_max_error > 0) {
-    georegistration.max_alignment_error_m = colmap.alignment_max_error;
+    prior_alignment.max_alignment_error_m = colmap.alignment_max_error;
   }
   const bool plane = colmap.alignment_type == "plane";
   if (!plane && prior_text.path.empty() && database_path.empty()) {
@@ -132,10 +132,10 @@ int RunModelAligner(int argc, char** argv) {
                                      : FeatureDatabase{{}, model.images};
   const LocalizedPriors priors =
       LoadPosePriors(prior_text, images, "ramap model_aligner", &std::cerr);
-  const PriorAlignment alignment = GeoregisterModel(priors.priors, georegistration, &model);
-  const GeoregistrationSummary& summary = alignment.summary;
-  if (!summary.georegistered) {
-    throw InputError(input_path, "cannot georegister the model: " + summary.problem);
+  const PriorAlignment alignment = AlignModelToPriors(priors.priors, prior_alignment, &model);
+  const PriorAlignmentSummary& summary = alignment.summary;
+  if (!summary.aligned) {
+    throw InputError(input_path, "cannot align the model: " + summary.problem);
   }
 
   if (!std::filesystem::exists(output_path)) {

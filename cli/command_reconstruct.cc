@@ -3,6 +3,7 @@
 // and DIR/sparse/0, 1, ... with summary.json. After sequential matching, the loop candidates of a
 // first solve are matched and verified and the mapper solves again with the loops
 // (pipeline/loop_closure.h).
+#include <filesystem>
 #include <iostream>
 
 #include "mapper_report.h"
@@ -26,9 +27,9 @@ int RunReconstruct(int argc, char** argv) {
   const ReconstructResult result = RunReconstructJob(job, log_level.progress(), &std::cerr);
   std::cout << "ramap reconstruct: " << result.mapping.summary.num_registered_images << " of "
             << result.num_images << " images registered in "
-            << result.mapping.reconstructions.size() << " model(s) -> " << job.output_path
-            << "/sparse\n";
-  PrintGeoregistration(result.mapping.summary, std::cout);
+            << result.mapping.reconstructions.size() << " model(s) -> "
+            << (std::filesystem::path(job.output_path) / "sparse").string() << "\n";
+  PrintPriorAlignment(result.mapping.summary, std::cout);
   return 0;
 }
 

@@ -101,7 +101,7 @@ int RunRotationAverager(int argc, char** argv) {
       ->required();
   MapperOptions options;
   AddOptionTable(app,
-                 MapperOptionSections({"RelativePose", "PoseGraph", "RotationAveraging"},
+                 MapperOptionSections({"RelativePose", "ViewGraph", "RotationAveraging"},
                                       {"Mapper.num_threads"}),
                  &options);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
@@ -116,7 +116,7 @@ int RunRotationAverager(int argc, char** argv) {
   options.rotation_averaging.use_edge_weights =
       UseRotationEdgeWeights(options.rotation_edge_weights, loaded.focal_lengths_known);
   const RecordRotations averaged = AverageRecordRotations(
-      loaded.records, options.order, options.pose_graph, options.rotation_averaging);
+      loaded.records, options.order, options.view_graph, options.rotation_averaging);
   WriteRotations(averaged.rotations, output_path);
   PrintRotationSummary(averaged, output_path);
   return 0;

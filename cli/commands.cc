@@ -59,7 +59,7 @@ const std::vector<Command>& AllCommands() {
       {"options", "every option, its default and meaning (Markdown)", RunOptions},
       {"database_converter", "a COLMAP database rewritten as another generation (3.8, 3.10, 4)",
        RunDatabaseConverter},
-      {"model_aligner", "georegister a COLMAP model to GPS / position priors (ENU, GeoJSON)",
+      {"model_aligner", "align a COLMAP model to GPS / pose priors (ENU, GeoJSON)",
        RunModelAligner},
       {"model_converter", "convert a COLMAP sparse model between BIN and TXT", RunModelConverter},
       {"bundle_adjuster", "bundle adjustment of a COLMAP model (poses, points, intrinsics)",

@@ -9,7 +9,7 @@
 
 namespace ramap::cli {
 
-// Registers every mapper option (--RelativePose.*, --PoseGraph.*, --RotationAveraging.*,
+// Registers every mapper option (--RelativePose.*, --ViewGraph.*, --RotationAveraging.*,
 // --TranslationAveraging.*, --PairDirection.*, --Triangulation.*, --Reregistration.*,
 // --BundleAdjustment.*, --ViewGraphCalibration.*, --Mapper.*) bound to `options`.
 void AddMapperOptions(CLI::App& app, MapperOptions* options);

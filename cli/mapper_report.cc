@@ -7,19 +7,19 @@
 
 namespace ramap::cli {
 
-void PrintGeoregistration(const MapperSummary& summary, std::ostream& out) {
+void PrintPriorAlignment(const MapperSummary& summary, std::ostream& out) {
   for (size_t k = 0; k < summary.components.size(); ++k) {
-    const GeoregistrationSummary& geo = summary.components[k].georegistration;
-    if (geo.georegistered) {
-      out << "  model " << k << " georegistered: " << geo.num_inliers << " of " << geo.num_priors
-          << " priors, RMSE " << std::fixed << std::setprecision(2) << geo.rmse_m << " m, "
-          << geo.outliers.size() << " outlier(s)\n";
+    const PriorAlignmentSummary& geo = summary.components[k].prior_alignment;
+    if (geo.aligned) {
+      out << "  model " << k << " aligned to its priors: " << geo.num_inliers << " of "
+          << geo.num_priors << " priors, RMSE " << std::fixed << std::setprecision(2) << geo.rmse_m
+          << " m, " << geo.outliers.size() << " outlier(s)\n";
     } else if (!geo.problem.empty()) {
-      out << "  model " << k << " not georegistered: " << geo.problem << "\n";
+      out << "  model " << k << " not aligned to its priors: " << geo.problem << "\n";
     }
   }
   if (!summary.prior_outliers.empty()) {
-    out << "  position priors rejected as outliers (" << summary.prior_outliers.size() << "):\n";
+    out << "  pose priors rejected as outliers (" << summary.prior_outliers.size() << "):\n";
     for (size_t k = 0; k < summary.prior_outliers.size() && k < 10; ++k) {
       out << "    " << summary.prior_outliers[k].what << ": " << summary.prior_outliers[k].reason
           << "\n";
@@ -41,7 +41,7 @@ void PrintMapperSummary(const MapperSummary& s, const std::string& output_path, 
         << c.num_rotation_edges << std::setw(8) << c.num_pruned_edges << std::setw(11)
         << (c.rotation_certified ? "yes" : "no") << "\n";
   }
-  PrintGeoregistration(s, out);
+  PrintPriorAlignment(s, out);
   // Focal lengths the database did not know, and every camera BA changed.
   for (const CameraIntrinsicsSummary& camera : s.cameras) {
     const CameraCalibration& estimate = camera.view_graph;

@@ -30,8 +30,10 @@ void AddOptionTable(CLI::App& app, const OptionTable<Settings>& table, Settings*
       help +=
           " (" + OptionValueHint(declaration.type, declaration.range, declaration.choices) + ")";
     }
+    std::string names = "--" + declaration.name;
+    for (const std::string& former : declaration.former_names) names += ",--" + former;
     CLI::Option* option = app.add_option(
-        "--" + declaration.name,
+        names,
         [declaration, settings](const CLI::results_t& values) {
           try {
             SetOption(declaration, values.front(), settings);
@@ -79,10 +81,9 @@ inline std::optional<int> ParseOptions(CLI::App& app, int argc, char** argv) {
   return std::nullopt;
 }
 
-// --log_level of the commands that do long work: 0 prints the result alone; 1 (the default, and
-// any higher level) also
-// one line per stage and, on a terminal, a progress line redrawn in place while a stage works
-// (util/progress_line.h). Returns where the progress goes: std::cout, or nullptr at 0.
+// --log_level of the commands that do long work: 0 prints the result alone; 1 (the default, and any
+// higher level) also one line per stage and, on a terminal, a progress line redrawn in place while
+// a stage works (util/progress_line.h). progress() says where it goes: std::cout, or nullptr at 0.
 class LogLevelOption {
  public:
   explicit LogLevelOption(CLI::App& app) {

@@ -29,7 +29,7 @@ void AddDriveOptions(CLI::App& app, SyntheticSceneOptions* options) {
       ->capture_default_str();
   app.add_option("--Synthetic.num_aliased_pairs", options->num_aliased_pairs,
                  "pairs with consistent matches of a relative pose rotated off by an angle in "
-                 "[aliased_min_angle_deg, aliased_max_angle_deg], as repetitive structure gives")
+                 "[aliased_min_angle_deg, aliased_max_angle_deg], as repetitive scenes gives")
       ->capture_default_str();
   app.add_option("--Synthetic.aliased_min_angle_deg", options->aliased_min_angle_deg,
                  "aliased pairs' rotations are off by at least this angle")

@@ -4,9 +4,9 @@
 # file (--PosePrior.type enu about Karlsruhe), then `ramap mapper` with the priors used in each
 # way. Prints one row per variant, averaged over three noise draws: metric ATE after a rigid fit
 # (no scale), centre error as written (no fit at all), outliers found, mapper time; and COLMAP's
-# mapper on the same database georegistered by `colmap model_aligner` with the same fixes.
+# mapper on the same database aligned to its priors by `colmap model_aligner` with the same fixes.
 #
-#   scripts/bench_georegistration.sh     (the COLMAP database from scripts/prepare_datasets.sh)
+#   scripts/bench_pose_priors.sh     (the COLMAP database from scripts/prepare_datasets.sh)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bench_dir=${RAMAP_BENCH_DIR:-$root/build/bench}
@@ -15,11 +15,11 @@ ramap=$root/build/ramap
 RAMAP_BENCH_DIR=$bench_dir bash "$root/scripts/prepare_datasets.sh" kitti07_first160 >&2
 # shellcheck disable=SC1091
 source "$bench_dir/kitti07_first160/dataset.env"
-out=$bench_dir/georegistration
+out=$bench_dir/prior_alignment
 rm -rf "$out" && mkdir -p "$out"
 
-# COLMAP: its mapper's model (prepare_datasets.sh ran it) georegistered by colmap model_aligner,
-# robust, with the threshold ramap derives (3 x the 3D deviation of the priors).
+# COLMAP: its mapper's model (prepare_datasets.sh ran it) aligned to its priors by colmap
+# model_aligner, robust, with the threshold ramap derives (3 x the 3D deviation of the priors).
 colmap_threshold=$(python3 -c "print(3 * 3 ** 0.5 * $noise)")
 variants=(
   "COLMAP mapper + colmap model_aligner|colmap"
@@ -105,7 +105,7 @@ PY
 import sys, math
 rows = [list(map(float, l.split())) for l in sys.stdin if l.strip()]
 mean = lambda k: sum(r[k] for r in rows) / len(rows)
-absolute = 'n/a (not georegistered)' if math.isnan(mean(1)) else f'{mean(1):.2f}'
+absolute = 'n/a (not aligned)' if math.isnan(mean(1)) else f'{mean(1):.2f}'
 found = '-' if math.isnan(mean(1)) or '$flags' == 'colmap' else f'{mean(2):.0f} of 5'
 print(f'| $label | {mean(0):.2f} | {absolute} | {found} | {mean(3):.1f} |')"
 done

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# How ramap's averaging holds up against aliased pairs (repeated structure matched to the wrong
+# How ramap's averaging holds up against aliased pairs (repeated facades matched to the wrong
 # place): synthetic drives along KITTI 06's ground truth (1101 frames, as scripts/bench_scale.sh
 # builds them: facades, 4-column keypoints, 0.7 px noise, 2% outlier matches, next 10 frames and
 # revisits within 8 m), with a share of aliased pairs whose matches obey a relative rotation off by

@@ -1,5 +1,5 @@
-// Position priors from a 4.x database's pose_priors table, in its Cartesian coordinate system and
-// with its covariance: `ramap mapper` georegisters the model in that frame without being told the
+// Pose priors from a 4.x database's pose_priors table, in its Cartesian coordinate system and
+// with its covariance: `ramap mapper` aligns the model in that frame without being told the
 // priors' type.
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 namespace ramap {
 namespace {
 
-TEST(PosePriorDatabase, CartesianPriorsOfA4xDatabaseGeoregister) {
+TEST(PosePriorDatabase, CartesianPriorsOfA4xDatabaseAlign) {
   test::TempDir dir;
   SyntheticSceneOptions options;
   options.path = SyntheticPath::kCircle;
@@ -32,10 +32,9 @@ TEST(PosePriorDatabase, CartesianPriorsOfA4xDatabaseGeoregister) {
       test::RunCommand("'" + test::RamapBinary() + "' mapper --database_path '" + (dir / "db.db") +
                        "' --output_path '" + (dir / "sparse") + "' 2>&1");
   ASSERT_EQ(result.exit_code, 0) << result.output;
-  EXPECT_NE(result.output.find("position priors: 12 of 12 usable (database, xyz)"),
-            std::string::npos)
+  EXPECT_NE(result.output.find("pose priors: 12 of 12 usable (database, xyz)"), std::string::npos)
       << result.output;
-  EXPECT_NE(result.output.find("model 0 georegistered: 12 of 12"), std::string::npos)
+  EXPECT_NE(result.output.find("model 0 aligned to its priors: 12 of 12"), std::string::npos)
       << result.output;
   // The inlier bound is 3 x the priors' 3D standard deviation: sqrt(3 x 0.25) m from the
   // database's covariance (the default deviations, 3, 3, 6 m, would give 22 m).

@@ -262,10 +262,10 @@ TEST(RelativePoseTest, ConfidentStopIsAsAccurateAsEveryCandidate) {
   EXPECT_GE(compared, total - 2);
 }
 
-// A root solved from five matches with 0.5 px noise misses the error bound (0.7-1.1 px RMS); refined
-// once on the matches it explains it meets it, and the first subset ends the search. In a view the
-// options call narrow, the narrow bound applies instead: at 0 px no candidate is confident and
-// all six subsets are solved.
+// A root solved from five matches with 0.5 px noise misses the error bound (0.7-1.1 px RMS);
+// refined once on the matches it explains it meets it, and the first subset ends the search. In a
+// view the options call narrow, the narrow bound applies instead: at 0 px no candidate is confident
+// and all six subsets are solved.
 TEST(RelativePoseTest, ARefinedFirstCandidateEndsTheFivePointSolves) {
   RelativePoseOptions narrow;
   narrow.confident_narrow_view_deg = 90;

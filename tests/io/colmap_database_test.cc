@@ -686,7 +686,7 @@ TEST(ColmapDatabaseCli, DatabaseInfoPrintsCounts) {
   EXPECT_NE(result.output.find("verified pairs:          2 (40 inlier matches)"),
             std::string::npos);
   EXPECT_NE(result.output.find("CALIBRATED: 2"), std::string::npos);
-  EXPECT_NE(result.output.find("position priors:         0 images"), std::string::npos);
+  EXPECT_NE(result.output.find("pose priors:         0 images"), std::string::npos);
   EXPECT_NE(result.output.find("descriptor ratios:       0 verified pairs"), std::string::npos);
 }
 

@@ -1,4 +1,4 @@
-// Stage 2 of the mapper: the accepted pairs become the rotation graph (each edge naming its pair),
+// Stage 2 of the mapper: the accepted pairs become the view graph (each edge naming its pair),
 // rejected pairs and the images they leave alone are explained, and components too small to
 // reconstruct are set aside with their reason.
 #include "ramap/pipeline/components.h"
@@ -31,7 +31,7 @@ TEST(Components, AcceptedPairsAreTheGraphAndRejectedOnesAreExplained) {
                                         Pair(3, 4, true), Pair(4, 5, false)};
   MapperSummary summary;
   std::map<uint32_t, std::string> reasons;
-  const RotationGraph graph = AcceptedPoseGraph(database, pairs, &summary, &reasons);
+  const ViewGraph graph = ViewGraphOfAcceptedPairs(database, pairs, &summary, &reasons);
   EXPECT_EQ(graph.node_ids, (std::vector<uint32_t>{1, 2, 3, 4}));
   ASSERT_EQ(graph.edges.size(), 3u);
   EXPECT_EQ(graph.edges[0].pair_index, 0u);
@@ -51,8 +51,8 @@ TEST(Components, SmallComponentsAreSetAsideLargestFirst) {
                                         Pair(8, 9, true), Pair(2, 3, true), Pair(4, 5, true)};
   MapperSummary summary;
   std::map<uint32_t, std::string> reasons;
-  const RotationGraph graph = AcceptedPoseGraph(database, pairs, &summary, &reasons);
-  const std::vector<RotationGraph> components = ComponentsToReconstruct(graph, 3, &reasons);
+  const ViewGraph graph = ViewGraphOfAcceptedPairs(database, pairs, &summary, &reasons);
+  const std::vector<ViewGraph> components = ComponentsToReconstruct(graph, 3, &reasons);
   ASSERT_EQ(components.size(), 2u);
   EXPECT_EQ(components[0].node_ids, (std::vector<uint32_t>{6, 7, 8, 9}));
   EXPECT_EQ(components[1].node_ids, (std::vector<uint32_t>{1, 2, 3}));

@@ -105,14 +105,14 @@ TEST(LoopClosure, VerifiedLoopsEnterTheSecondSolve) {
   ASSERT_EQ(first.summary.num_registered_images, 80);
   const LoopClosedMapperResult closed =
       RunMapperWithLoopClosure(&scene.database, test::AveragingOnly(), true, LoopClosureOptions(),
-                               FeatureMatchingOptions(), "synthetic", nullptr, PositionPriors());
+                               FeatureMatchingOptions(), "synthetic", nullptr, PosePriors());
   const LoopClosureSummary& closure = closed.closure;
   EXPECT_GT(closure.num_candidates, 0);
   EXPECT_GE(closure.num_verified, 3);
   EXPECT_EQ(closure.loops.size(), static_cast<size_t>(closure.num_verified));
   EXPECT_TRUE(closed.database_changed);
   const MapperResult& second = closed.result;
-  // The pose graph's loop edges (between keyframe windows) gain the revisits.
+  // The view graph's loop edges (between keyframe windows) gain the revisits.
   EXPECT_GE(second.summary.num_loop_edges, first.summary.num_loop_edges + closure.num_verified);
   const PoseEvaluation before = evaluate(first), after = evaluate(second);
   std::printf(
@@ -140,7 +140,7 @@ TEST(LoopClosure, PairsBetweenModelsJoinThem) {
   FeatureDatabase unjoined = scene.database;
   const LoopClosedMapperResult closed =
       RunMapperWithLoopClosure(&scene.database, test::AveragingOnly(), true, LoopClosureOptions(),
-                               FeatureMatchingOptions(), "synthetic", nullptr, PositionPriors());
+                               FeatureMatchingOptions(), "synthetic", nullptr, PosePriors());
   const LoopClosureSummary& closure = closed.closure;
   // 40 x 40 images, sampled to every second of each: 400 pairs at most.
   EXPECT_GT(closure.num_bridge_pairs, 100);

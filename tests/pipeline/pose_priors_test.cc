@@ -65,7 +65,7 @@ TEST(PosePriors, Wgs84AboutTheMedianOriginWithBadRecordsSkipped) {
   const Eigen::Vector3d offset = frame.FromGeodetic(*priors.priors.origin);
   EXPECT_LT((offset - Eigen::Vector3d(30, -15, 1)).norm(), 1e-6);
   for (int k = 1; k <= 5; ++k) {
-    const PositionPrior& prior = priors.priors.by_image.at(k);
+    const PosePrior& prior = priors.priors.by_image.at(k);
     EXPECT_LT((prior.center + offset - Eigen::Vector3d(10.0 * k, -5.0 * k, 1.0)).norm(), 2e-3);
     EXPECT_EQ(prior.std_dev_m, options.std_dev_m);
   }

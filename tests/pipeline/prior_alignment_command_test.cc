@@ -1,6 +1,6 @@
-// Georegistration as a user runs it: `ramap mapper --PosePrior.path` and `ramap model_aligner`
+// Prior alignment as a user runs it: `ramap mapper --PosePrior.path` and `ramap model_aligner`
 // write the model in ENU metres with its origin and a GeoJSON of the cameras; priors that cannot
-// georegister end in a message (model_aligner: non-zero, nothing written; mapper: the model as
+// align end in a message (model_aligner: non-zero, nothing written; mapper: the model as
 // without priors).
 #include <gtest/gtest.h>
 
@@ -59,7 +59,7 @@ double GeodeticError(const std::string& model_path, const Reconstruction& truth)
   return worst;
 }
 
-TEST(GeoregistrationCommand, MapperWritesTheModelInEnuWithOriginAndGeoJson) {
+TEST(PriorAlignmentCommand, MapperWritesTheModelInEnuWithOriginAndGeoJson) {
   test::TempDir dir;
   const Reconstruction truth = SynthesizeWithPriors(dir);
   const test::CommandResult mapper =
@@ -67,7 +67,7 @@ TEST(GeoregistrationCommand, MapperWritesTheModelInEnuWithOriginAndGeoJson) {
                        (dir / "scene/database.db") + "' --output_path '" + (dir / "sparse") +
                        "' --PosePrior.path '" + (dir / "priors.txt") + "' --Mapper.refine 1");
   ASSERT_EQ(mapper.exit_code, 0) << mapper.output;
-  EXPECT_NE(mapper.output.find("model 0 georegistered: 30 of 30 priors"), std::string::npos)
+  EXPECT_NE(mapper.output.find("model 0 aligned to its priors: 30 of 30 priors"), std::string::npos)
       << mapper.output;
   EXPECT_LT(GeodeticError(dir / "sparse/0", truth), 0.1);
   std::ifstream geojson_file(dir / "sparse/0/cameras.geojson");
@@ -81,9 +81,12 @@ TEST(GeoregistrationCommand, MapperWritesTheModelInEnuWithOriginAndGeoJson) {
   EXPECT_EQ(first["properties"]["name"], truth.images.begin()->second.name);
   std::ifstream summary_file(dir / "sparse/summary.json");
   const nlohmann::json summary = nlohmann::json::parse(summary_file);
+  EXPECT_EQ(summary["components"][0]["prior_alignment"]["aligned"], true);
+  EXPECT_EQ(summary["components"][0]["prior_alignment"]["used_in_bundle_adjustment"], true);
+  // The block's former name, kept as an alias (README, "Renamed").
   EXPECT_EQ(summary["components"][0]["georegistration"]["georegistered"], true);
-  EXPECT_EQ(summary["components"][0]["georegistration"]["used_in_bundle_adjustment"], true);
-  // COLMAP opens the georegistered model, its extra files beside it notwithstanding.
+  EXPECT_EQ(summary["components"][0]["georegistration"]["num_inliers"], 30);
+  // COLMAP opens the aligned model, its extra files beside it notwithstanding.
   if (test::ColmapAvailable()) {
     const test::CommandResult analyzer =
         test::RunCommand("colmap model_analyzer --path '" + (dir / "sparse/0") + "'");
@@ -92,7 +95,7 @@ TEST(GeoregistrationCommand, MapperWritesTheModelInEnuWithOriginAndGeoJson) {
   }
 }
 
-TEST(GeoregistrationCommand, ModelAlignerGeoregistersAModelMadeWithoutPriors) {
+TEST(PriorAlignmentCommand, ModelAlignerAlignsAModelMadeWithoutPriors) {
   test::TempDir dir;
   const Reconstruction truth = SynthesizeWithPriors(dir);
   ASSERT_EQ(
@@ -112,10 +115,11 @@ TEST(GeoregistrationCommand, ModelAlignerGeoregistersAModelMadeWithoutPriors) {
   EXPECT_LT(GeodeticError(dir / "aligned", truth), 0.1);
 }
 
-// Geotagged photos to a georegistered model in one command: twelve templeRing views as JPEGs whose
-// EXIF GPS is the true camera centre (scaled by 100 to a 60 m scene, in ENU about Lausanne);
-// `ramap reconstruct` stores the tags as the database's priors and writes the model in metres.
-TEST(GeoregistrationCommand, ReconstructGeoregistersGeotaggedJpegs) {
+// Geotagged photos to a model aligned to their priors in one command: twelve templeRing views as
+// JPEGs whose EXIF GPS is the true camera centre (scaled by 100 to a 60 m scene, in ENU about
+// Lausanne); `ramap reconstruct` stores the tags as the database's priors and writes the model in
+// metres.
+TEST(PriorAlignmentCommand, ReconstructAlignsGeotaggedJpegsToTheirPriors) {
   RAMAP_REQUIRE_SHARED_DATA(folder, "middlebury_templeRing");
   std::vector<std::string> names;
   for (int k = 20; k < 32; ++k) names.push_back("templeR00" + std::to_string(k) + ".png");
@@ -143,7 +147,8 @@ TEST(GeoregistrationCommand, ReconstructGeoregistersGeotaggedJpegs) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("EXIF GPS of 12 stored as prior positions"), std::string::npos)
       << run.output;
-  EXPECT_NE(run.output.find("georegistered: 12 of 12 priors"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("aligned to its priors: 12 of 12 priors"), std::string::npos)
+      << run.output;
   const Reconstruction model = ReadColmapModel(dir / "out/sparse/0");
   ASSERT_EQ(model.images.size(), 12u);
   const LocalEnuFrame model_frame(ReadGeoOrigin(dir / "out/sparse/0/geo_origin.txt"));
@@ -157,15 +162,16 @@ TEST(GeoregistrationCommand, ReconstructGeoregistersGeotaggedJpegs) {
   EXPECT_LT(worst, 1.0);
 }
 
-TEST(GeoregistrationCommand, PriorsThatCannotGeoregisterAreReported) {
+TEST(PriorAlignmentCommand, PriorsThatCannotAlignAreReported) {
   test::TempDir dir;
   SynthesizeWithPriors(dir, /*identical=*/true);
   const test::CommandResult mapper = test::RunCommand(
       test::RamapCommand() + "mapper --database_path '" + (dir / "scene/database.db") +
       "' --output_path '" + (dir / "sparse") + "' --PosePrior.path '" + (dir / "priors.txt") + "'");
   ASSERT_EQ(mapper.exit_code, 0) << mapper.output;
-  EXPECT_NE(mapper.output.find("model 0 not georegistered: the priors (or the model's centres) all "
-                               "coincide"),
+  EXPECT_NE(mapper.output.find(
+                "model 0 not aligned to its priors: the priors (or the model's centres) all "
+                "coincide"),
             std::string::npos)
       << mapper.output;
   EXPECT_TRUE(fs::exists(dir / "sparse/0/images.bin"));
@@ -176,8 +182,7 @@ TEST(GeoregistrationCommand, PriorsThatCannotGeoregisterAreReported) {
                        "' --output_path '" + (dir / "aligned") + "' --PosePrior.path '" +
                        (dir / "priors.txt") + "'");
   EXPECT_NE(aligner.exit_code, 0);
-  EXPECT_NE(aligner.output.find("cannot georegister the model"), std::string::npos)
-      << aligner.output;
+  EXPECT_NE(aligner.output.find("cannot align the model"), std::string::npos) << aligner.output;
   EXPECT_FALSE(fs::exists(dir / "aligned"));
 
   std::ofstream(dir / "broken.txt") << "frame_000001.png 46.5 6.5\n";

@@ -1,4 +1,4 @@
-// Georegistration on real images: KITTI 07's first 160 frames, its ground truth turned into WGS84
+// Prior alignment on real images: KITTI 07's first 160 frames, its ground truth turned into WGS84
 // GPS fixes about Karlsruhe with GeographicLib (2 m noise per axis, five gross errors, one fix on
 // the other side of the planet, ten frames without a fix) and stored as the database's priors,
 // as COLMAP stores EXIF GPS. The mapper's model must come out in metres in the local ENU frame.
@@ -19,7 +19,7 @@
 namespace ramap {
 namespace {
 
-TEST(GeoregistrationRealData, Kitti07FromNoisyGpsToMetricModel) {
+TEST(PriorAlignmentRealData, Kitti07FromNoisyGpsToMetricModel) {
   RAMAP_REQUIRE_SHARED_DATA(folder, "kitti_3dv_tutorial/kitti07_first160");
   std::vector<std::string> names;
   for (int k = 0; k < 160; ++k) {
@@ -88,8 +88,8 @@ TEST(GeoregistrationRealData, Kitti07FromNoisyGpsToMetricModel) {
   ASSERT_FALSE(result.reconstructions.empty());
   const Reconstruction& model = result.reconstructions.front();
   EXPECT_EQ(model.images.size(), 160u);
-  const GeoregistrationSummary& geo = result.summary.components.front().georegistration;
-  ASSERT_TRUE(geo.georegistered) << geo.problem;
+  const PriorAlignmentSummary& geo = result.summary.components.front().prior_alignment;
+  ASSERT_TRUE(geo.aligned) << geo.problem;
   ASSERT_TRUE(result.geodetic_origin.has_value());
   std::set<std::string> reported;
   for (const DroppedItem& item : result.summary.prior_outliers) reported.insert(item.what);
@@ -115,7 +115,7 @@ TEST(GeoregistrationRealData, Kitti07FromNoisyGpsToMetricModel) {
   }
   ate = std::sqrt(ate / estimated.size());
   std::printf(
-      "KITTI 07 georegistered: %d of %d priors, %zu outliers; centre RMSE %.2f m as "
+      "KITTI 07 aligned to its priors: %d of %d priors, %zu outliers; centre RMSE %.2f m as "
       "written, metric ATE (rigid, no scale) %.2f m, GPS noise 3.46 m (3D)\n",
       geo.num_inliers, geo.num_priors, geo.outliers.size(), absolute_rmse, ate);
   EXPECT_LT(absolute_rmse, 2.0);

@@ -1,7 +1,7 @@
-// Georegistration on synthetic scenes with known truth: the robust fit and its outlier report,
-// the mapper's georegistered (metric, in the priors' frame) model with priors in translation
-// averaging and in bundle adjustment, and priors that cannot georegister a model.
-#include "ramap/pipeline/georegistration.h"
+// Prior alignment on synthetic scenes with known truth: the robust fit and its outlier report, the
+// mapper's model aligned to its priors (metric, in the priors' frame) with priors in translation
+// averaging and in bundle adjustment, and priors that cannot align a model.
+#include "ramap/pipeline/prior_alignment.h"
 
 #include <gtest/gtest.h>
 
@@ -23,13 +23,13 @@ std::map<uint32_t, Eigen::Vector3d> Centers(const Reconstruction& reconstruction
 }
 
 // Priors at the true centres plus Gaussian noise; `outliers` moved by 30 m.
-PositionPriors NoisyPriors(const Reconstruction& truth, double noise_m,
-                           const std::set<uint32_t>& outliers, uint64_t seed = 3) {
+PosePriors NoisyPriors(const Reconstruction& truth, double noise_m,
+                       const std::set<uint32_t>& outliers, uint64_t seed = 3) {
   std::mt19937_64 random(seed);
   std::normal_distribution<double> noise(0.0, noise_m);
-  PositionPriors priors;
+  PosePriors priors;
   for (const auto& [id, center] : Centers(truth)) {
-    PositionPrior prior;
+    PosePrior prior;
     prior.center = center + Eigen::Vector3d(noise(random), noise(random), noise(random));
     if (outliers.count(id)) prior.center += Eigen::Vector3d(30, -20, 5);
     prior.std_dev_m = Eigen::Vector3d::Constant(std::max(noise_m, 0.05));
@@ -56,7 +56,7 @@ double CenterRmse(const Reconstruction& estimate, const Reconstruction& truth) {
   return std::sqrt(sum / estimate.images.size());
 }
 
-TEST(Georegistration, RobustFitFindsTheSimilarityAndReportsTheOutliers) {
+TEST(PriorAlignment, RobustFitFindsTheSimilarityAndReportsTheOutliers) {
   const SyntheticScene scene = LoopScene();
   // The "model": the truth under an unknown similarity.
   const Sim3d model_from_truth(
@@ -65,9 +65,9 @@ TEST(Georegistration, RobustFitFindsTheSimilarityAndReportsTheOutliers) {
   std::map<uint32_t, Eigen::Vector3d> centers;
   for (const auto& [id, center] : Centers(scene.ground_truth))
     centers[id] = model_from_truth * center;
-  const PositionPriors priors = NoisyPriors(scene.ground_truth, 0.0, {7, 31});
-  const PriorAlignment alignment = AlignCentersToPriors(centers, priors, GeoregistrationOptions());
-  ASSERT_TRUE(alignment.summary.georegistered) << alignment.summary.problem;
+  const PosePriors priors = NoisyPriors(scene.ground_truth, 0.0, {7, 31});
+  const PriorAlignment alignment = AlignCentersToPriors(centers, priors, PriorAlignmentOptions());
+  ASSERT_TRUE(alignment.summary.aligned) << alignment.summary.problem;
   EXPECT_EQ(alignment.summary.num_priors, 60);
   EXPECT_EQ(alignment.summary.num_inliers, 58);
   ASSERT_EQ(alignment.summary.outliers.size(), 2u);
@@ -85,45 +85,45 @@ TEST(Georegistration, RobustFitFindsTheSimilarityAndReportsTheOutliers) {
   }
 }
 
-TEST(Georegistration, PriorsThatCannotFixAFrameSayWhy) {
+TEST(PriorAlignment, PriorsThatCannotFixAFrameSayWhy) {
   const SyntheticScene scene = LoopScene();
   const std::map<uint32_t, Eigen::Vector3d> centers = Centers(scene.ground_truth);
-  PositionPriors identical;
+  PosePriors identical;
   for (const auto& [id, center] : centers)
     identical.by_image[id] = {Eigen::Vector3d(1, 2, 3), Eigen::Vector3d::Ones()};
-  const PriorAlignment same = AlignCentersToPriors(centers, identical, GeoregistrationOptions());
-  EXPECT_FALSE(same.summary.georegistered);
+  const PriorAlignment same = AlignCentersToPriors(centers, identical, PriorAlignmentOptions());
+  EXPECT_FALSE(same.summary.aligned);
   EXPECT_NE(same.summary.problem.find("coincide"), std::string::npos) << same.summary.problem;
 
-  PositionPriors on_a_line;
+  PosePriors on_a_line;
   for (const auto& [id, center] : centers)
     on_a_line.by_image[id] = {Eigen::Vector3d(id, 0, 0), Eigen::Vector3d::Ones()};
-  const PriorAlignment line = AlignCentersToPriors(centers, on_a_line, GeoregistrationOptions());
-  EXPECT_FALSE(line.summary.georegistered);
+  const PriorAlignment line = AlignCentersToPriors(centers, on_a_line, PriorAlignmentOptions());
+  EXPECT_FALSE(line.summary.aligned);
   EXPECT_FALSE(line.summary.problem.empty());
 
   // A scene a tenth of a metre across tagged by a 1 m GPS: the fit would be noise.
-  PositionPriors tiny;
+  PosePriors tiny;
   for (const auto& [id, center] : centers) {
     tiny.by_image[id] = {0.01 * center, Eigen::Vector3d::Ones()};
   }
-  const PriorAlignment noise = AlignCentersToPriors(centers, tiny, GeoregistrationOptions());
-  EXPECT_FALSE(noise.summary.georegistered);
+  const PriorAlignment noise = AlignCentersToPriors(centers, tiny, PriorAlignmentOptions());
+  EXPECT_FALSE(noise.summary.aligned);
   EXPECT_NE(noise.summary.problem.find("the priors spread over"), std::string::npos)
       << noise.summary.problem;
 
-  PositionPriors few;
+  PosePriors few;
   for (uint32_t id = 1; id <= 3; ++id) few.by_image[id] = {centers.at(id), Eigen::Vector3d::Ones()};
   few.by_image[999] = {Eigen::Vector3d::Zero(),
                        Eigen::Vector3d::Ones()};  // an image not in the model
-  const PriorAlignment too_few = AlignCentersToPriors(centers, few, GeoregistrationOptions());
-  EXPECT_FALSE(too_few.summary.georegistered);
+  const PriorAlignment too_few = AlignCentersToPriors(centers, few, PriorAlignmentOptions());
+  EXPECT_FALSE(too_few.summary.aligned);
   EXPECT_EQ(too_few.summary.num_priors, 3);
   EXPECT_NE(too_few.summary.problem.find("4 needed"), std::string::npos) << too_few.summary.problem;
 }
 
 // Noise-free priors in translation averaging put the cameras exactly on them.
-TEST(Georegistration, TranslationAveragingWithExactPriorsLandsOnThem) {
+TEST(PriorAlignment, TranslationAveragingWithExactPriorsLandsOnThem) {
   const SyntheticScene scene = LoopScene();
   std::map<uint32_t, Eigen::Quaterniond> rotations;
   for (const auto& [id, image] : scene.ground_truth.images)
@@ -152,20 +152,20 @@ struct MapperCase {
   bool priors_in_translation_averaging;
 };
 
-class GeoregisteredMapper : public ::testing::TestWithParam<MapperCase> {};
+class AlignedMapper : public ::testing::TestWithParam<MapperCase> {};
 
 // The mapper's model is in the priors' frame and metres: its centres match the truth without
 // any alignment, to well below the 0.3 m noise of the priors, and the two wrong fixes are named.
-TEST_P(GeoregisteredMapper, ModelInThePriorsFrameWithOutliersReported) {
+TEST_P(AlignedMapper, ModelInThePriorsFrameWithOutliersReported) {
   const SyntheticScene scene = LoopScene();
-  const PositionPriors priors = NoisyPriors(scene.ground_truth, 0.3, {12, 40});
+  const PosePriors priors = NoisyPriors(scene.ground_truth, 0.3, {12, 40});
   MapperOptions options;
   options.refine = GetParam().refine;
-  options.georegistration.use_in_translation_averaging = GetParam().priors_in_translation_averaging;
+  options.prior_alignment.use_in_translation_averaging = GetParam().priors_in_translation_averaging;
   const MapperResult result = RunMapper(scene.database, options, "synthetic", nullptr, priors);
   ASSERT_EQ(result.reconstructions.size(), 1u);
-  const GeoregistrationSummary& geo = result.summary.components.front().georegistration;
-  ASSERT_TRUE(geo.georegistered) << geo.problem;
+  const PriorAlignmentSummary& geo = result.summary.components.front().prior_alignment;
+  ASSERT_TRUE(geo.aligned) << geo.problem;
   EXPECT_EQ(geo.used_in_translation_averaging, GetParam().priors_in_translation_averaging);
   EXPECT_EQ(geo.used_in_bundle_adjustment, GetParam().refine);
   EXPECT_EQ(geo.num_inliers, 58);
@@ -187,23 +187,23 @@ TEST_P(GeoregisteredMapper, ModelInThePriorsFrameWithOutliersReported) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Uses, GeoregisteredMapper,
+INSTANTIATE_TEST_SUITE_P(Uses, AlignedMapper,
                          ::testing::Values(MapperCase{false, true}, MapperCase{false, false},
                                            MapperCase{true, true}));
 
 // The refit with priors is a second translation averaging: an image that only pure rotations
 // link to the rest (test::StandstillLineScene's image 11, here without a prior of its own) must
 // again be placed with its neighbours, in the priors' frame, not dropped.
-TEST(GeoregisteredMapper, AFrameStandingStillIsPlacedAfterTheRefitWithPriors) {
+TEST(AlignedMapper, AFrameStandingStillIsPlacedAfterTheRefitWithPriors) {
   const SyntheticScene scene = test::StandstillLineScene();
-  PositionPriors priors = NoisyPriors(scene.ground_truth, 0.0, {});
+  PosePriors priors = NoisyPriors(scene.ground_truth, 0.0, {});
   priors.by_image.erase(11);
   MapperOptions options = test::AveragingOnly();
-  options.georegistration.use_in_translation_averaging = true;
+  options.prior_alignment.use_in_translation_averaging = true;
   const MapperResult result = RunMapper(scene.database, options, "synthetic", nullptr, priors);
   ASSERT_EQ(result.reconstructions.size(), 1u);
-  const GeoregistrationSummary& geo = result.summary.components.front().georegistration;
-  ASSERT_TRUE(geo.georegistered) << geo.problem;
+  const PriorAlignmentSummary& geo = result.summary.components.front().prior_alignment;
+  ASSERT_TRUE(geo.aligned) << geo.problem;
   EXPECT_TRUE(geo.used_in_translation_averaging);
   const Reconstruction& model = result.reconstructions.front();
   EXPECT_EQ(model.images.size(), 30u);
@@ -212,17 +212,17 @@ TEST(GeoregisteredMapper, AFrameStandingStillIsPlacedAfterTheRefitWithPriors) {
   EXPECT_LT((CameraCenter(model.images.at(11).cam_from_world) - truth).norm(), 1e-3);
 }
 
-TEST(GeoregisteredMapper, PriorsThatCannotGeoregisterLeaveTheModelAsWithout) {
+TEST(AlignedMapper, PriorsThatCannotAlignLeaveTheModelAsWithout) {
   const SyntheticScene scene = LoopScene();
-  PositionPriors identical;
+  PosePriors identical;
   for (const auto& [id, image] : scene.ground_truth.images)
     identical.by_image[id] = {Eigen::Vector3d(4, 4, 4), Eigen::Vector3d::Ones()};
   const MapperResult with =
       RunMapper(scene.database, test::AveragingOnly(), "synthetic", nullptr, identical);
   const MapperResult without = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
   ASSERT_EQ(with.reconstructions.size(), 1u);
-  EXPECT_FALSE(with.summary.components.front().georegistration.georegistered);
-  EXPECT_NE(with.summary.components.front().georegistration.problem.find("coincide"),
+  EXPECT_FALSE(with.summary.components.front().prior_alignment.aligned);
+  EXPECT_NE(with.summary.components.front().prior_alignment.problem.find("coincide"),
             std::string::npos);
   EXPECT_FALSE(with.geodetic_origin.has_value());
   EXPECT_LT(CenterRmse(with.reconstructions.front(), without.reconstructions.front()), 1e-12);

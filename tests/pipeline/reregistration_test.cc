@@ -7,7 +7,7 @@
 
 #include "ramap/geometry/absolute_pose.h"
 #include "ramap/pipeline/bearings.h"
-#include "ramap/pipeline/structure.h"
+#include "ramap/pipeline/track_triangulation.h"
 #include "ramap/synthetic/synthetic_scene.h"
 #include "test_support.h"
 

@@ -1,11 +1,11 @@
-// Stage 3 of the mapper as rotation_averager uses it: the rotation graph of relative pose records
+// Stage 3 of the mapper as rotation_averager uses it: the view graph of relative pose records
 // and the averaging of a sequence through keyframe windows against an unordered collection.
 #include "ramap/pipeline/rotations.h"
 
 #include <gtest/gtest.h>
 
 #include "ramap/geometry/rotation.h"
-#include "ramap/graph/synthetic_rotation_graph.h"
+#include "ramap/graph/synthetic_view_graph.h"
 
 namespace ramap {
 namespace {
@@ -16,7 +16,7 @@ TEST(RotationStage, RecordsBecomeAGraphNumberedByFirstAppearance) {
       {"b.png", "a.png", q, Eigen::Vector3d::UnitX(), 40, 0},
       {"a.png", "c.png", q, Eigen::Vector3d::UnitX(), 0, 0}};
   std::vector<std::string> names;
-  const RotationGraph graph = RotationGraphOfRecords(records, &names);
+  const ViewGraph graph = ViewGraphOfRecords(records, &names);
   EXPECT_EQ(names, (std::vector<std::string>{"b.png", "a.png", "c.png"}));
   EXPECT_EQ(graph.node_ids, (std::vector<uint32_t>{0, 1, 2}));
   ASSERT_EQ(graph.edges.size(), 2u);
@@ -39,10 +39,10 @@ TEST(RotationStage, EdgeWeightsFollowTheFocalLengthsOnAuto) {
 }
 
 TEST(RotationStage, SequenceThroughKeyframesAndCollectionAtOnceAgree) {
-  SyntheticRotationGraphOptions options;
+  SyntheticViewGraphOptions options;
   options.num_nodes = 120;
   options.noise_deg = 0.5;
-  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(options);
+  const SyntheticViewGraph synthetic = MakeSyntheticViewGraph(options);
   std::vector<uint32_t> order = synthetic.graph.node_ids;
   const RotationStageResult sequence = AverageViewGraphRotations(
       synthetic.graph, order, true, KeyframeOptions(), RotationAveragingOptions());

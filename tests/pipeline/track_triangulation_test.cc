@@ -1,4 +1,4 @@
-#include "ramap/pipeline/structure.h"
+#include "ramap/pipeline/track_triangulation.h"
 
 #include <gtest/gtest.h>
 
@@ -50,9 +50,9 @@ struct Fixture {
   }
 };
 
-TEST(Structure, TriangulatesEveryTrackWithFixedPoses) {
+TEST(TrackTriangulation, TriangulatesEveryTrackWithFixedPoses) {
   Fixture f;
-  StructureSummary summary;
+  TrackTriangulationSummary summary;
   const Reconstruction model =
       BuildReconstruction(f.database, f.poses, f.tracks, f.bearings, {{1, kFocal}}, {}, &summary);
   EXPECT_EQ(model.images.size(), 4u);
@@ -69,7 +69,7 @@ TEST(Structure, TriangulatesEveryTrackWithFixedPoses) {
   }
 }
 
-TEST(Structure, WrongObservationLeavesTheTrackAndUnposedImagesAreSkipped) {
+TEST(TrackTriangulation, WrongObservationLeavesTheTrackAndUnposedImagesAreSkipped) {
   Fixture f;
   f.bearings[3][0] = (f.bearings[3][0] + Eigen::Vector3d(0, 0.05, 0)).normalized();
   f.poses.erase(4);
@@ -81,11 +81,11 @@ TEST(Structure, WrongObservationLeavesTheTrackAndUnposedImagesAreSkipped) {
   EXPECT_EQ(model.images.at(3).points2D[0].point3D_id, kInvalidPoint3DId);
 }
 
-TEST(Structure, TheModelDoesNotDependOnTheThreads) {
+TEST(TrackTriangulation, TheModelDoesNotDependOnTheThreads) {
   Fixture f;
   f.bearings[3][0] = (f.bearings[3][0] + Eigen::Vector3d(0, 0.05, 0)).normalized();
   f.tracks.push_back({{1, 7}, {4, 7}});  // a second track of point 7: its own id, in order
-  StructureSummary one_summary, three_summary;
+  TrackTriangulationSummary one_summary, three_summary;
   const Reconstruction one = BuildReconstruction(f.database, f.poses, f.tracks, f.bearings,
                                                  {{1, kFocal}}, {}, &one_summary, 1);
   const Reconstruction three = BuildReconstruction(f.database, f.poses, f.tracks, f.bearings,

@@ -40,7 +40,7 @@ class TranslationStage : public ::testing::TestWithParam<int> {
         order_(ImageIdsInCaptureOrder(scene_.database)),
         log_(&summary_, nullptr) {
     options_.num_threads = GetParam();
-    graph_ = AcceptedPoseGraph(scene_.database, pairs_, &summary_, &reasons_);
+    graph_ = ViewGraphOfAcceptedPairs(scene_.database, pairs_, &summary_, &reasons_);
     for (const auto& [id, image] : scene_.ground_truth.images)
       rotations_[id] = image.cam_from_world.rotation;
   }
@@ -87,8 +87,8 @@ class TranslationStage : public ::testing::TestWithParam<int> {
   MapperSummary summary_;
   StageLog log_;
   std::map<uint32_t, std::string> reasons_;
-  PositionPriors priors_;
-  RotationGraph graph_;
+  PosePriors priors_;
+  ViewGraph graph_;
   std::map<uint32_t, Eigen::Quaterniond> rotations_;
 };
 

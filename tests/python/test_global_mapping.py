@@ -51,6 +51,21 @@ def test_options_flat_and_nested_are_the_same_options(default_scene):
     assert "bundle adjustment" not in stages
 
 
+def test_former_option_names_still_work(default_scene, tmp_path):
+    """Renamed options keep their former names (README, "Renamed"), in Python and on the command
+    line, and summary.json states them under the names they have now."""
+    database = default_scene / "database.db"
+    ramap.global_mapping(database, "", tmp_path / "python",
+                         options={"Mapper.refine": 0, "PoseGraph": {"keyframe_interval": 12}})
+    options = json.loads((tmp_path / "python" / "summary.json").read_text())["run"]["options"]
+    assert options["ViewGraph"]["keyframe_interval"] == 12
+    assert "PoseGraph" not in options
+    run_cli("mapper", "--database_path", database, "--output_path", tmp_path / "sparse",
+            "--Mapper.refine", "0", "--PoseGraph.keyframe_interval", "12")
+    summary = json.loads((tmp_path / "sparse" / "summary.json").read_text())
+    assert summary["run"]["options"]["ViewGraph"]["keyframe_interval"] == 12
+
+
 def cli_error(*option_args):
     finished = run_cli("mapper", "--database_path", "unused.db", "--output_path", "unused",
                        *option_args, check=False)
@@ -131,7 +146,7 @@ def test_ctrl_c_stops_a_long_run_and_leaves_nothing(long_scene, tmp_path):
 
 
 def test_in_place_of_pycolmap_incremental_mapping_as_hloc_calls_it(default_scene, tmp_path):
-    """README's hloc snippet, and then what hloc's run_reconstruction does with the result."""
+    """docs/python.md's hloc snippet, and then what hloc's run_reconstruction does with the result."""
     incremental_mapping = (
         lambda database_path, image_path, output_path, *options, **named: ramap.global_mapping(
             database_path, image_path, output_path))

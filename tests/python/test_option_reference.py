@@ -18,7 +18,9 @@ def test_docs_options_is_the_declarations():
 def test_mapper_help_shows_every_declaration_with_its_default():
     help_text = run_cli("mapper", "-h").stdout
     for name, default in ramap.mapper_option_defaults().items():
-        shown = re.search(rf"^\s*--{re.escape(name)} (\S+)(?:\s|$)", help_text, re.MULTILINE)
+        # A renamed option lists its former names after its name: "--New,--Old TYPE=default".
+        shown = re.search(rf"^\s*--{re.escape(name)}(?:,--[\w.]+)* (\S+)(?:\s|$)", help_text,
+                          re.MULTILINE)
         assert shown, name
         type_and_default = shown.group(1)
         if default:
@@ -32,9 +34,10 @@ def every_commands_options():
     assert "mapper" in commands and "synthesize" in commands
     known = {}
     for command in commands:
-        for match in re.finditer(r"^\s*(--[\w.]+) (\S+)(?:\s|$)", run_cli(command, "-h").stdout,
-                                 re.MULTILINE):
-            known[match.group(1)] = match.group(2).partition("=")[2]
+        for match in re.finditer(r"^\s*(--[\w.]+(?:,--[\w.]+)*) (\S+)(?:\s|$)",
+                                 run_cli(command, "-h").stdout, re.MULTILINE):
+            for name in match.group(1).split(","):
+                known[name] = match.group(2).partition("=")[2]
     return known
 
 

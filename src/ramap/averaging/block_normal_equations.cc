@@ -76,8 +76,8 @@ BlockNormalEquations::BlockNormalEquations(const Eigen::SparseMatrix<double>& B,
 
 // Column by column: the rows below the diagonal that share a block with the column, found through
 // the blocks that hold it (a stamp per row instead of a sort of every block's entries: the blocks
-// share most entries, and their triangles were 12 million on a 4541-frame drive whose pattern has
-// a tenth), and each block's entries pointed at their slots as the column is laid out.
+// share most entries, so their triangles together are far larger than the pattern on a drive),
+// and each block's entries pointed at their slots as the column is laid out.
 void BlockNormalEquations::BuildPattern(int num_columns) {
   const int num_blocks = static_cast<int>(column_begin_.size()) - 1;
   // Each block's lower triangle, row by row, as value_index_ lays it out.

@@ -3,11 +3,11 @@
 // (each in one block only, as a per-pair scale is) are eliminated: a held one at a fixed value
 // (moved to the right-hand side), a free one at its block's minimiser (the block's Schur
 // complement). The equations are over the other columns only, so a problem of a few thousand
-// cameras and tens of thousands of pair scales factorises as a camera system (measured on a
-// 1101-frame drive: the scales' single-column supernodes had made each CHOLMOD factorisation
-// several times slower than the camera system's). The sparsity pattern, and where each block's
-// entries go in it, are fixed once, so IRLS steps cost a weighted sum of the blocks' small Gram
-// matrices and a numeric refactorisation, not a sparse matrix product.
+// cameras and tens of thousands of pair scales factorises as a camera system (the scales'
+// single-column supernodes made each CHOLMOD factorisation much slower; BENCHMARKS.md, "Scale").
+// The sparsity pattern, and where each block's entries go in it, are fixed once, so IRLS steps
+// cost a weighted sum of the blocks' small Gram matrices and a numeric refactorisation, not a
+// sparse matrix product.
 #pragma once
 
 #include <Eigen/Core>
@@ -46,7 +46,8 @@ class BlockNormalEquations {
   // The Gram matrix of a block, sum_r B_rc B_rc' over its 3 rows, and its Schur complement are
   // computed at each assembly from the block's column vectors (3 entries each) rather than stored:
   // a track block of four cameras has 12 columns, whose 144 Gram entries and their pattern indices
-  // took 270 MiB on a 4541-frame drive. Blocks are stored flat, by offsets.
+  // were a large share of a long drive's memory (BENCHMARKS.md, "Scale"). Blocks are stored flat,
+  // by offsets.
   std::vector<int> column_begin_;         // per block, its first entry in kept_ and vectors_
   std::vector<int> kept_;                 // reduced column indices, increasing within a block
   std::vector<Eigen::Vector3d> vectors_;  // each kept column's 3 entries in its block

@@ -8,7 +8,7 @@
 // forward past b span half a plane and hold any direction and its opposite). A direction's
 // consistency is the lower quartile of its cycles' residuals: a wrong direction spoils all of
 // them, a right one only those it shares with a wrong one. A pair whose matches obey a wrong pose
-// (repeated structure aliased) gives a direction that its cycles do not support, and it must not
+// (repeated facades aliased) gives a direction that its cycles do not support, and it must not
 // serve as a row nor as the reference of the tracks it sees: the widest pair of a track, often
 // such a pair, sets the depth of each of its predictions (translation_averaging.h), and its wrong
 // matches would put wrong observations on the tracks.

@@ -3,7 +3,7 @@
 // With both rotations known, the baseline c2 - c1 of a pair is coplanar with every pair of matched
 // world rays (d1, d2), so it is the null vector of the stacked normals d1 x d2; this is the
 // rotation-known form of the epipolar constraint (cf. Kneip & Lynen 2013, who use the same
-// eigenvalue structure). Re-estimating with global rotations removes the error that the pair's own
+// eigenvalues). Re-estimating with global rotations removes the error that the pair's own
 // rotation estimate left in its translation.
 #pragma once
 
@@ -29,20 +29,18 @@ struct PairDirectionOptions {
   double min_cheirality_ratio = 0.7;
   // A pair's direction is estimated from at most this many of its inlier matches, evenly spaced
   // through them (0: all); the caller picks them (EvenSubset), as it gathers their bearings. A
-  // direction is 3 numbers; the synthetic drives' pairs have 641 inliers on average, and their
-  // reweighting rounds were the translation stage's largest cost (1.4 of 5.8 s on 4541 frames).
-  // With 256: 0.6 s, and the drives' ATE the same or better (scripts/bench_scale.sh: 1000 frames
-  // 0.55 -> 0.49%, 2000 0.28 -> 0.18%, 4541 0.09%, KITTI 06 0.19%); spacing the 256 differently
-  // moved these by up to 0.05 points, and 128 was no better.
+  // direction is 3 numbers, and the reweighting rounds over every inlier of the synthetic drives'
+  // pairs (hundreds each) were the translation stage's largest cost: 256 take much less time at
+  // the same accuracy or better, and fewer were no better (BENCHMARKS.md, "Scale").
   int max_num_matches = 256;
   // When fewer than this share of the matches agree with the reweighted direction (coplanarity
   // residual within residual_scale_deg), the rounds start again from the best of
   // num_sampled_starts two-match directions, and the direction more matches agree with is kept.
   // With 10% of random matches the plain start fails and the restart recovers it
   // (tests/averaging/translation_averaging_test.cc). Off (0) by default: the agreement test does
-  // not know a pair's parallax, and 0.5 restarts about one pair in five of the synthetic drives
-  // (their low-parallax pairs), which then moved ATE by -0.15 to +0.07 points
-  // (BENCHMARKS.md, "Scale"). 0.5 is the share to try on matches with many wrong ones.
+  // not know a pair's parallax: 0.5 restarts many low-parallax pairs of the synthetic drives and
+  // moves the drives' accuracy either way (BENCHMARKS.md, "Scale"). 0.5 is the share to try on
+  // matches with many wrong ones.
   double min_agreeing_share = 0.0;
   // Two-match directions tried by the restart: with 30% wrong matches, each sample holds one with
   // probability 0.51, all 32 with 4e-10 (were they drawn at random).

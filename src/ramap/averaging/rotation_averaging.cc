@@ -55,12 +55,11 @@ Eigen::Quaterniond EdgeError(const RelativeRotationEdge& edge, const Eigen::Quat
 
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
-// A late IRLS step converges in ~3 conjugate-gradient iterations, but a step that reweights much
-// gives up after a few, wasting them: below this many iterations' worth of a factorisation the
-// attempts cost more than they save. Measured budgets: the 4541-frame drive's whole graph 22 (the
-// loops' fill; IRLS 0.43 -> 0.12 s), the 1101-frame KITTI 06 drive 5, the SE-Sync graphs 0-4 and
-// the synthetic 10,000 cameras 2-3 (with a budget of 4, torus3D took 0.79-0.88 s instead of
-// 0.60-0.62 s), the keyframe windows less.
+// A late IRLS step converges in a few conjugate-gradient iterations, but a step that reweights
+// much gives up after a few, wasting them: below this many iterations' worth of a factorisation
+// the attempts cost more than they save. A long drive's whole graph, whose loops fill its factor,
+// is far above it and gains most; the SE-Sync graphs, the synthetic 10,000 cameras and the
+// keyframe windows are below it, and a lower bound made them slower (BENCHMARKS.md, "Scale").
 constexpr int kMinPcgIterationsPerFactorization = 10;
 
 // The reweighted tangent-space least-squares problem on a fixed edge set:
@@ -70,7 +69,7 @@ constexpr int kMinPcgIterationsPerFactorization = 10;
 // when the factor is costly enough, first tries conjugate gradients preconditioned by the last one.
 class TangentIrls {
  public:
-  TangentIrls(const RotationGraph& graph, const std::vector<int>& edge_a,
+  TangentIrls(const ViewGraph& graph, const std::vector<int>& edge_a,
               const std::vector<int>& edge_b, const std::vector<size_t>& edges,
               const std::vector<bool>& active_nodes, const std::vector<double>& base_weights,
               const PreconditionedCgOptions& pcg)
@@ -239,7 +238,7 @@ class TangentIrls {
     return static_cast<int>(std::min(1e6, std::floor(common.fl / iteration_flops)));
   }
 
-  const RotationGraph& graph_;
+  const ViewGraph& graph_;
   const std::vector<int>& edge_a_;
   const std::vector<int>& edge_b_;
   std::vector<size_t> edges_;
@@ -289,7 +288,7 @@ struct IndexedEdges {
   std::vector<int> b;  // node position of edge.j
 };
 
-IndexedEdges IndexEdges(const RotationGraph& graph) {
+IndexedEdges IndexEdges(const ViewGraph& graph) {
   const auto index = NodeIndex(graph);
   IndexedEdges indexed;
   indexed.a.reserve(graph.edges.size());
@@ -303,7 +302,7 @@ IndexedEdges IndexEdges(const RotationGraph& graph) {
 
 // Active nodes = the largest component of the kept edges among `candidates`; kept edges leaving
 // it are marked disconnected.
-void RestrictToLargestComponent(const RotationGraph& graph, const IndexedEdges& indexed, int round,
+void RestrictToLargestComponent(const ViewGraph& graph, const IndexedEdges& indexed, int round,
                                 RotationAveragingResult* result, std::vector<bool>* keep) {
   std::vector<bool> usable(*keep);
   for (size_t e = 0; e < graph.edges.size(); ++e) {
@@ -343,15 +342,15 @@ std::vector<size_t> KeptEdges(const std::vector<bool>& keep) {
   return edges;
 }
 
-int MaxDegree(const RotationGraph& graph, const std::vector<bool>& keep) {
+int MaxDegree(const ViewGraph& graph, const std::vector<bool>& keep) {
   const std::vector<int> degree = NodeDegrees(graph, keep);
   return degree.empty() ? 0 : *std::max_element(degree.begin(), degree.end());
 }
 
 // The Eriksson et al. bound of the kept graph restricted to its estimated nodes (radians).
-double KeptGraphBound(const RotationGraph& graph, const std::vector<bool>& keep,
+double KeptGraphBound(const ViewGraph& graph, const std::vector<bool>& keep,
                       const std::vector<bool>& estimated, double* lambda2, int* max_degree) {
-  RotationGraph sub;
+  ViewGraph sub;
   std::vector<bool> sub_keep;
   for (size_t k = 0; k < graph.node_ids.size(); ++k) {
     if (estimated[k]) sub.node_ids.push_back(graph.node_ids[k]);
@@ -402,7 +401,7 @@ double EdgeResidualDeg(const RelativeRotationEdge& edge, const Eigen::Quaternion
   return AngleOf(EdgeError(edge, R_i, R_j)) * kRadToDeg;
 }
 
-double ChordalCost(const RotationGraph& graph, const std::vector<Eigen::Quaterniond>& rotations,
+double ChordalCost(const ViewGraph& graph, const std::vector<Eigen::Quaterniond>& rotations,
                    const std::vector<bool>& keep, const std::vector<bool>& estimated) {
   const IndexedEdges indexed = IndexEdges(graph);
   double cost = 0.0;
@@ -420,7 +419,7 @@ double ChordalCost(const RotationGraph& graph, const std::vector<Eigen::Quaterni
 namespace {
 
 // Every edge's residual (deg) under the current rotations; NaN where a node is not estimated.
-void ComputeEdgeResiduals(const RotationGraph& graph, const IndexedEdges& indexed,
+void ComputeEdgeResiduals(const ViewGraph& graph, const IndexedEdges& indexed,
                           RotationAveragingResult* result) {
   for (size_t e = 0; e < graph.edges.size(); ++e) {
     const int a = indexed.a[e];
@@ -435,7 +434,7 @@ void ComputeEdgeResiduals(const RotationGraph& graph, const IndexedEdges& indexe
 // A node most of whose kept edges exceed the threshold is more likely mis-estimated than
 // surrounded by outliers; pruning would strand it on whichever edges happen to agree with its
 // wrong estimate. Such nodes (at least three kept edges) are suspect.
-std::vector<bool> SuspectNodes(const RotationGraph& graph, const IndexedEdges& indexed,
+std::vector<bool> SuspectNodes(const ViewGraph& graph, const IndexedEdges& indexed,
                                const std::vector<bool>& keep, const RotationAveragingResult& result,
                                double threshold_deg) {
   const size_t n = graph.node_ids.size();
@@ -457,7 +456,7 @@ std::vector<bool> SuspectNodes(const RotationGraph& graph, const IndexedEdges& i
 // Re-initialises each suspect node from the consensus of its neighbours (the candidate rotation
 // most of the others agree with). A node whose neighbours agree with its current estimate is
 // right after all and is no longer suspect: its edges are pruned as usual. True when a node moved.
-bool ReinitializeSuspectNodes(const RotationGraph& graph, const IndexedEdges& indexed,
+bool ReinitializeSuspectNodes(const ViewGraph& graph, const IndexedEdges& indexed,
                               const std::vector<bool>& keep, double threshold_deg,
                               std::vector<bool>* suspect, RotationAveragingResult* result) {
   const size_t n = graph.node_ids.size();
@@ -543,10 +542,10 @@ struct RobustIrls {
   const std::vector<double>& base_weights;
 };
 
-// Pruning rounds: edges above the threshold (alpha_max, or the strong-duality bound) are pruned,
-// suspect nodes re-initialised, and the robust IRLS run again on the largest component, until a
-// round changes nothing.
-void RunPruningRounds(const RotationGraph& graph, const IndexedEdges& indexed,
+// Pruning rounds: edges above the threshold (the adaptive one, alpha_max_deg, or the
+// strong-duality bound) are pruned, suspect nodes re-initialised, and the robust IRLS run again on
+// the largest component, until a round changes nothing or max_pruning_rounds have run.
+void RunPruningRounds(const ViewGraph& graph, const IndexedEdges& indexed,
                       const RotationAveragingOptions& options, const RobustIrls& irls,
                       std::vector<bool>* keep, RotationAveragingResult* result) {
   const size_t n = graph.node_ids.size();
@@ -587,7 +586,7 @@ void RunPruningRounds(const RotationGraph& graph, const IndexedEdges& indexed,
 
 // The global optimality certificate on the kept graph: the chordal optimum from the robust
 // solution, its largest residual against the strong-duality bound of the kept graph.
-void ComputeCertificate(const RotationGraph& graph, const IndexedEdges& indexed,
+void ComputeCertificate(const ViewGraph& graph, const IndexedEdges& indexed,
                         const std::vector<bool>& keep, const RotationAveragingOptions& options,
                         RotationAveragingResult* result) {
   RotationCertificate& certificate = result->certificate;
@@ -627,7 +626,7 @@ void ComputeCertificate(const RotationGraph& graph, const IndexedEdges& indexed,
 
 }  // namespace
 
-RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
+RotationAveragingResult AverageRotationsFrom(const ViewGraph& graph,
                                              const std::vector<Eigen::Quaterniond>& initial,
                                              const std::vector<bool>& initial_known,
                                              const RotationAveragingOptions& options) {
@@ -661,7 +660,7 @@ RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
   // L1RA, then the first robust IRLS run.
   timer.Restart();
   // L1 reweighting moves the weights far at every step, so an old factor preconditions poorly
-  // there (13-27 iterations on the KITTI 06 drive, slower than refactorising): PCG only from IRLS.
+  // there (slower than refactorising on a drive; BENCHMARKS.md, "Scale"): PCG only from IRLS.
   TangentIrls solver(graph, indexed.a, indexed.b, KeptEdges(keep), result.estimated, base_weights,
                      PreconditionedCgOptions{0});
   const double l1_floor = options.l1_min_residual_deg * kDegToRad;
@@ -691,7 +690,7 @@ RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
   return result;
 }
 
-RotationAveragingResult AverageRotations(const RotationGraph& graph,
+RotationAveragingResult AverageRotations(const ViewGraph& graph,
                                          const RotationAveragingOptions& options) {
   const size_t n = graph.node_ids.size();
   return AverageRotationsFrom(graph,
@@ -699,7 +698,7 @@ RotationAveragingResult AverageRotations(const RotationGraph& graph,
                               std::vector<bool>(n, false), options);
 }
 
-RotationAveragingResult AverageRotationsInWindows(const RotationGraph& graph,
+RotationAveragingResult AverageRotationsInWindows(const ViewGraph& graph,
                                                   const Keyframes& keyframes,
                                                   const RotationAveragingOptions& options) {
   options.Check();
@@ -725,7 +724,7 @@ RotationAveragingResult AverageRotationsInWindows(const RotationGraph& graph,
       any = any || local_edge[e];
     }
     if (!any) continue;
-    const RotationGraph local = Subgraph(graph, local_edge, nullptr);
+    const ViewGraph local = Subgraph(graph, local_edge, nullptr);
     const RotationAveragingResult local_result = AverageRotations(local, local_options);
     // Gauge G of this window in the stitched frame: R_stitched = R_local G.
     Eigen::Quaterniond G = Eigen::Quaterniond::Identity();
@@ -799,7 +798,7 @@ void SolveChordalSystem(const std::vector<Eigen::Triplet<double, int>>& triplets
 
 }  // namespace
 
-ChordalAveragingResult AverageRotationsChordal(const RotationGraph& graph, bool refine,
+ChordalAveragingResult AverageRotationsChordal(const ViewGraph& graph, bool refine,
                                                int max_refine_iterations,
                                                double refine_step_tolerance_deg) {
   Timer timer;

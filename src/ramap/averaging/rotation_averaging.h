@@ -6,17 +6,19 @@
 //   3. IRLS with a robust loss (Geman-McClure by default) on the same linearisation;
 //   4. pruning: edges whose residual angle exceeds a threshold are removed and IRLS re-runs, at
 //      most max_pruning_rounds times; the threshold is a multiple of the kept edges' median
-//      residual within [adaptive_min_deg, alpha_max_deg] (the default), the paper's fixed angle
-//      alpha_max (45 deg) or the strong-duality bound of Eriksson, Olsson, Kahl, Chin ("Rotation
-//      averaging and strong duality", CVPR 2018);
+//      residual in the first round, held for the later ones, within [adaptive_min_deg,
+//      alpha_max_deg] (the default), the paper's fixed angle alpha_max_deg (45 deg) or, in every
+//      round, the strong-duality bound of Eriksson, Olsson, Kahl, Chin ("Rotation averaging and
+//      strong duality", CVPR 2018);
 //   5. certificate: on the kept graph, the chordal cost sum ||R_j - R_ij R_i||_F^2 is brought to a
-//      stationary point from the robust solution, and the solution is certified globally optimal
-//      (for that chordal problem on the kept edges) when every kept residual is below the bound
-//      alpha_max = 2 asin( sqrt(1/4 + lambda_2 / (2 d_max)) - 1/2 ) (graph/fiedler.h). A triangle
-//      whose cycle angle exceeds 3 alpha_max proves no solution can pass, and then the chordal
-//      refinement is skipped (graph/cycle_consistency.h).
+//      stationary point from the robust solution, and that stationary point is certified globally
+//      optimal (for the chordal problem on the kept edges) when every kept residual is at most the
+//      bound alpha = 2 asin( sqrt(1/4 + lambda_2 / (2 d_max)) - 1/2 ) (graph/fiedler.h). The
+//      result's rotations stay the robust solution either way. A triangle whose cycle angle
+//      exceeds 3 alpha proves no solution can pass, and then the chordal refinement is skipped
+//      (graph/cycle_consistency.h).
 //
-// Conventions in graph/rotation_graph.h: R_i is cam_from_world, an edge holds R_ij = R_j R_i^T.
+// Conventions in scene/relative_rotations.h: R_i is cam_from_world, an edge holds R_ij = R_j R_i^T.
 // Updates are right perturbations R_k <- R_k exp([w_k]_x). With that linearisation every edge row
 // of the 3E x 3N system is (-I, +I), so the normal matrix is (weighted Laplacian) (x) I_3: it is
 // solved as one N x N Laplacian (gauge: one node held fixed) with three right-hand sides by
@@ -33,7 +35,7 @@
 
 #include "ramap/averaging/preconditioned_cg.h"
 #include "ramap/graph/keyframes.h"
-#include "ramap/graph/rotation_graph.h"
+#include "ramap/graph/view_graph_algorithms.h"
 
 namespace ramap {
 
@@ -77,8 +79,9 @@ struct RotationAveragingOptions {
   // ceiling of the kAdaptive threshold.
   double alpha_max_deg = 45.0;
   // kAdaptive: edges are pruned above adaptive_multiplier times the median residual of the kept
-  // edges (what noise gives in this graph), but never below adaptive_min_deg: a pair aliased by
-  // repeated structure a few degrees off is an inlier to a fixed 45 deg and to the robust loss
+  // edges after the first IRLS run (what noise gives in this graph; the later rounds keep that
+  // threshold), but never below adaptive_min_deg and never above alpha_max_deg: a pair aliased by
+  // repeated facades a few degrees off is an inlier to a fixed 45 deg and to the robust loss
   // alike, and bends a long sequence.
   double adaptive_multiplier = 6.0;
   double adaptive_min_deg = 1.0;
@@ -86,9 +89,10 @@ struct RotationAveragingOptions {
   int max_pruning_rounds = 3;
   // In kFixedAngle and kAdaptive modes, a node with at least 3 kept edges of which a strict
   // majority exceed the threshold is taken as mis-estimated rather than surrounded by outliers:
-  // its edges are not pruned in that round and it is re-initialised from the neighbour prediction that most other
-  // predictions agree with (within the threshold). Without this, an L1 start that left a node far off
-  // strands it on an outlier edge once its inlier edges are pruned (seen at 30% outliers).
+  // its edges are not pruned in that round and it is re-initialised from the neighbour prediction
+  // that most other predictions agree with (within the threshold). Without this, an L1 start that
+  // left a node far off strands it on an outlier edge once its inlier edges are pruned (seen with
+  // 30% outlier edges).
   bool reinitialize_suspect_nodes = true;
   // Scale IRLS weights by the edges' own weights (inlier counts). Off here as in Chatterjee &
   // Govindu; the mapper turns it on when every focal length is known (MapperOptions::
@@ -101,18 +105,19 @@ struct RotationAveragingOptions {
   double certificate_step_tolerance_deg = 1e-8;
   // Before the chordal refinement, look for a triangle of kept edges whose cycle angle / 3 exceeds
   // the bound (graph/cycle_consistency.h): then no stationary point can be certified and the
-  // refinement is skipped. Measured on the 4541-frame drive, whose aliased edges are down-weighted
-  // but kept: the certificate went from 0.6 s to ~0.15 s with the same (negative) answer.
+  // refinement is skipped. It pays on graphs whose aliased edges are down-weighted but kept, as on
+  // the long synthetic drives: the certificate gives the same (negative) answer in a fraction of
+  // the time.
   bool certificate_cycle_check = true;
 
   // Throws InputError("--RotationAveraging.<option>", "must be ..., got V") for the first option
-  // out of range.
+  // out of range (named RotationAveragingOptions::<field> when no command line sets it).
   void Check() const;
 };
 
 enum class EdgeStatus {
   kKept,
-  kPrunedResidual,      // residual angle above alpha_max after an IRLS run
+  kPrunedResidual,      // residual angle above the round's pruning threshold after an IRLS run
   kPrunedDisconnected,  // an end node is outside the largest connected component
 };
 
@@ -144,8 +149,8 @@ struct RotationCertificate {
   double max_robust_residual_deg = 0.0;  // of the robust solution, kept edges
   int iterations = 0;                    // chordal refinement iterations
   // max over the triangles checked of cycle angle / 3: a lower bound on the largest kept residual
-  // of any rotations. Above bound_deg, the refinement is skipped (refinement_skipped) and
-  // max_residual_deg, iterations and rotations stay those of the robust solution.
+  // of any rotations. Above bound_deg, the refinement is skipped (refinement_skipped, iterations 0)
+  // and max_residual_deg and rotations are those of the robust solution.
   double cycle_residual_lower_bound_deg = 0.0;
   bool refinement_skipped = false;
   std::vector<Eigen::Quaterniond> rotations;  // the chordal stationary point, per node position
@@ -169,14 +174,14 @@ struct RotationAveragingResult {
   RotationAveragingTimings timings;
 };
 
-// The full pipeline from a maximum-spanning-tree initialisation. Throws std::invalid_argument when
-// options fail Check() or the graph is malformed (see NodeIndex).
-RotationAveragingResult AverageRotations(const RotationGraph& graph,
+// The full pipeline from a maximum-spanning-tree initialisation. Throws InputError when options
+// fail Check(), std::invalid_argument when the graph is malformed (see NodeIndex).
+RotationAveragingResult AverageRotations(const ViewGraph& graph,
                                          const RotationAveragingOptions& options);
 
 // The same from given rotations (per node position); nodes with initial_known[k] == false are
 // initialised along the maximum spanning tree from the known ones.
-RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
+RotationAveragingResult AverageRotationsFrom(const ViewGraph& graph,
                                              const std::vector<Eigen::Quaterniond>& initial,
                                              const std::vector<bool>& initial_known,
                                              const RotationAveragingOptions& options);
@@ -185,7 +190,7 @@ RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
 // ends in the window) is averaged on its own, window solutions are chained through their shared
 // keyframes into a global initialisation (a window sharing no frame with earlier ones is attached
 // through its heaviest edge to them), and the whole graph is then averaged from it.
-RotationAveragingResult AverageRotationsInWindows(const RotationGraph& graph,
+RotationAveragingResult AverageRotationsInWindows(const ViewGraph& graph,
                                                   const Keyframes& keyframes,
                                                   const RotationAveragingOptions& options);
 
@@ -199,13 +204,13 @@ struct ChordalAveragingResult {
   int refine_iterations = 0;
   double seconds = 0.0;
 };
-ChordalAveragingResult AverageRotationsChordal(const RotationGraph& graph, bool refine = true,
+ChordalAveragingResult AverageRotationsChordal(const ViewGraph& graph, bool refine = true,
                                                int max_refine_iterations = 200,
                                                double refine_step_tolerance_deg = 1e-8);
 
 // sum over edges (with keep[e], all when empty; skipping edges with an end not estimated, when
 // `estimated` is given) of ||R_j - R_ij R_i||_F^2 = 8 sin^2(angle / 2); unweighted.
-double ChordalCost(const RotationGraph& graph, const std::vector<Eigen::Quaterniond>& rotations,
+double ChordalCost(const ViewGraph& graph, const std::vector<Eigen::Quaterniond>& rotations,
                    const std::vector<bool>& keep = {}, const std::vector<bool>& estimated = {});
 
 // Residual angle (degrees) of one edge: the angle of R_j^T R_ij R_i.

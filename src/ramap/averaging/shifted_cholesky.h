@@ -1,10 +1,9 @@
 // Cholesky factorisation of the normal equations of translation averaging, shifted by a small
 // ridge when they are only semidefinite. Small systems are factorised densely: a translation
 // window's ~150 camera columns couple nearly all with all, and CHOLMOD's supernodal path (its
-// analysis, OpenMP and BLAS calls made for large fronts) took 0.48 ms per factorisation of them
-// where a dense LLT takes 0.14 ms (4541-frame drive, 818 factorisations over 152 windows; the
-// windows' solves 0.94 -> 0.79 s on 2 threads). Large systems go to CHOLMOD, the pattern analysed
-// once.
+// analysis, OpenMP and BLAS calls made for large fronts) takes far longer per factorisation of
+// them than a dense LLT (BENCHMARKS.md, "Scale"). Large systems go to CHOLMOD, the pattern
+// analysed once.
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -17,8 +16,8 @@ namespace ramap {
 
 struct ShiftedCholeskyOptions {
   // Systems with at most this many columns are factorised densely (a dense LLT costs n^3 / 3
-  // multiplications: 42 million at 500, a few ms). kitti07_first160's one system (477 columns,
-  // 5 factorisations) takes as long either way.
+  // multiplications: 42 million at 500). Near the bound both ways take as long, as on the
+  // one system of the 160-frame real sequence.
   int max_dense_columns = 500;
 };
 
@@ -30,10 +29,10 @@ class ShiftedCholesky {
 
   // Factorises matrix + shift I (lower triangle read) with a shift of 1e-10, which keeps a weakly
   // constrained camera defined without moving the solution. When that fails (a camera
-  // constrained only along a line, IRLS weights spanning many orders of magnitude: measured on
+  // constrained only along a line, IRLS weights spanning many orders of magnitude: seen on
   // kitti07_first160 from ORB with a focal length guessed 2x too long, which lost its whole
   // model), the shift grows from 1e-10 of the largest diagonal entry until the factorisation
-  // succeeds. Not relative from the start: exact position priors weigh ~1e8 and a relative shift
+  // succeeds. Not relative from the start: exact pose priors weigh ~1e8 and a relative shift
   // would pull every camera by millimetres. Returns the shift; throws StageFailure when no shift
   // works or an entry is not finite.
   double Factorize(const Eigen::SparseMatrix<double>& matrix);

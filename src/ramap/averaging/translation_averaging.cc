@@ -623,8 +623,8 @@ namespace {
 // Pair rows: c_j - c_i = s_ij d_ij with a scale s_ij >= 1 per pair (Ozyesil & Singer, "Robust
 // camera location estimation by convex programming", CVPR 2015). The bound fixes the scale and
 // makes the problem convex; without it the homogeneous track system admits collapsed solutions
-// (on KITTI 07 the L1 solution on a sphere put all the scale on the first 50 frames and the other
-// 110 on one point).
+// (normalised on a sphere instead, the L1 solution of a drive put all the scale on its first
+// frames and the others on one point).
 struct PairRow {
   uint32_t i = 0, j = 0;
   Eigen::Vector3d direction;

@@ -11,8 +11,8 @@
 // Neither residual falls when every window shrinks, so the windows cannot collapse onto a point (a
 // linear direction constraint, (I - d d^T)(c_j - c_i), would reward exactly that). The placements
 // start from the least-squares chain of overlaps (linear) and are refined with the directions by
-// Ceres under Huber losses, a similarity pose graph with the rotations fixed.
-// This is the back-end structure of "Pushing the Envelope of Rotation Averaging for Visual SLAM"
+// Ceres under Huber losses, a similarity view graph with the rotations fixed.
+// This is the back end of "Pushing the Envelope of Rotation Averaging for Visual SLAM"
 // (Li, Yuan, Latecki, Ling) applied to positions: dense local windows solved alone, joined by
 // their shared frames and the loop edges.
 #pragma once
@@ -32,21 +32,18 @@ struct WindowAlignmentOptions {
   // wrongly pulls on its neighbours with a bounded force.
   double huber_overlap_residuals = 3.0;
   // A cross direction's noise (radians): angles below it are weighed as squares, beyond as their
-  // size (Huber), so that an aliased pair (12-40 deg off) pulls with a bounded force. Measured on
-  // the synthetic drives of scripts/bench_scale.sh (ATE / path at 4541 frames of KITTI 00 and on
-  // the KITTI 06 drive): 0.01 gives 0.01% and 0.23%, 0.02 0.05% and 0.21%, 0.03 0.03% and 0.20%,
-  // 0.05 0.10% and 0.20%.
+  // size (Huber), so that an aliased pair (tens of degrees off) pulls with a bounded force. On the
+  // synthetic drives of scripts/bench_scale.sh a larger sigma let the longest drive drift more and
+  // changed little on the shorter one.
   double direction_sigma_rad = 0.01;
   // Ceres iterations with the cross directions; 0: the least-squares chain of overlaps alone.
-  // At 4541 frames Ceres converges after 77 (ATE 0.01%; stopped at 50: 0.05%), on the KITTI 06
-  // drive after 81.
+  // The cap is well above what the long synthetic drives need to converge; stopping them before
+  // they converge left them less accurate.
   int max_num_iterations = 200;
   // Cross directions used per pair of windows at most (evenly spread over theirs); 0: all. A
   // revisit joins two windows by up to hundreds of pairs, which say much the same about their
-  // eight unknowns. Measured (scripts/bench_scale.sh): the same ATE at 20, 50 and all (0.28%,
-  // 0.09%, 0.19% on 2000 and 4541 frames of KITTI 00 and on KITTI 06); translation averaging at
-  // 4541 frames 6.75 s with all, 6.55 s at 20 (one run each: within the machine's noise). It
-  // bounds the alignment's cost where loops are many.
+  // eight unknowns: the synthetic drives of scripts/bench_scale.sh are as accurate with 20 as with
+  // all, and no slower. It bounds the alignment's cost where loops are many.
   int max_directions_per_window_pair = 20;
   int num_threads = 1;  // Ceres's
 };

@@ -107,8 +107,8 @@ void WriteTableRow(const Comparison& comparison, const MapperRun& run, std::ostr
   out << " |\n";
 }
 
-// "Against GLOMAP (AUC@3 a, s seconds): ramap+BA is 12.0x faster at AUC@3 b; ..." for the runs
-// after it (ramap's).
+// "Against GLOMAP (AUC@3 a, t s): ramap+BA r.rx as fast at AUC@3 b; ..." for the runs after it
+// (ramap's); "-" for a ratio or an AUC that cannot be given.
 void WriteGlomapRatios(const Comparison& comparison, std::ostream& out) {
   const MapperRun* glomap = GlomapRun(comparison);
   if (glomap == nullptr) return;

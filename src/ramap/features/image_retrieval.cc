@@ -160,7 +160,7 @@ GlobalDescriptors ComputeGlobalDescriptors(const FeatureDatabase& database,
   const int dim = FloatDimension(cols);
   // Training samples evenly drawn from every image's voting descriptors; only those are converted
   // (the voting descriptors are selected again for the VLAD pass below rather than kept: as floats
-  // they would take 2.5 GB at 5000 images).
+  // they would take gigabytes on collections of thousands of images).
   const size_t per_image = std::max<size_t>(1, options.max_training_descriptors / image_ids.size());
   std::vector<float> samples;
   for (const uint32_t id : image_ids) {

@@ -6,8 +6,8 @@
 //   - exhaustive: every pair.
 // Every pair of exhaustive matching and a video's loop candidates are screened preemptively
 // before they are matched in full; a video's next frames and retrieval's neighbours are not
-// (retrieval is the screen: on a synthetic collection the screen's 100 features cut its pairs to
-// a tenth, most of them pairs the mapper needs).
+// (retrieval is the screen: screening its neighbours again with 100 features dropped most of
+// them on a synthetic collection, pairs the mapper needs).
 #pragma once
 
 #include <cstdint>

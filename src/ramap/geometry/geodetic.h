@@ -1,6 +1,6 @@
 // Geodetic coordinates (WGS84 latitude, longitude, ellipsoidal height) and the local metric frames
-// ramap writes georegistered models in. Every conversion is GeographicLib's (Karney's exact
-// ellipsoidal formulas); none is written here.
+// ramap writes models aligned to their priors in. Every conversion is GeographicLib's (Karney's
+// exact ellipsoidal formulas); none is written here.
 #pragma once
 
 #include <Eigen/Core>

@@ -42,8 +42,8 @@ double Median(std::vector<double> values) {
 
 // The median (Median's element) of the angles between R a_k and b_k, unit vectors, over `indices`.
 // The angle falls as the dot product grows, so it is the angle of the matching order statistic of
-// the dot products: one arc tangent rather than one per match (they and their medians were a
-// twentieth of a long drive's relative poses).
+// the dot products: one arc tangent rather than one per match (the arc tangents of every match
+// were a noticeable share of a long drive's relative poses).
 double MedianAngle(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b,
                    const Eigen::Matrix3d& R, const std::vector<int>& indices) {
   if (indices.empty()) return 0;
@@ -88,10 +88,9 @@ double GreatCircleSpread(const std::vector<Eigen::Vector3d>& f) {
 // Motion Estimation", ICCV 2003), in two rounds: the five-point candidates (up to ~60 per pair) on
 // an even subset of kNumFirstRoundMatches, the best kNumFirstRoundSurvivors of them together with
 // the six-point eigensolver's (at most three) on kNumPreemptiveMatches. Against scoring every
-// candidate on 200 matches (scripts/bench_relative_poses.sh, scripts/reproduce_mapper.sh): the
-// same per-pair errors on the real sets (KITTI 07 rotation p90 0.309 -> 0.308 deg), the mapper
-// table within the spread that moving the subset from 200 to 201 matches gives, and the relative
-// poses of a 1101-frame drive 10% faster (32.1 -> 29.1 s on one thread).
+// candidate on 200 matches: the same per-pair errors on the real sets, the mapper's results within
+// the spread that moving the subset by one match gives, and a long drive's relative poses quicker
+// (BENCHMARKS.md, "Relative poses").
 constexpr int kNumPreemptiveMatches = 200;
 constexpr int kNumFirstRoundMatches = 50;
 constexpr int kNumFirstRoundSurvivors = 3;
@@ -426,8 +425,8 @@ namespace {
 
 // asin(s) for s in [0, 1]. Epipolar errors are mostly below 0.01 rad, where four terms of the
 // series s + s^3/6 + 3 s^5/40 + 15 s^7/336 are exact to double precision (the next term is below
-// 1e-17 of s) and cost a fraction of the library call, which was a twentieth of the mapper's time
-// on long drives.
+// 1e-17 of s) and cost a fraction of the library call, which was a noticeable share of the
+// mapper's time on long drives.
 double SmallAsin(double s) {
   if (s >= 0.01) return std::asin(s);
   const double s2 = s * s;
@@ -632,9 +631,9 @@ std::optional<RelativePoseEstimate> SixPointHypothesis(
       five_point_candidates.push_back(std::move(scored));
     }
   }
-  // A confident five-point candidate makes the all-six eigensolver's starts (over a tenth of a
-  // pair's time) redundant: measured, every real set's pair errors and the synthetic KITTI 06
-  // drive's are the same without them (scripts/bench_relative_poses.sh).
+  // A confident five-point candidate makes the all-six eigensolver's starts (a good share of a
+  // pair's time) redundant: every real set's pair errors and a synthetic drive's are the same
+  // without them (BENCHMARKS.md, "Relative poses").
   std::vector<RotationCandidate> candidates;
   if (!confident)
     candidates = RotationCandidatesFromSix(f1, f2, six, -1, options.nister_five_point);

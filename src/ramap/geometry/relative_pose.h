@@ -1,10 +1,10 @@
 // Relative rotation (and translation direction) of an image pair from bearing vectors.
 //
-// Method (docs/architecture.md, stage 1; "Pushing the Envelope of Rotation Averaging for Visual SLAM", Li,
-// Yuan, Latecki, Ling): six well-spread correspondences are chosen with a grid
+// Method (docs/architecture.md, stage 1; "Pushing the Envelope of Rotation Averaging for Visual
+// SLAM", Li, Yuan, Latecki, Ling): six well-spread correspondences are chosen with a grid
 // (geometry/correspondence_sampling.h), the rotation is solved from them independently of the
-// translation with Kneip's rotation-only solvers (L. Kneip, R. Siegwart, M. Pollefeys, "Finding
-// the Exact Rotation between Two Images Independently of the Translation", ECCV 2012, as shipped by
+// translation with Kneip's rotation-only solvers (L. Kneip, R. Siegwart, M. Pollefeys, "Finding the
+// Exact Rotation between Two Images Independently of the Translation", ECCV 2012, as shipped by
 // OpenGV), kept only when consistent with the epipolar constraint over the pair's inliers, then
 // refined on all inliers by minimising Kneip & Lynen's eigenvalue objective ("Direct Optimization
 // of Frame-to-Frame Rotation", ICCV 2013). The translation direction follows from the rotation.
@@ -51,9 +51,9 @@ struct RelativePoseOptions {
   // Median parallax (pixels) of the matches after the best pure-rotation fit below which the pair
   // is taken as pure rotation / low parallax: flagged, rotation kept, translation zero. Pure
   // rotation with 1 px keypoint noise leaves a median of ~1.2 px (Rayleigh); 2 px is just above.
-  // It was 0.5 deg, which on templeRing's narrow field of view (1520 px focal length) took 204 of
-  // 329 orbit pairs for rotations and biased their rotations by the orbit angle (median error 12
-  // deg): sideways motion seen through a long lens is mostly absorbed by the rotation fit.
+  // As an angle (it was 0.5 deg), the threshold took most of templeRing's orbit pairs, seen
+  // through a long lens (1520 px focal length), for rotations and biased their rotations by the
+  // orbit angle: sideways motion seen through a long lens is mostly absorbed by the rotation fit.
   double pure_rotation_parallax_px = 2.0;
   // Median angle between the raw bearings (degrees) below which the images are taken as the same
   // view (duplicate frames, no motion): rejected.
@@ -67,45 +67,43 @@ struct RelativePoseOptions {
   // improving long before.
   int max_refinement_matches = 500;
   // Rank a pair's matches for the grid selection by their descriptor ratio when the database has
-  // it (ramap's matcher stores it) instead of their Sampson error under F. Off: measured on
-  // ramap-matched databases (scripts/bench_relative_poses.sh), the ratio ties on KITTI 07 (SIFT
-  // rotation p90 0.225 vs 0.226 deg, ORB 0.329 vs 0.338) and loses on templeRing (SIFT p90 16.4
-  // vs 13.1 deg, ORB median 2.75 vs 2.69): geometric agreement beats descriptor distinctiveness.
+  // it (ramap's matcher stores it) instead of their Sampson error under F. Off: on ramap-matched
+  // databases the ratio ties on KITTI 07 and loses on templeRing, as agreement with the pair's
+  // geometry picks better samples than descriptor distinctiveness (BENCHMARKS.md, "Which
+  // confidence ranks the grid's matches").
   bool use_descriptor_ratios = false;
   // Where the rotation candidates of each five of the six selected matches come from (they guard
   // against one bad match among the six). 0: Kneip's rotation-only five-point solver (ECCV 2012),
   // the paper's solver family. 1: Nister's five-point essential matrices ("An Efficient Solution
   // to the Five-Point Relative Pose Problem", PAMI 2004, as shipped by OpenGV), one rotation per
-  // essential matrix: five times cheaper per call (34 vs 177 us), relative poses 1.6x faster on
-  // KITTI 07 with per-pair errors as good or better on every real set
-  // (scripts/bench_relative_poses.sh), but KITTI 07's averaging alone is worse with it (AUC@3 64 ->
-  // 58 with the rotation edge weights, 60 -> 53 without: a few weak far-apart pairs come out a
-  // little wrong instead of grossly wrong, and are kept).
+  // essential matrix: much cheaper per call, and relative poses quicker with per-pair errors as
+  // good or better on every real set, but KITTI 07's averaging alone is worse with it: a few weak
+  // far-apart pairs come out a little wrong instead of grossly wrong, and are kept (BENCHMARKS.md,
+  // "Relative poses").
   bool nister_five_point = false;
   // The five-point candidates guard against one bad match among the six; with Kneip's solver
-  // they were over half of a pair's time. They are solved one leave-one-out subset at a time, and
+  // they were most of a pair's time. They are solved one leave-one-out subset at a time, and
   // no more subsets are solved once a candidate is confident: it explains at least
   // `confident_inlier_ratio` of the first preemptive round's matches with an RMS epipolar error of
   // those inliers of at most `confident_max_rms_error_px`, in a pair of at least
   // `confident_min_matches` verified matches. That five was then clean, and the other subsets
   // could only add candidates that differ by noise (which the refinement on all inliers removes)
   // or that are worse. A candidate that explains enough matches but misses the error bound is
-  // refined on those inliers once before the test: a root solved from five noisy matches has 0.7-
-  // 1.1 px RMS on the synthetic drives (0.5 px keypoint noise), their refined fit about 0.65 px.
+  // refined on those inliers once before the test: a root solved from five noisy matches fits
+  // them worse than the bound, even where their refined fit meets it (the synthetic drives, whose
+  // keypoints have 0.5 px of noise), so without the refinement almost no pair would stop.
   // The error bound is what makes the stop safe under long lenses, where the matches span a narrow
   // cone of view directions and wrong roots fit nearly as well as the right one: on templeRing
-  // (1520 px focal length, matches spread 3.6-6.9 deg) wrong roots explain 90% of the matches
-  // within the 4 px threshold, and pair rotation error p90 went from 5.1 deg (every candidate)
-  // to 8.0 with the inlier ratio alone and 7.1 with a 1 px bound after the refinement, and stays
-  // 5.0-5.1 with 0.6 px. So views whose first-round matches spread less than
-  // `confident_narrow_view_deg` (RMS angle to their mean bearing, in image 1) must meet
-  // `confident_narrow_view_rms_error_px`. Measured (scripts/bench_relative_poses.sh, every real
-  // set's errors as with every candidate or better): wide bound 0.6 px, 0.8 and 1.0 alike on the
-  // real sets; on the synthetic KITTI 06 drive 1.12, 0.69 and 0.65 ms per pair against 1.16 with
-  // every candidate, the same pair errors. Weak pairs always get every candidate (with few
-  // matches a wrong root can still fit most of them). The all-six eigensolver's candidates may not
-  // stop the search: with the same test they took templeRing's p90 to 6.8 deg. Above 1: every
-  // candidate, always.
+  // (1520 px focal length, matches spread over a few degrees) wrong roots explain most matches
+  // within the 4 px threshold, and the inlier ratio alone, or a looser bound, made its pairs'
+  // rotations worse than every candidate does, where the narrow bound keeps them as good. So views
+  // whose first-round matches spread less than `confident_narrow_view_deg` (RMS angle to their
+  // mean bearing, in image 1) must meet `confident_narrow_view_rms_error_px`. Wide views' bound:
+  // a tighter one gives the same errors on the real sets but seldom stops on the synthetic drives,
+  // a looser one saves little more time; 0.8 px keeps a margin (BENCHMARKS.md, "Relative poses").
+  // Weak pairs always get every candidate (with few matches a wrong root can still fit most of
+  // them). The all-six eigensolver's candidates may not stop the search: with the same test they
+  // made templeRing's pairs worse. Above 1: every candidate, always.
   double confident_inlier_ratio = 0.9;
   double confident_max_rms_error_px = 0.8;
   double confident_narrow_view_deg = 8.0;

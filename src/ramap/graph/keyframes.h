@@ -7,14 +7,14 @@
 #include <cstdint>
 #include <vector>
 
-#include "ramap/graph/rotation_graph.h"
+#include "ramap/graph/view_graph_algorithms.h"
 
 namespace ramap {
 
 struct KeyframeOptions {
   // A keyframe every this many frames (the paper uses 30).
   int keyframe_interval = 30;
-  // Throws InputError("--PoseGraph.keyframe_interval", ...) when out of range.
+  // Throws InputError("--ViewGraph.keyframe_interval", ...) when out of range.
   void Check() const;
 };
 
@@ -30,7 +30,7 @@ struct Keyframes {
 };
 
 // Keyframes of `frames_in_order` (node ids in capture order). A sequence of one frame has one
-// keyframe and no window. Throws std::invalid_argument when options fail Check().
+// keyframe and no window, an empty one none. Throws InputError when options fail Check().
 Keyframes SelectKeyframes(const std::vector<uint32_t>& frames_in_order,
                           const KeyframeOptions& options);
 
@@ -38,6 +38,6 @@ enum class EdgeKind { kLocal, kLoop };
 
 // kLocal for an edge whose two frames lie in one window, kLoop otherwise (also for edges naming a
 // frame absent from the sequence).
-std::vector<EdgeKind> ClassifyEdges(const RotationGraph& graph, const Keyframes& keyframes);
+std::vector<EdgeKind> ClassifyEdges(const ViewGraph& graph, const Keyframes& keyframes);
 
 }  // namespace ramap

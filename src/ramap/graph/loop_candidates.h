@@ -1,8 +1,8 @@
 // Loop candidates of a sequence: image pairs that a first solve puts close together, in position
 // and viewing direction, but far apart in capture order, so sequential matching never compared
-// them. This is the first step of the design's two-step loop test ("positions close"); the second
+// them. This is the first step of a two-step loop test ("positions close"); the second
 // ("enough verified inliers") is the matcher's verification of each candidate, after which the
-// mapper solves again with the loop edges in the pose graph.
+// mapper solves again with the loop edges in the view graph.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +25,7 @@ struct LoopCandidateOptions {
   // make dozens.
   int max_candidates_per_image = 3;
 
-  void Check() const;  // throws InputError("LoopClosure", ...)
+  void Check() const;  // throws InputError("--LoopClosure.<option>", ...)
 };
 
 struct LoopCandidate {

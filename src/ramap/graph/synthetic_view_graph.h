@@ -1,4 +1,4 @@
-// Synthetic relative-rotation graphs with known ground truth, for tests and benchmarks: cameras
+// Synthetic relative-view graphs with known ground truth, for tests and benchmarks: cameras
 // along a path (a sequence), each linked to its next neighbours, plus loop edges between distant
 // cameras, Gaussian rotation noise and a fraction of outlier edges replaced by random rotations.
 #pragma once
@@ -8,12 +8,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "ramap/graph/rotation_graph.h"
+#include "ramap/graph/view_graph_algorithms.h"
 #include "ramap/util/statistics.h"  // Median, which the rotation tests and benchmark use
 
 namespace ramap {
 
-struct SyntheticRotationGraphOptions {
+struct SyntheticViewGraphOptions {
   int num_nodes = 200;
   // Each camera is linked to the next `forward_neighbours` cameras of the sequence (so to about
   // twice as many nearest neighbours in all).
@@ -30,15 +30,15 @@ struct SyntheticRotationGraphOptions {
   uint32_t seed = 1;
 };
 
-struct SyntheticRotationGraph {
-  RotationGraph graph;                             // node ids 0..num_nodes-1 in sequence order
+struct SyntheticViewGraph {
+  ViewGraph graph;                                 // node ids 0..num_nodes-1 in sequence order
   std::vector<Eigen::Quaterniond> true_rotations;  // cam_from_world per node
   std::vector<bool> is_outlier;                    // per edge
 };
 
 // Edge weights mimic inlier counts: they fall with the sequence gap; outliers keep the weight of
 // the edge they replace (the weight says nothing about them, as in practice).
-SyntheticRotationGraph MakeSyntheticRotationGraph(const SyntheticRotationGraphOptions& options);
+SyntheticViewGraph MakeSyntheticViewGraph(const SyntheticViewGraphOptions& options);
 
 // Per-node angle (degrees) between estimated and true rotations after the best global gauge
 // R_est ~ R_true G (chordal mean, then one reweighting step that discounts outlying nodes).

@@ -840,7 +840,7 @@ DatabaseCounts CountDatabase(const FeatureDatabase& database) {
     ++counts.verified_pairs_by_config[geometry.config];
   }
   for (const auto& [image_id, image] : database.images) {
-    counts.num_position_priors += image.prior_translation ? 1 : 0;
+    counts.num_pose_priors += image.prior_translation ? 1 : 0;
     counts.num_rotation_priors += image.prior_rotation ? 1 : 0;
   }
   return counts;

@@ -84,7 +84,7 @@ struct DatabaseCounts {
   size_t num_verified_pairs = 0;  // two-view geometries with inlier matches
   size_t num_inliers = 0;
   std::map<TwoViewConfig, size_t> verified_pairs_by_config;
-  size_t num_position_priors = 0;
+  size_t num_pose_priors = 0;
   size_t num_rotation_priors = 0;
   size_t num_pairs_with_ratios = 0;  // ramap's ramap_match_confidence table
 };

@@ -1,4 +1,5 @@
-// Files written beside a georegistered model (its frame east-north-up about a WGS84 origin):
+// Files written beside a model aligned to its priors (its frame east-north-up about a WGS84
+// origin):
 //   geo_origin.txt   the origin, "LATITUDE LONGITUDE ALTITUDE", so the model maps back to WGS84;
 //   cameras.geojson  one GeoJSON point (RFC 7946: longitude, latitude, altitude) per camera centre,
 //                    with the image name, for any map viewer (geojson.io, QGIS, Google Earth).

@@ -99,8 +99,8 @@ class BinaryReader {
 };
 
 // Little-endian values, gathered in a buffer and written a mebibyte at a time: one ostream call
-// per value took 1.6 s for the 130 MB images.bin of a 4541-frame drive. The rest is written when
-// the writer goes out of scope; stream errors stay in the stream's state for the caller to check.
+// per value made writing a long drive's images.bin slow. The rest is written when the writer
+// goes out of scope; stream errors stay in the stream's state for the caller to check.
 class BinaryWriter {
  public:
   explicit BinaryWriter(std::ostream& out) : out_(out) { buffer_.reserve(kFlushBytes + 64); }

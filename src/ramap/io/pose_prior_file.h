@@ -1,4 +1,4 @@
-// Camera position priors as a text file, one image a line:
+// Camera pose priors as a text file, one image a line:
 //
 //   # comment
 //   NAME  V1 V2 V3            (the coordinates, see PriorCoordinates)

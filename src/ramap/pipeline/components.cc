@@ -2,16 +2,16 @@
 
 #include <set>
 
-#include "ramap/graph/rotation_graph.h"
+#include "ramap/graph/view_graph_algorithms.h"
 #include "ramap/pipeline/mapper_context.h"
 #include "ramap/pipeline/mapper_summary.h"
 
 namespace ramap {
 
-RotationGraph AcceptedPoseGraph(const FeatureDatabase& database,
-                                const std::vector<ImagePair>& pairs, MapperSummary* summary,
-                                std::map<uint32_t, std::string>* image_reasons) {
-  RotationGraph graph = AcceptedRotationGraph(pairs);
+ViewGraph ViewGraphOfAcceptedPairs(const FeatureDatabase& database,
+                                   const std::vector<ImagePair>& pairs, MapperSummary* summary,
+                                   std::map<uint32_t, std::string>* image_reasons) {
+  ViewGraph graph = AcceptedViewGraph(pairs);
   const std::set<uint32_t> nodes(graph.node_ids.begin(), graph.node_ids.end());
   for (const ImagePair& pair : pairs) {
     if (pair.accepted()) continue;
@@ -25,10 +25,10 @@ RotationGraph AcceptedPoseGraph(const FeatureDatabase& database,
   return graph;
 }
 
-std::vector<RotationGraph> ComponentsToReconstruct(const RotationGraph& graph, int min_size,
-                                                   std::map<uint32_t, std::string>* image_reasons) {
-  std::vector<RotationGraph> kept;
-  for (RotationGraph& component : ComponentSubgraphs(graph, ConnectedComponents(graph))) {
+std::vector<ViewGraph> ComponentsToReconstruct(const ViewGraph& graph, int min_size,
+                                               std::map<uint32_t, std::string>* image_reasons) {
+  std::vector<ViewGraph> kept;
+  for (ViewGraph& component : ComponentSubgraphs(graph, ConnectedComponents(graph))) {
     const int size = static_cast<int>(component.node_ids.size());
     if (size >= min_size) {
       kept.push_back(std::move(component));

@@ -1,4 +1,4 @@
-// Stage 2 of the mapper: the pose graph of the accepted relative poses, cut into its connected
+// Stage 2 of the mapper: the view graph of the accepted relative poses, cut into its connected
 // components; each component large enough is reconstructed on its own (pipeline/mapper.cc).
 #pragma once
 
@@ -14,16 +14,16 @@
 
 namespace ramap {
 
-// The accepted pairs of the view graph as a rotation graph (scene/view_graph.h). Every rejected
+// The view graph of the accepted pairs (scene/view_graph.h). Every rejected
 // pair goes to summary->dropped_edges with its reason, and every image left without an accepted
 // pair gets the reason of its rejected ones in `image_reasons`.
-RotationGraph AcceptedPoseGraph(const FeatureDatabase& database,
-                                const std::vector<ImagePair>& pairs, MapperSummary* summary,
-                                std::map<uint32_t, std::string>* image_reasons);
+ViewGraph ViewGraphOfAcceptedPairs(const FeatureDatabase& database,
+                                   const std::vector<ImagePair>& pairs, MapperSummary* summary,
+                                   std::map<uint32_t, std::string>* image_reasons);
 
 // The connected components of `graph`, largest first. Those with fewer than `min_size` images are
 // left out and their images get the reason in `image_reasons`.
-std::vector<RotationGraph> ComponentsToReconstruct(const RotationGraph& graph, int min_size,
-                                                   std::map<uint32_t, std::string>* image_reasons);
+std::vector<ViewGraph> ComponentsToReconstruct(const ViewGraph& graph, int min_size,
+                                               std::map<uint32_t, std::string>* image_reasons);
 
 }  // namespace ramap

@@ -130,7 +130,7 @@ LoopClosedMapperResult RunMapperWithLoopClosure(FeatureDatabase* database,
                                                 const LoopClosureOptions& closure_options,
                                                 const FeatureMatchingOptions& matching,
                                                 const std::string& source, std::ostream* progress,
-                                                const PositionPriors& priors) {
+                                                const PosePriors& priors) {
   LoopClosedMapperResult closed;
   closed.result = RunMapper(*database, options, source, progress, priors);
   if (!close_loops) return closed;

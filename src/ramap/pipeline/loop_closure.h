@@ -1,6 +1,6 @@
 // Loop closure for image-list input matched sequentially: the loop candidates of a first solve
 // (graph/loop_candidates.h: positions close) are matched and verified (enough inliers), so that a
-// second solve has the loop edges in its pose graph. When the first solve splits into several
+// second solve has the loop edges in its view graph. When the first solve splits into several
 // models (or leaves images out), pairs between them are screened by preemptive matching and the
 // survivors matched too, so that the second solve can join them: positions say nothing across
 // models.
@@ -48,15 +48,16 @@ struct LoopClosedMapperResult {
   bool database_changed = false;  // loop or bridge pairs were verified into the database
 };
 
-// The method's loop-closure step around the mapper (docs/architecture.md, stage 7): a first solve; with `close_loops`,
-// its loop candidates and bridge pairs matched and verified into `database` and, when any was
-// verified, a second solve with them. `progress` gets the mapper's lines and one loop-closure line.
+// The method's loop-closure step around the mapper (docs/architecture.md, stage 7): a first solve;
+// with `close_loops`, its loop candidates and bridge pairs matched and verified into `database`
+// and, when any was verified, a second solve with them. `progress` gets the mapper's lines and one
+// loop-closure line.
 LoopClosedMapperResult RunMapperWithLoopClosure(FeatureDatabase* database,
                                                 const MapperOptions& options, bool close_loops,
                                                 const LoopClosureOptions& closure_options,
                                                 const FeatureMatchingOptions& matching,
                                                 const std::string& source, std::ostream* progress,
-                                                const PositionPriors& priors);
+                                                const PosePriors& priors);
 
 // The options and the summary, as summary.json's "loop_closure".
 nlohmann::json LoopClosureToJson(bool enable, const LoopClosureOptions& options,

@@ -28,16 +28,17 @@ std::vector<std::string> ImageNames(const FeatureDatabase& database) {
   return names;
 }
 
-// The camera poses of the averaged rotations and centres, in the priors' frame when georegistered.
+// The camera poses of the averaged rotations and centres, in the priors' frame when aligned to
+// them.
 std::map<uint32_t, Rigid3d> AveragedPoses(const std::map<uint32_t, Eigen::Quaterniond>& rotations,
                                           const TranslationAveragingResult& positions,
-                                          const PriorAlignment& georegistration) {
+                                          const PriorAlignment& prior_alignment) {
   std::map<uint32_t, Rigid3d> poses;
   for (const auto& [id, center] : positions.centers) {
     const Eigen::Quaterniond& R = rotations.at(id);
     poses[id] = Rigid3d(R, -(R * center));
-    if (georegistration.summary.georegistered)
-      poses[id] = TransformPose(georegistration.prior_from_model, poses[id]);
+    if (prior_alignment.summary.aligned)
+      poses[id] = TransformPose(prior_alignment.prior_from_model, poses[id]);
   }
   return poses;
 }
@@ -45,7 +46,7 @@ std::map<uint32_t, Rigid3d> AveragedPoses(const std::map<uint32_t, Eigen::Quater
 // Stages 3-6 for one connected component of the view graph, in the method's order; none (with
 // the reasons recorded) when the component cannot be reconstructed.
 std::optional<Reconstruction> ReconstructComponent(const MapperContext& context,
-                                                   const RotationGraph& graph) {
+                                                   const ViewGraph& graph) {
   const MapperOptions& options = context.options;
   MapperComponentSummary component;
 
@@ -60,27 +61,27 @@ std::optional<Reconstruction> ReconstructComponent(const MapperContext& context,
   std::optional<ComponentTranslations> translations = AverageComponentTranslations(
       context, graph, averaged.rotations.edge_status, rotations, &early_tracks, &component);
   if (!translations) return std::nullopt;
-  // With position priors: georegistration, and translation averaging again with them.
-  PriorAlignment georegistration;
-  if (!context.priors.by_image.empty() && options.georegistration.align)
-    georegistration = GeoregisterComponent(context, rotations, &*translations);
-  const bool georegistered = georegistration.summary.georegistered;
+  // With pose priors: prior alignment, and translation averaging again with them.
+  PriorAlignment prior_alignment;
+  if (!context.priors.by_image.empty() && options.prior_alignment.align)
+    prior_alignment = AlignComponentToPriors(context, rotations, &*translations);
+  const bool aligned = prior_alignment.summary.aligned;
 
-  // 5. Structure: every track triangulated with the poses fixed; images its points leave out
+  // 5. Triangulation: every track triangulated with the poses fixed; images its points leave out
   // placed again from them.
   std::map<uint32_t, Rigid3d> poses =
-      AveragedPoses(rotations, translations->positions, georegistration);
+      AveragedPoses(rotations, translations->positions, prior_alignment);
   Reconstruction reconstruction = TriangulateComponent(
       context, poses, translations->tracks, context.bearings, context.cameras, "", &component);
   ReregisterComponent(context, translations->tracks, &poses, &component, &reconstruction);
 
   // 6. Optionally, bundle adjustment and triangulation again.
   if (options.refine) {
-    RefineComponent(context, translations->tracks, &georegistration, &component, &reconstruction);
+    RefineComponent(context, translations->tracks, &prior_alignment, &component, &reconstruction);
   }
   // Reported with the errors of the final model, as in the component's summary.
-  if (georegistered) ReportPriorErrors(context, reconstruction, &georegistration);
-  component.georegistration = georegistration.summary;
+  if (aligned) ReportPriorErrors(context, reconstruction, &prior_alignment);
+  component.prior_alignment = prior_alignment.summary;
   component.num_images = static_cast<int>(reconstruction.images.size());
   context.summary.components.push_back(component);
   return reconstruction;
@@ -103,19 +104,19 @@ void SortLargestFirst(MapperResult* result) {
   result->summary.components = std::move(components);
 }
 
-// Stage 1: the view graph, its accepted pairs as a rotation graph in `graph`. Throws InputError
-// (naming `source`) when no pair gives a relative pose.
+// Stage 1: the view graph's pairs and their relative poses, the accepted ones in `graph`. Throws
+// InputError (naming `source`) when no pair gives a relative pose.
 std::vector<ImagePair> EstimateViewGraph(const FeatureDatabase& database,
                                          const ImageBearings& bearings,
                                          const MapperOptions& options, const std::string& source,
                                          StageLog* log, MapperSummary* summary,
                                          std::map<uint32_t, std::string>* image_reasons,
-                                         RotationGraph* graph) {
+                                         ViewGraph* graph) {
   Timer timer;
   std::vector<ImagePair> pairs =
       EstimateRelativePoses(database, bearings, options.relative_pose, options.num_threads);
   summary->num_verified_pairs = static_cast<int>(pairs.size());
-  *graph = AcceptedPoseGraph(database, pairs, summary, image_reasons);
+  *graph = ViewGraphOfAcceptedPairs(database, pairs, summary, image_reasons);
   summary->num_relative_poses = static_cast<int>(graph->edges.size());
   log->Record(stage::kRelativePoses, timer.ElapsedSeconds(),
               std::to_string(graph->edges.size()) + " of " + std::to_string(pairs.size()) +
@@ -134,7 +135,7 @@ std::vector<ImagePair> EstimateViewGraph(const FeatureDatabase& database,
 // is skipped) when set: the second pass of RunMapper.
 MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions& options,
                            const std::string& source, std::ostream* progress,
-                           const PositionPriors& priors,
+                           const PosePriors& priors,
                            const std::map<uint32_t, Camera>* given_cameras) {
   Timer total;
   MapperResult result;
@@ -160,23 +161,23 @@ MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions&
              std::to_string(bearings.bearings.size()) + " images");
 
   // 1. Relative rotations of every verified pair.
-  RotationGraph graph;
+  ViewGraph graph;
   const std::vector<ImagePair> pairs = EstimateViewGraph(database, bearings, options, source, &log,
                                                          &summary, &image_reasons, &graph);
 
-  // 2. The pose graph, one reconstruction per connected component (stages 3-6).
+  // 2. The view graph, one reconstruction per connected component (stages 3-6).
   summary.sequential = IsSequentialInput(options.order, ImageNames(database));
   const std::vector<uint32_t> order = ImageIdsInCaptureOrder(database);
   MapperContext context{database,           pass_options, cameras, bearings,      pairs, order,
                         summary.sequential, log,          summary, image_reasons, priors};
-  for (const RotationGraph& component :
+  for (const ViewGraph& component :
        ComponentsToReconstruct(graph, options.min_component_size, &image_reasons)) {
     std::optional<Reconstruction> reconstruction = ReconstructComponent(context, component);
     if (reconstruction) result.reconstructions.push_back(std::move(*reconstruction));
   }
   SortLargestFirst(&result);
   for (const MapperComponentSummary& component : summary.components) {
-    if (component.georegistration.georegistered) result.geodetic_origin = priors.origin;
+    if (component.prior_alignment.aligned) result.geodetic_origin = priors.origin;
   }
   ListUnregisteredImages(database, result.reconstructions, &image_reasons, &summary);
   summary.cameras = SummariseIntrinsics(database, calibration, result.reconstructions);
@@ -193,7 +194,7 @@ MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions&
 
 MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& given_options,
                        const std::string& source, std::ostream* progress,
-                       const PositionPriors& priors) {
+                       const PosePriors& priors) {
   MapperOptions options = given_options;
   ResolveMapperOptions(&options);
   const ScopedBlasThreads blas_threads(options.num_threads);

@@ -11,7 +11,7 @@
 #include "ramap/pipeline/stage_log.h"
 #include "ramap/scene/camera.h"
 #include "ramap/scene/features.h"
-#include "ramap/scene/position_prior.h"
+#include "ramap/scene/pose_prior.h"
 #include "ramap/scene/view_graph.h"
 
 namespace ramap {
@@ -34,7 +34,7 @@ struct MapperContext {
   MapperSummary& summary;
   // Why each image is not (yet) in a model; the stages overwrite it as they go.
   std::map<uint32_t, std::string>& image_reasons;
-  const PositionPriors& priors;
+  const PosePriors& priors;
 };
 
 // "NAME1 NAME2", as summaries name an edge.

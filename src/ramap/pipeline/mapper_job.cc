@@ -77,7 +77,7 @@ MapperResult RunMapperJob(const MapperJob& job, std::ostream* progress, std::ost
         {"num_multi_camera_frames", rigs.num_multi_camera_frames},
         {"rig_constraints_used", false}}},
       {"options", OptionValuesToJson(MapperOptionTable(), options)},
-      {"pose_priors", PosePriorOptionsToJson(options.prior_source, options.georegistration)}};
+      {"pose_priors", PosePriorOptionsToJson(options.prior_source, options.prior_alignment)}};
   Timer write_timer;
   WriteMapperOutput(result, job.output_path, job.output_format, run, warnings);
   if (progress != nullptr) {

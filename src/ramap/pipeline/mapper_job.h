@@ -21,7 +21,7 @@ struct MapperJob {
   std::string command = "ramap mapper";  // what warnings are prefixed with
 };
 
-// Reads the database and the position priors the options name, runs the mapper, colours the
+// Reads the database and the pose priors the options name, runs the mapper, colours the
 // points and writes everything into output_path at once (util/staged_output.h). One line per
 // stage goes to `progress` and warnings to `warnings`, when given. Throws InputError naming the
 // file or option at fault, NothingReconstructed when no component could be made.

@@ -102,14 +102,17 @@ void AddRelativePose(Table& t) {
 }
 
 void AddRotationAveraging(Table& t) {
-  t.push_back(Choice(
-      "PoseGraph.sequential", [](auto& o) -> auto& { return o.order; },
-      AutoOnOff(InputOrder::kAuto, InputOrder::kSequential, InputOrder::kUnordered),
-      "keyframe windows for sequences (1), one view graph for collections (0)"));
-  t.push_back(Number(
-      "PoseGraph.keyframe_interval",
-      [](auto& o) -> auto& { return o.pose_graph.keyframe_interval; }, AtLeast(1),
-      "frames between keyframes of a sequence"));
+  t.push_back(FormerlyNamed(
+      Choice(
+          "ViewGraph.sequential", [](auto& o) -> auto& { return o.order; },
+          AutoOnOff(InputOrder::kAuto, InputOrder::kSequential, InputOrder::kUnordered),
+          "keyframe windows for sequences (1), one view graph for collections (0)"),
+      "PoseGraph.sequential"));
+  t.push_back(FormerlyNamed(Number(
+                                "ViewGraph.keyframe_interval",
+                                [](auto& o) -> auto& { return o.view_graph.keyframe_interval; },
+                                AtLeast(1), "frames between keyframes of a sequence"),
+                            "PoseGraph.keyframe_interval"));
   t.push_back(Number(
       "RotationAveraging.max_l1_iterations",
       [](auto& o) -> auto& { return o.rotation_averaging.max_l1_iterations; }, AtLeast(0),
@@ -353,14 +356,14 @@ void AddPairDirections(Table& t) {
       "two-match directions the restart tries"));
 }
 
-void AddStructure(Table& t) {
+void AddTriangulation(Table& t) {
   t.push_back(Number(
       "Triangulation.max_reprojection_error_px",
-      [](auto& o) -> auto& { return o.structure.max_reprojection_error_px; }, Above(0),
+      [](auto& o) -> auto& { return o.triangulation.max_reprojection_error_px; }, Above(0),
       "observations farther from their point are not kept"));
   t.push_back(Number(
       "Triangulation.min_triangulation_angle_deg",
-      [](auto& o) -> auto& { return o.structure.min_triangulation_angle_deg; }, AtLeast(0, 90),
+      [](auto& o) -> auto& { return o.triangulation.min_triangulation_angle_deg; }, AtLeast(0, 90),
       "points seen under a smaller angle are not kept"));
   t.push_back(Bool(
       "Reregistration.enable", [](auto& o) -> auto& { return o.reregistration.enable; },
@@ -517,28 +520,28 @@ void AddPosePriors(Table& t) {
       "priors further away are rejected as gross errors"));
   t.push_back(Number(
       "PosePrior.max_alignment_error_m",
-      [](auto& o) -> auto& { return o.georegistration.max_alignment_error_m; }, AtLeast(0),
+      [](auto& o) -> auto& { return o.prior_alignment.max_alignment_error_m; }, AtLeast(0),
       "RANSAC inlier threshold, m (0: 3 x the priors' median 3D standard "
       "deviation)"));
   t.push_back(Number(
       "PosePrior.max_fit_uncertainty_deg",
-      [](auto& o) -> auto& { return o.georegistration.max_fit_uncertainty_deg; }, Above(0),
+      [](auto& o) -> auto& { return o.prior_alignment.max_fit_uncertainty_deg; }, Above(0),
       "priors too close together for their noise (about sigma / (spread sqrt N)) "
       "leave the model unregistered"));
   t.push_back(Number(
       "PosePrior.min_num_inliers",
-      [](auto& o) -> auto& { return o.georegistration.min_num_inliers; }, AtLeast(3),
-      "priors a georegistration needs"));
+      [](auto& o) -> auto& { return o.prior_alignment.min_num_inliers; }, AtLeast(3),
+      "priors a prior alignment needs"));
   t.push_back(Bool(
-      "PosePrior.align", [](auto& o) -> auto& { return o.georegistration.align; },
-      "1: georegister each model to its priors (0 ignores the priors)"));
+      "PosePrior.align", [](auto& o) -> auto& { return o.prior_alignment.align; },
+      "1: align each model to its priors (0 ignores the priors)"));
   t.push_back(Bool(
       "PosePrior.use_in_translation_averaging",
-      [](auto& o) -> auto& { return o.georegistration.use_in_translation_averaging; },
+      [](auto& o) -> auto& { return o.prior_alignment.use_in_translation_averaging; },
       "1: priors as weak rows of translation averaging (fixes scale drift)"));
   t.push_back(Bool(
       "PosePrior.use_in_bundle_adjustment",
-      [](auto& o) -> auto& { return o.georegistration.use_in_bundle_adjustment; },
+      [](auto& o) -> auto& { return o.prior_alignment.use_in_bundle_adjustment; },
       "1: priors as residuals of the bundle adjustment (Mapper.refine 1)"));
 }
 
@@ -553,7 +556,7 @@ Table BuildMapperOptionTable() {
   AddDirectionCheck(t);
   AddTranslationWindows(t);
   AddPairDirections(t);
-  AddStructure(t);
+  AddTriangulation(t);
   AddRefinement(t);
   AddBundleAdjuster(t);
   AddCalibration(t);
@@ -586,11 +589,7 @@ OptionTable<MapperOptions> MapperOptionSections(const std::vector<std::string>& 
 void ResolveMapperOptions(MapperOptions* options) {
   CheckOptionValues(MapperOptionTable(), *options);
   options->bundle_adjustment.num_threads = options->num_threads;
-  try {
-    options->Check();
-  } catch (const std::invalid_argument& error) {
-    throw InputError("mapper options", error.what());
-  }
+  options->Check();
 }
 
 }  // namespace ramap

@@ -11,7 +11,7 @@
 
 namespace ramap {
 
-// Every mapper option, by section: RelativePose, PoseGraph, RotationAveraging,
+// Every mapper option, by section: RelativePose, ViewGraph, RotationAveraging,
 // TranslationAveraging, PairDirection, Triangulation, Reregistration, BundleAdjustment,
 // ViewGraphCalibration, Mapper.
 const OptionTable<MapperOptions>& MapperOptionTable();

@@ -7,13 +7,13 @@ namespace ramap {
 void MapperOptions::Check() const {
   view_graph_calibration.Check();
   relative_pose.Check();
-  pose_graph.Check();
+  view_graph.Check();
   rotation_averaging.Check();
   pair_direction.Check();
   direction_consistency.Check();
   translation_averaging.Check();
   translation_windows.Check();
-  structure.Check();
+  triangulation.Check();
   reregistration.Check();
   bundle_adjustment.Check();
   given_intrinsics_test.Check();

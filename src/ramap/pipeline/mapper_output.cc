@@ -56,7 +56,7 @@ nlohmann::json RotationSecondsJson(const RotationAveragingTimings& seconds) {
 }
 
 // One component: its model, how its rotations and positions were averaged, its bundle
-// adjustment and georegistration when run.
+// adjustment and prior alignment when run.
 // Each group of cameras with given intrinsics: what each step of the test measured and kept.
 nlohmann::json GivenIntrinsicsTestJson(const GivenIntrinsicsTestSummary& test) {
   nlohmann::json groups = nlohmann::json::array();
@@ -131,14 +131,14 @@ nlohmann::json ComponentToJson(const MapperComponentSummary& c) {
   }
   if (!c.given_intrinsics_test.groups.empty())
     component["given_intrinsics_test"] = GivenIntrinsicsTestJson(c.given_intrinsics_test);
-  const GeoregistrationSummary& geo = c.georegistration;
+  const PriorAlignmentSummary& geo = c.prior_alignment;
   if (geo.num_priors > 0 || !geo.problem.empty()) {
     nlohmann::json outliers = nlohmann::json::array();
     for (const PriorOutlier& o : geo.outliers) {
       outliers.push_back({{"image_id", o.image_id}, {"error_m", o.error_m}});
     }
-    component["georegistration"] = {
-        {"georegistered", geo.georegistered},
+    component["prior_alignment"] = {
+        {"aligned", geo.aligned},
         {"problem", geo.problem},
         {"num_priors", geo.num_priors},
         {"num_inliers", geo.num_inliers},
@@ -148,6 +148,12 @@ nlohmann::json ComponentToJson(const MapperComponentSummary& c) {
         {"used_in_translation_averaging", geo.used_in_translation_averaging},
         {"used_in_bundle_adjustment", geo.used_in_bundle_adjustment},
         {"outliers", outliers}};
+    // The block's former name and first key, kept as an alias for readers of earlier summaries
+    // (README, "Renamed").
+    nlohmann::json former = component["prior_alignment"];
+    former.erase("aligned");
+    former["georegistered"] = geo.aligned;
+    component["georegistration"] = std::move(former);
   }
   return component;
 }
@@ -158,7 +164,7 @@ nlohmann::json ComponentToJson(const MapperComponentSummary& c) {
 constexpr const char* kGauge =
     "translation averaging: the first registered image of each component at the origin, mean "
     "projected pair baseline 1; bundle adjustment (when run) holds the first image fixed; a "
-    "georegistered component is in the priors' metric frame instead (east-north-up about "
+    "component aligned to its pose priors is in their metric frame instead (east-north-up about "
     "geo_origin.txt when the priors are geodetic)";
 
 nlohmann::json MapperSummaryToJson(const MapperSummary& summary) {
@@ -222,9 +228,9 @@ void WriteContents(const MapperResult& result, const std::string& folder, ModelF
     const std::string model_path = folder + "/" + std::to_string(k);
     WriteColmapModel(result.reconstructions[k], model_path, format);
     WriteTumTrajectory(result.reconstructions[k], model_path + "/trajectory_tum.txt");
-    const bool georegistered = k < result.summary.components.size() &&
-                               result.summary.components[k].georegistration.georegistered;
-    if (georegistered && result.geodetic_origin) {
+    const bool aligned = k < result.summary.components.size() &&
+                         result.summary.components[k].prior_alignment.aligned;
+    if (aligned && result.geodetic_origin) {
       WriteGeoreference(result.reconstructions[k], *result.geodetic_origin, model_path);
     }
   }

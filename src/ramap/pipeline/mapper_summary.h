@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "ramap/averaging/rotation_averaging.h"
-#include "ramap/pipeline/georegistration.h"
+#include "ramap/pipeline/prior_alignment.h"
 #include "ramap/pipeline/reregistration.h"
 #include "ramap/pipeline/view_graph_calibration.h"
 #include "ramap/refine/bundle_adjustment.h"
@@ -60,7 +60,7 @@ struct MapperComponentSummary {
   // by name, most first; at most 20.
   std::vector<std::pair<std::string, int>> most_filtered_images;
   GivenIntrinsicsTestSummary given_intrinsics_test;  // no groups when nothing given was tested
-  GeoregistrationSummary georegistration;     // num_priors 0 when run without priors
+  PriorAlignmentSummary prior_alignment;             // num_priors 0 when run without priors
 };
 
 // The intrinsics of one camera through the stages.
@@ -91,7 +91,7 @@ struct MapperSummary {
   std::vector<MapperComponentSummary> components;
   std::vector<DroppedItem> dropped_images;
   std::vector<DroppedItem> dropped_edges;
-  std::vector<DroppedItem> prior_outliers;  // position priors the georegistration rejected
+  std::vector<DroppedItem> prior_outliers;  // pose priors the prior alignment rejected
   std::vector<MapperStageTiming> timings;
   double total_seconds = 0.0;
   // The process's peak resident memory when the mapper returned (MiB): what the run needed.

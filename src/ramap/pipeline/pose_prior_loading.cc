@@ -34,7 +34,7 @@ LocalizedPriors LoadPosePriors(const PosePriorSource& source, const FeatureDatab
          << " more priors not used\n";
   }
   if (!records.empty()) {
-    *log << "[ramap] position priors: " << priors.priors.by_image.size() << " of " << records.size()
+    *log << "[ramap] pose priors: " << priors.priors.by_image.size() << " of " << records.size()
          << " usable (" << (source.path.empty() ? std::string("database") : source.path) << ", "
          << PriorCoordinatesName(options.coordinates) << ")\n";
   }
@@ -43,8 +43,7 @@ LocalizedPriors LoadPosePriors(const PosePriorSource& source, const FeatureDatab
 
 // summary.json's "pose_priors" block, as it was before the priors' options were declared with the
 // mapper's (options.PosePrior holds the same values).
-nlohmann::json PosePriorOptionsToJson(const PosePriorSource& text,
-                                      const GeoregistrationOptions& g) {
+nlohmann::json PosePriorOptionsToJson(const PosePriorSource& text, const PriorAlignmentOptions& g) {
   return {{"path", text.path},
           {"type", text.type},
           {"from_database", text.from_database},

@@ -1,4 +1,4 @@
-// Where the mapper's position priors come from (a prior file or the database's prior positions,
+// Where the mapper's pose priors come from (a prior file or the database's prior positions,
 // where COLMAP stores EXIF GPS) and how they are read into the images' local frame: the
 // --PosePrior.* source options, shared by the command line and Python.
 #pragma once
@@ -7,8 +7,8 @@
 #include <ostream>
 #include <string>
 
-#include "ramap/pipeline/georegistration.h"
 #include "ramap/pipeline/pose_priors.h"
+#include "ramap/pipeline/prior_alignment.h"
 #include "ramap/scene/features.h"
 
 namespace ramap {
@@ -29,8 +29,8 @@ struct PosePriorSource {
 LocalizedPriors LoadPosePriors(const PosePriorSource& source, const FeatureDatabase& database,
                                const std::string& command, std::ostream* log);
 
-// The source and the georegistration settings as summary.json's "pose_priors" block.
+// The source and the prior alignment settings as summary.json's "pose_priors" block.
 nlohmann::json PosePriorOptionsToJson(const PosePriorSource& source,
-                                      const GeoregistrationOptions& georegistration);
+                                      const PriorAlignmentOptions& prior_alignment);
 
 }  // namespace ramap

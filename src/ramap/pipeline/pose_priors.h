@@ -1,4 +1,4 @@
-// From prior records (a prior file, the database's prior_tx/ty/tz, EXIF GPS) to position priors
+// From prior records (a prior file, the database's prior_tx/ty/tz, EXIF GPS) to pose priors
 // in one local metric frame: geodetic coordinates go to east-north-up about an origin through
 // GeographicLib (io/pose_prior_file.h names the coordinate kinds).
 //
@@ -12,7 +12,7 @@
 
 #include "ramap/io/pose_prior_file.h"
 #include "ramap/scene/features.h"
-#include "ramap/scene/position_prior.h"
+#include "ramap/scene/pose_prior.h"
 #include "ramap/scene/reconstruction.h"
 
 namespace ramap {
@@ -35,7 +35,7 @@ struct PosePriorOptions {
 };
 
 struct LocalizedPriors {
-  PositionPriors priors;
+  PosePriors priors;
   // One line per record not used (unknown image, NaN, out of range, too far away, duplicate).
   std::vector<std::string> warnings;
   int num_records = 0;
@@ -44,7 +44,7 @@ struct LocalizedPriors {
 // The database's prior_tx/ty/tz of every image that has them (finite or not).
 std::vector<PriorRecord> PriorRecordsFromDatabase(const FeatureDatabase& database);
 
-// The coordinates of the database's position priors as the database states them (COLMAP 3.10 on
+// The coordinates of the database's pose priors as the database states them (COLMAP 3.10 on
 // stores a coordinate system with each): kXyz when they say Cartesian and none says WGS84, kWgs84
 // when some say WGS84 and none Cartesian; `fallback` when none says, or they disagree (a 3.8
 // database stores EXIF GPS as latitude, longitude, altitude without saying so).

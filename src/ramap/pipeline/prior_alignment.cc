@@ -1,4 +1,4 @@
-#include "ramap/pipeline/georegistration.h"
+#include "ramap/pipeline/prior_alignment.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 
 namespace ramap {
 
-void GeoregistrationOptions::Check() const {
+void PriorAlignmentOptions::Check() const {
   if (!(max_alignment_error_m >= 0)) {
     throw InputError("--PosePrior.max_alignment_error_m", "must be >= 0");
   }
@@ -27,7 +27,7 @@ namespace {
 // for their standard deviation `sigma`, the fit's rotation would be uncertain by more than
 // max_fit_uncertainty_deg. Priors that all coincide get AlignPoints's own message later.
 std::string FitUncertaintyProblem(const std::vector<Eigen::Vector3d>& target, double sigma,
-                                  const GeoregistrationOptions& options) {
+                                  const PriorAlignmentOptions& options) {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& p : target) centroid += p / static_cast<double>(target.size());
   double spread = 0.0;
@@ -49,11 +49,11 @@ std::string FitUncertaintyProblem(const std::vector<Eigen::Vector3d>& target, do
 }  // namespace
 
 PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& centers,
-                                    const PositionPriors& priors,
-                                    const GeoregistrationOptions& options) {
+                                    const PosePriors& priors,
+                                    const PriorAlignmentOptions& options) {
   options.Check();
   PriorAlignment result;
-  GeoregistrationSummary& summary = result.summary;
+  PriorAlignmentSummary& summary = result.summary;
   std::vector<uint32_t> ids;
   std::vector<Eigen::Vector3d> source, target;
   std::vector<double> sigmas;
@@ -116,7 +116,7 @@ PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& c
   summary.num_inliers = alignment.num_inliers;
   summary.rmse_m = std::sqrt(sum_squares / alignment.num_inliers);
   summary.scale = result.prior_from_model.scale;
-  summary.georegistered = true;
+  summary.aligned = true;
   return result;
 }
 
@@ -133,9 +133,9 @@ std::vector<CenterPrior> PriorsInModelFrame(const PriorAlignment& alignment) {
   return priors;
 }
 
-void MeasurePriorErrors(const Reconstruction& reconstruction, const PositionPriors& priors,
-                        const std::map<uint32_t, PositionPrior>& inliers,
-                        GeoregistrationSummary* summary) {
+void MeasurePriorErrors(const Reconstruction& reconstruction, const PosePriors& priors,
+                        const std::map<uint32_t, PosePrior>& inliers,
+                        PriorAlignmentSummary* summary) {
   auto error = [&](uint32_t id) {
     return (CameraCenter(reconstruction.images.at(id).cam_from_world) -
             priors.by_image.at(id).center)
@@ -161,12 +161,12 @@ void TransformReconstruction(const Sim3d& new_from_old, Reconstruction* reconstr
   for (auto& [id, point] : reconstruction->points3D) point.xyz = new_from_old * point.xyz;
 }
 
-PriorAlignment GeoregisterModel(const PositionPriors& priors, const GeoregistrationOptions& options,
-                                Reconstruction* model) {
+PriorAlignment AlignModelToPriors(const PosePriors& priors, const PriorAlignmentOptions& options,
+                                  Reconstruction* model) {
   std::map<uint32_t, Eigen::Vector3d> centers;
   for (const auto& [id, image] : model->images) centers[id] = CameraCenter(image.cam_from_world);
   PriorAlignment alignment = AlignCentersToPriors(centers, priors, options);
-  if (alignment.summary.georegistered) TransformReconstruction(alignment.prior_from_model, model);
+  if (alignment.summary.aligned) TransformReconstruction(alignment.prior_from_model, model);
   return alignment;
 }
 

@@ -1,6 +1,6 @@
-// Georegistration: the averaged model, known up to a similarity, mapped onto the position priors
+// Prior alignment: the averaged model, known up to a similarity, mapped onto the pose priors
 // (GPS) of its images by a robust similarity fit over camera centres (RANSAC over triples, then a
-// least-squares refit on the inliers: eval/alignment.h). Fixes whose aligned error exceeds the
+// least-squares refit on the inliers: geometry/alignment.h). Fixes whose aligned error exceeds the
 // threshold are reported as outliers by image, and left out of every later use of the priors.
 #pragma once
 
@@ -11,12 +11,12 @@
 
 #include "ramap/averaging/translation_averaging.h"
 #include "ramap/geometry/alignment.h"
-#include "ramap/scene/position_prior.h"
+#include "ramap/scene/pose_prior.h"
 #include "ramap/scene/reconstruction.h"
 
 namespace ramap {
 
-struct GeoregistrationOptions {
+struct PriorAlignmentOptions {
   // Fit the model to the priors and write it in their frame. The two uses below need the fit:
   // without it they are ignored.
   bool align = true;
@@ -45,46 +45,45 @@ struct PriorOutlier {
   double error_m = 0.0;  // distance of the aligned centre from its prior
 };
 
-struct GeoregistrationSummary {
-  bool georegistered = false;
-  std::string problem;  // why not, when not georegistered
+struct PriorAlignmentSummary {
+  bool aligned = false;
+  std::string problem;  // why not, when not aligned to its priors
   int num_priors = 0;   // registered images with a prior
   int num_inliers = 0;
   double rmse_m = 0.0;  // aligned centre vs prior, over the inliers
   double threshold_m = 0.0;
-  double scale = 0.0;  // metres per unit of the model before georegistration
+  double scale = 0.0;  // metres per unit of the model before prior alignment
   bool used_in_translation_averaging = false;
   bool used_in_bundle_adjustment = false;
   std::vector<PriorOutlier> outliers;  // largest error first
 };
 
 struct PriorAlignment {
-  GeoregistrationSummary summary;
+  PriorAlignmentSummary summary;
   Sim3d prior_from_model;
-  std::map<uint32_t, PositionPrior> inliers;  // the priors the fit accepted
+  std::map<uint32_t, PosePrior> inliers;  // the priors the fit accepted
 };
 
 // Robustly fits prior_from_model to the priors of the images in `centers` (model frame). On
 // failure (too few priors, all identical or on one line, no consensus) summary.problem says why.
 PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& centers,
-                                    const PositionPriors& priors,
-                                    const GeoregistrationOptions& options);
+                                    const PosePriors& priors, const PriorAlignmentOptions& options);
 
 // The inlier priors of `alignment` as translation averaging rows in the model frame: the prior
 // mapped back through the fit, its information scaled and rotated with it.
 std::vector<CenterPrior> PriorsInModelFrame(const PriorAlignment& alignment);
 
 // Recomputes summary.rmse_m and the outliers' errors from the final camera centres of a
-// georegistered `reconstruction` (after bundle adjustment moved them).
-void MeasurePriorErrors(const Reconstruction& reconstruction, const PositionPriors& priors,
-                        const std::map<uint32_t, PositionPrior>& inliers,
-                        GeoregistrationSummary* summary);
+// `reconstruction` aligned to its priors (after bundle adjustment moved them).
+void MeasurePriorErrors(const Reconstruction& reconstruction, const PosePriors& priors,
+                        const std::map<uint32_t, PosePrior>& inliers,
+                        PriorAlignmentSummary* summary);
 
 // Every pose and point mapped by `new_from_old`.
 // Fits `model`'s camera centres to `priors` (AlignCentersToPriors) and, when that succeeds, moves
 // the model into the priors' frame (`ramap model_aligner`).
-PriorAlignment GeoregisterModel(const PositionPriors& priors, const GeoregistrationOptions& options,
-                                Reconstruction* model);
+PriorAlignment AlignModelToPriors(const PosePriors& priors, const PriorAlignmentOptions& options,
+                                  Reconstruction* model);
 
 void TransformReconstruction(const Sim3d& new_from_old, Reconstruction* reconstruction);
 

@@ -150,7 +150,7 @@ ReconstructResult RunReconstructJob(const ReconstructJob& job, std::ostream* pro
       {"matching", MatchingSummaryToJson(matching)},
       {"options", OptionValuesToJson(MapperOptionTable(), options.mapper)},
       {"pose_priors",
-       PosePriorOptionsToJson(options.mapper.prior_source, options.mapper.georegistration)},
+       PosePriorOptionsToJson(options.mapper.prior_source, options.mapper.prior_alignment)},
       {"loop_closure",
        LoopClosureToJson(options.close_loops, options.loop_closure, closed.closure)}};
   WriteMapperOutput(result.mapping, job.output_path + "/sparse", ModelFormat::kBinary, run,

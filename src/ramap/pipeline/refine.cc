@@ -8,7 +8,7 @@
 #include "ramap/pipeline/bearings.h"
 #include "ramap/pipeline/mapper_options.h"
 #include "ramap/pipeline/mapper_summary.h"
-#include "ramap/pipeline/structure.h"
+#include "ramap/pipeline/track_triangulation.h"
 
 namespace ramap {
 
@@ -80,7 +80,7 @@ void LogGivenIntrinsicsTest(const MapperContext& context, const GivenIntrinsicsT
 // cheaply, and every track is triangulated again through the poses and intrinsics it found, for
 // the full adjustment to start from. Returns whether it ran.
 bool CalibrateOnSubset(const MapperContext& context, const std::vector<Track>& tracks,
-                       const std::map<uint32_t, PositionPrior>& priors,
+                       const std::map<uint32_t, PosePrior>& priors,
                        MapperComponentSummary* component, Reconstruction* reconstruction) {
   const MapperOptions& options = context.options;
   const BundleAdjustmentOptions& ba = options.bundle_adjustment;
@@ -108,8 +108,8 @@ bool CalibrateOnSubset(const MapperContext& context, const std::vector<Track>& t
 // Bundle adjustment, the test of the given intrinsics, and (when the data proved some wrong)
 // bundle adjustment again, from where it stopped, through the intrinsics the test found.
 void AdjustComponent(const MapperContext& context, const BundleAdjustmentOptions& ba_options,
-                     const std::map<uint32_t, PositionPrior>& priors,
-                     MapperComponentSummary* component, Reconstruction* adjusted) {
+                     const std::map<uint32_t, PosePrior>& priors, MapperComponentSummary* component,
+                     Reconstruction* adjusted) {
   const MapperOptions& options = context.options;
   BundleAdjustmentSummary& ba = component->bundle_adjustment;
   ba = BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, adjusted,
@@ -148,13 +148,13 @@ std::vector<std::pair<std::string, int>> MostFilteredImages(const FeatureDatabas
 }  // namespace
 
 void RefineComponent(const MapperContext& context, const std::vector<Track>& tracks,
-                     PriorAlignment* georegistration, MapperComponentSummary* component,
+                     PriorAlignment* prior_alignment, MapperComponentSummary* component,
                      Reconstruction* reconstruction) {
   const MapperOptions& options = context.options;
   const bool use_priors =
-      georegistration->summary.georegistered && options.georegistration.use_in_bundle_adjustment;
-  const std::map<uint32_t, PositionPrior> priors =
-      use_priors ? georegistration->inliers : std::map<uint32_t, PositionPrior>();
+      prior_alignment->summary.aligned && options.prior_alignment.use_in_bundle_adjustment;
+  const std::map<uint32_t, PosePrior> priors =
+      use_priors ? prior_alignment->inliers : std::map<uint32_t, PosePrior>();
   BundleAdjustmentOptions ba_options = options.bundle_adjustment;
   // After the subset crossed the focal length's valley the ordinary tolerance suffices.
   if (CalibrateOnSubset(context, tracks, priors, component, reconstruction)) {
@@ -165,7 +165,7 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
   AdjustComponent(context, ba_options, priors, component, &adjusted);
   component->most_filtered_images =
       MostFilteredImages(context.database, component->bundle_adjustment);
-  georegistration->summary.used_in_bundle_adjustment = use_priors;
+  prior_alignment->summary.used_in_bundle_adjustment = use_priors;
   *reconstruction =
       TriangulateThrough(context, tracks, adjusted, "again with the refined poses", component);
   for (int round = 1; round < options.num_refinement_rounds; ++round) {

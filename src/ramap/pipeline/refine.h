@@ -5,18 +5,18 @@
 #include <vector>
 
 #include "ramap/graph/tracks.h"
-#include "ramap/pipeline/georegistration.h"
 #include "ramap/pipeline/mapper_context.h"
+#include "ramap/pipeline/prior_alignment.h"
 #include "ramap/scene/reconstruction.h"
 
 namespace ramap {
 
 // Bundle adjustment on the best-connected points of `reconstruction` (with the inlier priors of a
-// georegistered component when use_in_bundle_adjustment), then `tracks` triangulated again with
-// the refined poses into `reconstruction`, through the refined intrinsics when BA refined them
+// component aligned to its priors, when use_in_bundle_adjustment), then `tracks` triangulated again
+// with the refined poses into `reconstruction`, through the refined intrinsics when BA refined them
 // (they change every bearing of the component's images).
 void RefineComponent(const MapperContext& context, const std::vector<Track>& tracks,
-                     PriorAlignment* georegistration, MapperComponentSummary* component,
+                     PriorAlignment* prior_alignment, MapperComponentSummary* component,
                      Reconstruction* reconstruction);
 
 }  // namespace ramap

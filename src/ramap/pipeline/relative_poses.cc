@@ -66,10 +66,10 @@ void EstimatePair(const FeatureDatabase& database, const ImageBearings& bearings
 // The confident stop's error bound for wide views, from the keypoints' noise: the median epipolar
 // error (pixels) of evenly spaced pairs estimated with every candidate, as the RMS a refined fit
 // has at that noise (1.48 times the median for Gaussian errors) with a quarter's margin, and never
-// below the option's value. The option's 0.8 px was measured at 0.5 px of keypoint noise, where
-// a refined fit has about 0.65 px; at 0.7 px no fit met it and every pair solved every candidate
-// (twice the time per pair). The bound for narrow views stays as given: there it guards against
-// wrong roots, which fit nearly as well as the right one.
+// below the option's value. The option's 0.8 px was chosen at 0.5 px of keypoint noise, just
+// above what a refined fit has there; at 0.7 px of noise no fit met it, and every pair solved
+// every candidate, at a much higher cost per pair. The bound for narrow views stays as given:
+// there it guards against wrong roots, which fit nearly as well as the right one.
 double NoiseScaledConfidentBound(const FeatureDatabase& database, const ImageBearings& bearings,
                                  const std::vector<ImagePair>& pairs,
                                  const std::vector<const TwoViewGeometry*>& geometries,

@@ -5,7 +5,7 @@
 #include "ramap/geometry/absolute_pose.h"
 #include "ramap/pipeline/mapper_options.h"
 #include "ramap/pipeline/mapper_summary.h"
-#include "ramap/pipeline/structure.h"
+#include "ramap/pipeline/track_triangulation.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/timer.h"
 
@@ -116,7 +116,7 @@ void ReregisterComponent(const MapperContext& context, const std::vector<Track>&
   Timer timer;
   component->reregistered_images = ReregisterImages(
       tracks, context.bearings.bearings, context.bearings.focal_lengths_px, *reconstruction,
-      options.reregistration, options.structure.max_reprojection_error_px, poses);
+      options.reregistration, options.triangulation.max_reprojection_error_px, poses);
   int num_replaced = 0;
   for (const ReregisteredImage& image : component->reregistered_images)
     num_replaced += image.replaced;

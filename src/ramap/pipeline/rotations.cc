@@ -24,9 +24,9 @@ bool UseRotationEdgeWeights(EdgeWeighting weighting, const FeatureDatabase& data
   return UseRotationEdgeWeights(weighting, AllFocalLengthsKnown(database));
 }
 
-RotationStageResult AverageViewGraphRotations(const RotationGraph& graph,
+RotationStageResult AverageViewGraphRotations(const ViewGraph& graph,
                                               const std::vector<uint32_t>& capture_order,
-                                              bool sequential, const KeyframeOptions& pose_graph,
+                                              bool sequential, const KeyframeOptions& view_graph,
                                               const RotationAveragingOptions& options) {
   RotationStageResult result;
   if (!sequential) {
@@ -38,7 +38,7 @@ RotationStageResult AverageViewGraphRotations(const RotationGraph& graph,
   for (const uint32_t id : capture_order) {
     if (members.count(id)) frames.push_back(id);
   }
-  const Keyframes keyframes = SelectKeyframes(frames, pose_graph);
+  const Keyframes keyframes = SelectKeyframes(frames, view_graph);
   result.num_keyframes = static_cast<int>(keyframes.keyframe_ids.size());
   const std::vector<EdgeKind> kinds = ClassifyEdges(graph, keyframes);
   result.num_loop_edges = static_cast<int>(std::count(kinds.begin(), kinds.end(), EdgeKind::kLoop));
@@ -47,7 +47,7 @@ RotationStageResult AverageViewGraphRotations(const RotationGraph& graph,
 }
 
 RotationStageResult AverageComponentRotations(
-    const MapperContext& context, const RotationGraph& graph, MapperComponentSummary* component,
+    const MapperContext& context, const ViewGraph& graph, MapperComponentSummary* component,
     std::map<uint32_t, Eigen::Quaterniond>* world_rotations) {
   const MapperOptions& options = context.options;
   Timer timer;
@@ -55,7 +55,7 @@ RotationStageResult AverageComponentRotations(
   rotation_averaging.use_edge_weights =
       UseRotationEdgeWeights(options.rotation_edge_weights, context.database);
   RotationStageResult stage = AverageViewGraphRotations(graph, context.order, context.sequential,
-                                                        options.pose_graph, rotation_averaging);
+                                                        options.view_graph, rotation_averaging);
   const RotationAveragingResult& rotations = stage.rotations;
   context.summary.num_keyframes += stage.num_keyframes;
   context.summary.num_loop_edges += stage.num_loop_edges;
@@ -94,15 +94,15 @@ RotationStageResult AverageComponentRotations(
   return stage;
 }
 
-RotationGraph RotationGraphOfRecords(const std::vector<RelativePoseRecord>& records,
-                                     std::vector<std::string>* names) {
+ViewGraph ViewGraphOfRecords(const std::vector<RelativePoseRecord>& records,
+                             std::vector<std::string>* names) {
   std::map<std::string, uint32_t> ids;
   auto id_of = [&](const std::string& name) {
     auto [it, inserted] = ids.emplace(name, static_cast<uint32_t>(names->size()));
     if (inserted) names->push_back(name);
     return it->second;
   };
-  RotationGraph graph;
+  ViewGraph graph;
   for (const RelativePoseRecord& r : records) {
     graph.edges.push_back({id_of(r.image_name1), id_of(r.image_name2), r.rotation,
                            RelativeRotationWeight(r.num_inliers)});
@@ -112,10 +112,10 @@ RotationGraph RotationGraphOfRecords(const std::vector<RelativePoseRecord>& reco
 }
 
 RecordRotations AverageRecordRotations(const std::vector<RelativePoseRecord>& records,
-                                       InputOrder order, const KeyframeOptions& pose_graph,
+                                       InputOrder order, const KeyframeOptions& view_graph,
                                        const RotationAveragingOptions& options) {
   RecordRotations result;
-  const RotationGraph graph = RotationGraphOfRecords(records, &result.names);
+  const ViewGraph graph = ViewGraphOfRecords(records, &result.names);
   result.num_edges = static_cast<int>(graph.edges.size());
   std::vector<uint32_t> capture_order;
   for (const size_t k : CaptureOrder(result.names))
@@ -123,7 +123,7 @@ RecordRotations AverageRecordRotations(const std::vector<RelativePoseRecord>& re
   result.sequential = IsSequentialInput(order, result.names);
   Timer timer;
   result.stage =
-      AverageViewGraphRotations(graph, capture_order, result.sequential, pose_graph, options);
+      AverageViewGraphRotations(graph, capture_order, result.sequential, view_graph, options);
   result.seconds = timer.ElapsedSeconds();
   const RotationAveragingResult& averaged = result.stage.rotations;
   for (size_t k = 0; k < averaged.node_ids.size(); ++k) {

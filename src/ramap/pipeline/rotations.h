@@ -1,6 +1,6 @@
 // Stage 3 of the mapper on one connected view graph: keyframe windows first for sequences, the
-// whole graph at once for unordered collections (docs/architecture.md, stages 2 and 3). The graph-level step is
-// shared by `ramap mapper` and `ramap rotation_averager`.
+// whole graph at once for unordered collections (docs/architecture.md, stages 2 and 3). The
+// graph-level step is shared by `ramap mapper` and `ramap rotation_averager`.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -11,7 +11,7 @@
 
 #include "ramap/averaging/rotation_averaging.h"
 #include "ramap/graph/keyframes.h"
-#include "ramap/graph/rotation_graph.h"
+#include "ramap/graph/view_graph_algorithms.h"
 #include "ramap/io/relative_pose_file.h"
 #include "ramap/pipeline/mapper_context.h"
 #include "ramap/pipeline/mapper_options.h"
@@ -39,24 +39,24 @@ bool AllFocalLengthsKnown(const FeatureDatabase& database);
 
 // `capture_order` lists node ids in capture order (ids not in the graph are ignored); it is only
 // used when `sequential`.
-RotationStageResult AverageViewGraphRotations(const RotationGraph& graph,
+RotationStageResult AverageViewGraphRotations(const ViewGraph& graph,
                                               const std::vector<uint32_t>& capture_order,
-                                              bool sequential, const KeyframeOptions& pose_graph,
+                                              bool sequential, const KeyframeOptions& view_graph,
                                               const RotationAveragingOptions& options);
 
 // The mapper's stage 3 on one component: AverageViewGraphRotations, the estimated rotations to
 // `world_rotations`; images left without one and pruned edges recorded with their reasons, the
 // progress line and the component's rotation figures.
 RotationStageResult AverageComponentRotations(
-    const MapperContext& context, const RotationGraph& graph, MapperComponentSummary* component,
+    const MapperContext& context, const ViewGraph& graph, MapperComponentSummary* component,
     std::map<uint32_t, Eigen::Quaterniond>* world_rotations);
 
-// The rotation graph of relative pose records, its nodes numbered 0, 1, ... by image name in order
+// The view graph of relative pose records, its nodes numbered 0, 1, ... by image name in order
 // of first appearance (`names`, by node); the first record of two images counts.
-RotationGraph RotationGraphOfRecords(const std::vector<RelativePoseRecord>& records,
-                                     std::vector<std::string>* names);
+ViewGraph ViewGraphOfRecords(const std::vector<RelativePoseRecord>& records,
+                             std::vector<std::string>* names);
 
-// `ramap rotation_averager` on relative pose records: their graph (RotationGraphOfRecords), in
+// `ramap rotation_averager` on relative pose records: their graph (ViewGraphOfRecords), in
 // capture order of the names when `order` makes them a sequence, averaged as the mapper does.
 struct RecordRotations {
   std::vector<std::string> names;  // by node id
@@ -67,7 +67,7 @@ struct RecordRotations {
   double seconds = 0.0;                   // averaging alone
 };
 RecordRotations AverageRecordRotations(const std::vector<RelativePoseRecord>& records,
-                                       InputOrder order, const KeyframeOptions& pose_graph,
+                                       InputOrder order, const KeyframeOptions& view_graph,
                                        const RotationAveragingOptions& options);
 
 }  // namespace ramap

@@ -17,7 +17,7 @@ inline const std::string kBearings = "bearings";
 inline const std::string kRelativePoses = "relative poses";
 inline const std::string kRotationAveraging = "rotation averaging";
 inline const std::string kTranslationAveraging = "translation averaging";
-inline const std::string kGeoregistration = "georegistration";
+inline const std::string kPriorAlignment = "prior alignment";
 inline const std::string kTriangulation = "triangulation";
 inline const std::string kBundleAdjustment = "bundle adjustment";
 }  // namespace stage

@@ -1,4 +1,4 @@
-#include "ramap/pipeline/structure.h"
+#include "ramap/pipeline/track_triangulation.h"
 
 #include <cmath>
 #include <optional>
@@ -12,7 +12,7 @@
 
 namespace ramap {
 
-void StructureOptions::Check() const {
+void TrackTriangulationOptions::Check() const {
   CheckOption(max_reprojection_error_px > 0, "--Triangulation.max_reprojection_error_px", "> 0",
               max_reprojection_error_px);
   CheckOption(min_triangulation_angle_deg >= 0, "--Triangulation.min_triangulation_angle_deg",
@@ -64,7 +64,7 @@ TriangulatedTrack TriangulateTrack(const Track& track, const FeatureDatabase& da
                                    const KeypointBearings& bearings,
                                    const std::map<uint32_t, double>& focal_lengths_px,
                                    const Reconstruction& reconstruction,
-                                   const StructureOptions& options) {
+                                   const TrackTriangulationOptions& options) {
   TriangulatedTrack result;
   const TrackRays rays =
       RaysOfTrack(track, database, poses, bearings, focal_lengths_px, reconstruction);
@@ -98,8 +98,8 @@ Reconstruction BuildReconstruction(const FeatureDatabase& database,
                                    const std::vector<Track>& tracks,
                                    const KeypointBearings& bearings,
                                    const std::map<uint32_t, double>& focal_lengths_px,
-                                   const StructureOptions& options, StructureSummary* summary,
-                                   int num_threads) {
+                                   const TrackTriangulationOptions& options,
+                                   TrackTriangulationSummary* summary, int num_threads) {
   options.Check();
   Reconstruction reconstruction;
   for (const auto& [image_id, pose] : poses) {
@@ -124,7 +124,7 @@ Reconstruction BuildReconstruction(const FeatureDatabase& database,
     triangulated[k] = TriangulateTrack(tracks[k], database, poses, bearings, focal_lengths_px,
                                        reconstruction, options);
   });
-  StructureSummary counts;
+  TrackTriangulationSummary counts;
   double sum_error_px = 0.0;
   uint64_t next_point3D_id = 1;
   for (TriangulatedTrack& track : triangulated) {
@@ -156,18 +156,18 @@ Reconstruction TriangulateComponent(const MapperContext& context,
                                     const std::map<uint32_t, Camera>& cameras,
                                     const std::string& what, MapperComponentSummary* component) {
   Timer timer;
-  StructureSummary structure;
+  TrackTriangulationSummary triangulated;
   Reconstruction reconstruction = BuildReconstruction(
       context.database, poses, tracks, bearings.bearings, bearings.focal_lengths_px,
-      context.options.structure, &structure, context.options.num_threads);
+      context.options.triangulation, &triangulated, context.options.num_threads);
   for (auto& [camera_id, camera] : reconstruction.cameras) camera = cameras.at(camera_id);
-  component->num_points = structure.num_points;
-  component->num_observations = structure.num_observations;
-  component->mean_reprojection_error_px = structure.mean_reprojection_error_px;
+  component->num_points = triangulated.num_points;
+  component->num_observations = triangulated.num_observations;
+  component->mean_reprojection_error_px = triangulated.mean_reprojection_error_px;
   context.log.Record(stage::kTriangulation, timer.ElapsedSeconds(),
-                     what + std::to_string(structure.num_points) + " points of " +
+                     what + std::to_string(triangulated.num_points) + " points of " +
                          std::to_string(tracks.size()) + " tracks, mean reprojection error " +
-                         std::to_string(structure.mean_reprojection_error_px) + " px");
+                         std::to_string(triangulated.mean_reprojection_error_px) + " px");
   return reconstruction;
 }
 

@@ -1,5 +1,6 @@
-// The structure stage: with every pose fixed, the feature tracks are triangulated and the result is
-// assembled as a COLMAP model (cameras, registered images with their keypoints, 3D points).
+// The triangulation stage: with every pose fixed, the feature tracks are triangulated and the
+// result is assembled as a COLMAP model (cameras, registered images with their keypoints, 3D
+// points).
 #pragma once
 
 #include <Eigen/Core>
@@ -17,7 +18,7 @@
 
 namespace ramap {
 
-struct StructureOptions {
+struct TrackTriangulationOptions {
   // COLMAP's mapper filters observations above 4 px (Mapper.filter_max_reproj_error).
   double max_reprojection_error_px = 4.0;
   // COLMAP's Mapper.filter_min_tri_angle.
@@ -26,7 +27,7 @@ struct StructureOptions {
   void Check() const;
 };
 
-struct StructureSummary {
+struct TrackTriangulationSummary {
   int num_tracks = 0;
   int num_points = 0;
   int num_observations = 0;
@@ -40,17 +41,16 @@ struct StructureSummary {
 // the pixel bound into an angle. Reprojection errors are measured on the normalised plane scaled by
 // the focal length (exact for undistorted pinhole cameras). Tracks are triangulated on
 // `num_threads` threads; the model is the same for any number.
-Reconstruction BuildReconstruction(const FeatureDatabase& database,
-                                   const std::map<uint32_t, Rigid3d>& poses,
-                                   const std::vector<Track>& tracks,
-                                   const KeypointBearings& bearings,
-                                   const std::map<uint32_t, double>& focal_lengths_px,
-                                   const StructureOptions& options = StructureOptions(),
-                                   StructureSummary* summary = nullptr, int num_threads = 1);
+Reconstruction BuildReconstruction(
+    const FeatureDatabase& database, const std::map<uint32_t, Rigid3d>& poses,
+    const std::vector<Track>& tracks, const KeypointBearings& bearings,
+    const std::map<uint32_t, double>& focal_lengths_px,
+    const TrackTriangulationOptions& options = TrackTriangulationOptions(),
+    TrackTriangulationSummary* summary = nullptr, int num_threads = 1);
 
 // The mapper's stage 5 on one component: every track triangulated with `poses` fixed, through
-// `bearings` and `cameras` (the refined ones after bundle adjustment), the cameras written into
-// the model; the component's structure figures and the progress line (`what` opens its message).
+// `bearings` and `cameras` (the refined ones after bundle adjustment), the cameras written into the
+// model; the component's triangulation figures and the progress line (`what` opens its message).
 Reconstruction TriangulateComponent(const MapperContext& context,
                                     const std::map<uint32_t, Rigid3d>& poses,
                                     const std::vector<Track>& tracks, const ImageBearings& bearings,

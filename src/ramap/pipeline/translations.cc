@@ -29,7 +29,7 @@ struct KeptEdges {
   std::multimap<uint32_t, uint32_t> pure_rotation_neighbours;
 };
 
-KeptEdges SplitKeptEdges(const MapperContext& context, const RotationGraph& graph,
+KeptEdges SplitKeptEdges(const MapperContext& context, const ViewGraph& graph,
                          const std::vector<EdgeStatus>& edge_status,
                          const std::map<uint32_t, Eigen::Quaterniond>& world_rotations) {
   KeptEdges kept;
@@ -80,8 +80,9 @@ std::vector<PairDirection> KeptPairDirections(
   return directions;
 }
 
-// The directions their short cycles support (averaging/direction_consistency.h); each rejected one is
-// listed with its reason among the summary's dropped edges, and its pair id added to `rejected`.
+// The directions their short cycles support (averaging/direction_consistency.h); each rejected one
+// is listed with its reason among the summary's dropped edges, and its pair id added to
+// `rejected_pair_ids`.
 std::vector<PairDirection> ConsistentDirections(const MapperContext& context,
                                                 const std::vector<PairDirection>& directions,
                                                 std::set<uint64_t>* rejected_pair_ids,
@@ -131,8 +132,8 @@ bool EarlyTracksFit(const EarlyTracks& early, const KeptEdges& kept) {
 }
 
 // The tracks of the `kept` edges, on a thread of their own while the pair directions are
-// estimated (4541 frames: the two together 0.95-1.03 -> 0.82-0.94 s); the early tracks, which do
-// not fit, are dropped first.
+// estimated, which shortens the two together; the early tracks, which do not fit, are dropped
+// first.
 std::future<std::vector<Track>> TracksOfKeptEdges(const MapperContext& context,
                                                   const KeptEdges& kept, EarlyTracks* early) {
   early->built = {};  // their memory freed (an async build is waited for)
@@ -172,29 +173,29 @@ int PlaceStandstillImages(const std::multimap<uint32_t, uint32_t>& rotation_neig
   return static_cast<int>(num_left_out - left_out.size());
 }
 
-// The georegistration's progress line.
-std::string GeoregistrationLine(const GeoregistrationSummary& geo) {
-  if (!geo.georegistered) return "not georegistered: " + geo.problem;
+// The prior alignment's progress line.
+std::string PriorAlignmentLine(const PriorAlignmentSummary& geo) {
+  if (!geo.aligned) return "not aligned to its priors: " + geo.problem;
   return std::to_string(geo.num_inliers) + " of " + std::to_string(geo.num_priors) +
          " priors within " + FormatMetres(geo.threshold_m) + ", RMSE " + FormatMetres(geo.rmse_m) +
          ", " + std::to_string(geo.outliers.size()) + " outliers" +
          (geo.used_in_translation_averaging ? ", used in translation averaging" : "");
 }
 
-// The alignment to the priors, and translation averaging again with them (GeoregisterComponent).
+// The alignment to the priors, and translation averaging again with them (AlignComponentToPriors).
 PriorAlignment RefitWithPriors(const MapperContext& context,
                                const std::map<uint32_t, Eigen::Quaterniond>& rotations,
                                ComponentTranslations* translations) {
   TranslationAveragingResult* positions = &translations->positions;
-  const GeoregistrationOptions& options = context.options.georegistration;
+  const PriorAlignmentOptions& options = context.options.prior_alignment;
   PriorAlignment alignment = AlignCentersToPriors(positions->centers, context.priors, options);
-  if (!alignment.summary.georegistered || !options.use_in_translation_averaging) return alignment;
+  if (!alignment.summary.aligned || !options.use_in_translation_averaging) return alignment;
   try {
     TranslationAveragingResult constrained = AverageTranslations(
         rotations, translations->directions, translations->tracks, context.bearings.bearings,
         context.options.translation_averaging, PriorsInModelFrame(alignment));
     PriorAlignment refit = AlignCentersToPriors(constrained.centers, context.priors, options);
-    if (!refit.summary.georegistered) return alignment;
+    if (!refit.summary.aligned) return alignment;
     refit.summary.used_in_translation_averaging = true;
     *positions = std::move(constrained);
     PlaceStandstillImages(translations->pure_rotation_neighbours, positions);
@@ -229,7 +230,7 @@ TranslationAveragingResult SolvePositions(const MapperContext& context,
 
 }  // namespace
 
-EarlyTracks StartComponentTracks(const MapperContext& context, const RotationGraph& graph) {
+EarlyTracks StartComponentTracks(const MapperContext& context, const ViewGraph& graph) {
   EarlyTracks early;
   for (const RelativeRotationEdge& edge : graph.edges) {
     const ImagePair& pair = context.pairs[edge.pair_index];
@@ -243,7 +244,7 @@ EarlyTracks StartComponentTracks(const MapperContext& context, const RotationGra
 }
 
 std::optional<ComponentTranslations> AverageComponentTranslations(
-    const MapperContext& context, const RotationGraph& graph,
+    const MapperContext& context, const ViewGraph& graph,
     const std::vector<EdgeStatus>& edge_status,
     const std::map<uint32_t, Eigen::Quaterniond>& world_rotations, EarlyTracks* early,
     MapperComponentSummary* component) {
@@ -303,21 +304,21 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
   return result;
 }
 
-PriorAlignment GeoregisterComponent(const MapperContext& context,
-                                    const std::map<uint32_t, Eigen::Quaterniond>& rotations,
-                                    ComponentTranslations* translations) {
+PriorAlignment AlignComponentToPriors(const MapperContext& context,
+                                      const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+                                      ComponentTranslations* translations) {
   Timer timer;
   PriorAlignment alignment = RefitWithPriors(context, rotations, translations);
-  context.log.Record(stage::kGeoregistration, timer.ElapsedSeconds(),
-                     GeoregistrationLine(alignment.summary));
+  context.log.Record(stage::kPriorAlignment, timer.ElapsedSeconds(),
+                     PriorAlignmentLine(alignment.summary));
   return alignment;
 }
 
 void ReportPriorErrors(const MapperContext& context, const Reconstruction& reconstruction,
-                       PriorAlignment* georegistration) {
-  MeasurePriorErrors(reconstruction, context.priors, georegistration->inliers,
-                     &georegistration->summary);
-  const GeoregistrationSummary& geo = georegistration->summary;
+                       PriorAlignment* prior_alignment) {
+  MeasurePriorErrors(reconstruction, context.priors, prior_alignment->inliers,
+                     &prior_alignment->summary);
+  const PriorAlignmentSummary& geo = prior_alignment->summary;
   for (const PriorOutlier& outlier : geo.outliers) {
     context.summary.prior_outliers.push_back({context.database.images.at(outlier.image_id).name,
                                               "prior " + FormatMetres(outlier.error_m) +

@@ -1,7 +1,7 @@
 // Stage 4 of the mapper on one component: the direction of every pair rotation averaging kept,
 // from the averaged rotations (averaging/pair_directions.h), then translation averaging on them
-// and on feature tracks (averaging/translation_averaging.h). With position priors, the positions
-// are georegistered and, by default, solved again with the priors as rows.
+// and on feature tracks (averaging/translation_averaging.h). With pose priors, the positions
+// are aligned to their priors and, by default, solved again with the priors as rows.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -16,8 +16,8 @@
 #include "ramap/averaging/rotation_averaging.h"
 #include "ramap/averaging/translation_averaging.h"
 #include "ramap/graph/tracks.h"
-#include "ramap/pipeline/georegistration.h"
 #include "ramap/pipeline/mapper_context.h"
+#include "ramap/pipeline/prior_alignment.h"
 #include "ramap/scene/reconstruction.h"
 #include "ramap/scene/relative_rotations.h"
 
@@ -33,10 +33,10 @@ struct ComponentTranslations {
 };
 
 // The tracks of a whole component, built before its rotations are averaged: rotation averaging
-// runs mostly on one thread (1.06x faster with a second), and leaves the other core to them. They
-// are the tracks translation averaging needs when rotation averaging keeps every edge, the common
-// case (4541-frame drive: translation averaging 2.43-2.78 -> 1.87-2.25 s, alternated with the
-// binary before); otherwise translation averaging builds them again over the edges it kept.
+// runs mostly on one thread (a second one barely speeds it), and leaves the other core to them.
+// They are the tracks translation averaging needs when rotation averaging keeps every edge, the
+// common case, which makes a long drive's translation stage quicker (BENCHMARKS.md, "Scale");
+// otherwise translation averaging builds them again over the edges it kept.
 struct EarlyTracks {
   std::set<uint64_t> pair_ids;  // the edges they are built over
   std::future<std::vector<Track>> built;
@@ -44,13 +44,13 @@ struct EarlyTracks {
 
 // Starts building the tracks of every edge of `graph`: on a thread of its own with more than one
 // mapper thread, otherwise when first asked for.
-EarlyTracks StartComponentTracks(const MapperContext& context, const RotationGraph& graph);
+EarlyTracks StartComponentTracks(const MapperContext& context, const ViewGraph& graph);
 
 // The pair directions and tracks of the edges with edge_status kKept (the `early` ones when they
 // are built over exactly those), then the camera centres; none when translation averaging fails
 // (the component's images get the reason).
 std::optional<ComponentTranslations> AverageComponentTranslations(
-    const MapperContext& context, const RotationGraph& graph,
+    const MapperContext& context, const ViewGraph& graph,
     const std::vector<EdgeStatus>& edge_status,
     const std::map<uint32_t, Eigen::Quaterniond>& world_rotations, EarlyTracks* early,
     MapperComponentSummary* component);
@@ -59,12 +59,12 @@ std::optional<ComponentTranslations> AverageComponentTranslations(
 // solves translation averaging again with the inlier priors as rows (in the model frame) and fits
 // once more, so that the outliers and the residuals reported are those of the final positions
 // (`translations->positions` then holds them). Records the progress line.
-PriorAlignment GeoregisterComponent(const MapperContext& context,
-                                    const std::map<uint32_t, Eigen::Quaterniond>& rotations,
-                                    ComponentTranslations* translations);
+PriorAlignment AlignComponentToPriors(const MapperContext& context,
+                                      const std::map<uint32_t, Eigen::Quaterniond>& rotations,
+                                      ComponentTranslations* translations);
 
 // After the final model: the priors' errors, and the outliers reported in the summary.
 void ReportPriorErrors(const MapperContext& context, const Reconstruction& reconstruction,
-                       PriorAlignment* georegistration);
+                       PriorAlignment* prior_alignment);
 
 }  // namespace ramap

@@ -244,8 +244,8 @@ std::map<uint32_t, EstimateShape> EstimateLogScales(
   const double high = std::log(options.max_focal_factor);
   // The guesses follow one rule (1.2 x the longest side), so they tend to be off alike, and
   // camera-by-camera rounds alone, each camera answering the others' wrong values, stay near a
-  // jointly wrong start (measured: Herz-Jesus-P8 with a camera per image, 3392-3746 px for a truth
-  // of 2760 without the common start).
+  // jointly wrong start (without the common start, Herz-Jesus-P8 with a camera per image stayed
+  // far from its true focal length).
   if (estimable.size() > 1) {
     std::vector<uint32_t> ids;
     std::set<const FundamentalPair*> linked;

@@ -130,7 +130,7 @@ std::vector<int> FixedIntrinsics(const BundleAdjustmentOptions& options, const C
   return fixed;
 }
 
-// A camera centre prior, in standard deviations per axis: (c - p) / sigma with c = -R^T t.
+// A camera pose prior, in standard deviations per axis: (c - p) / sigma with c = -R^T t.
 struct CenterPriorError {
   CenterPriorError(const Eigen::Vector3d& prior_center, const Eigen::Vector3d& std_dev_m)
       : center(prior_center), inverse_std(std_dev_m.cwiseInverse()) {}
@@ -240,9 +240,9 @@ ceres::Solver::Options SolverOptions(const BundleAdjustmentOptions& options,
         std::min(options.function_tolerance, options.intrinsics_function_tolerance);
     // A focal length far from its start moves along a narrow valley (it trades off against depth):
     // Levenberg-Marquardt crawls along it. Dogleg steps with non-monotonic acceptance reach the
-    // same minimum in fewer, cheaper steps (measured from COLMAP's guess, calibration pass + final
-    // BA: kitti07_first160 46 -> 26 s, fountain-P11 13.6 -> 7.3 s, the same focal length within
-    // 0.2% and AUC@3 within 1.4 points on the five unknown-intrinsics sets).
+    // same minimum in fewer, cheaper steps: from COLMAP's guess, the calibration pass and the final
+    // BA take much less time for the same focal length and nearly the same accuracy
+    // (BENCHMARKS.md, "Same database, unknown intrinsics").
     solver_options.trust_region_strategy_type = ceres::DOGLEG;
     solver_options.use_nonmonotonic_steps = true;
   }
@@ -254,9 +254,9 @@ ceres::Solver::Options SolverOptions(const BundleAdjustmentOptions& options,
 }
 
 // One Ceres solve over `observations`; the first image observed is held fixed (gauge) unless
-// three or more centre priors fix it.
+// three or more pose priors fix it.
 ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
-                             const std::map<uint32_t, PositionPrior>& priors,
+                             const std::map<uint32_t, PosePrior>& priors,
                              const BundleAdjustmentOptions& options,
                              const std::map<uint32_t, uint32_t>& shared,
                              Reconstruction* reconstruction, std::ostream* progress,
@@ -464,7 +464,7 @@ BundleAdjustmentSummary BundleAdjust(const KeypointBearings& bearings,
                                      const std::map<uint32_t, double>& focal_lengths_px,
                                      Reconstruction* reconstruction,
                                      const BundleAdjustmentOptions& options,
-                                     const std::map<uint32_t, PositionPrior>& priors,
+                                     const std::map<uint32_t, PosePrior>& priors,
                                      std::ostream* progress) {
   options.Check();
   Timer timer;

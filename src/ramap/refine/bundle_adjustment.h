@@ -9,7 +9,7 @@
 // SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV, FULL_OPENCV) has pixel residuals through
 // its model instead, the keypoint against the projection, and reconstruction->cameras is updated.
 //
-// Camera centre priors (GPS in the model's frame, after georegistration) add residuals
+// Camera pose priors (GPS in the model's frame, after prior alignment) add residuals
 // (c - p) / sigma per axis: a weak constraint beside thousands of pixel residuals per camera, which
 // keeps the model in the priors' frame and scale instead of holding one camera fixed.
 #pragma once
@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "ramap/scene/features.h"
-#include "ramap/scene/position_prior.h"
+#include "ramap/scene/pose_prior.h"
 #include "ramap/scene/reconstruction.h"
 
 namespace ramap {
@@ -30,8 +30,8 @@ struct BundleAdjustmentOptions {
   // Ceres iterations (COLMAP's global BA uses at most 50).
   int max_num_iterations = 50;
   // Stop when an iteration lowers the cost by less than this fraction (Ceres' default is 1e-6).
-  // Measured on Herz-Jesus-P8 with every point: 1e-6, 44 iterations; 1e-5, 28; 1e-4, 16; ATE
-  // 0.004065 in all three (COLMAP's mapper: 0.004088).
+  // The looser tolerance stops in far fewer iterations at the same accuracy, as close to the
+  // truth as COLMAP's mapper (Herz-Jesus-P8 with every point).
   double function_tolerance = 1e-4;
   // Robust loss scale in pixels (Cauchy); COLMAP's default loss is a plain squared error, a soft
   // robust loss protects against the wrong matches that averaging lets through.
@@ -44,9 +44,9 @@ struct BundleAdjustmentOptions {
   double max_reprojection_error_px = 4.0;
   // Points adjusted at most (0: all): the longest tracks first, and every image keeps at least
   // min_observations_per_image of its observations; the mapper re-triangulates every track
-  // afterwards. Bounds BA's time on large scenes; below ~10,000 points accuracy drops a little
-  // (Herz-Jesus-P8, 13,100 points, ATE: all 0.00406, 8,000 0.00410, 3,000 0.00468), so the cap
-  // only takes effect beyond the benchmark scenes (fountain-P11: 23,300 points -> 20,000).
+  // afterwards. Bounds BA's time on large scenes. Far fewer points cost some accuracy (on
+  // Herz-Jesus-P8), so the cap lies above the point counts of the benchmark scenes but the
+  // largest, fountain-P11, which it trims.
   int max_num_points = 20000;
   int min_observations_per_image = 200;
   // Intrinsics refined with the poses (COLMAP's --BundleAdjustment.refine_* and their defaults).
@@ -57,18 +57,20 @@ struct BundleAdjustmentOptions {
   // A camera whose focal length the database marks known (prior_focal_length 1: the user's
   // calibration, or EXIF) keeps its focal length and principal point; its distortion is refined as
   // refine_extra_params says (EXIF gives none, and the data determine it well).
-  // refine/prior_focal_test.h then decides whether the data prove the focal length wrong. Refining
-  // such a focal length from averaging's poses chased their errors instead (true calibrations given
-  // one camera per image: templeRing +8%, kitti07_first160 -5%).
+  // refine/given_intrinsics_test.h then decides whether the data prove the focal length wrong.
+  // Refining such a focal length from averaging's poses chased their errors instead: given their
+  // true calibrations, one camera per image, templeRing's and kitti07_first160's focal lengths
+  // moved away from the truth (BENCHMARKS.md, "A calibration the user gives, one camera per
+  // image").
   bool keep_prior_intrinsics = true;
   // Cameras with the same model, size, parameters and prior flag (one EXIF value, one user
   // calibration, or one guess: COLMAP's one camera per image) share one set of intrinsics. The
   // mapper's view-graph calibration estimates them as one too.
   bool share_identical_intrinsics = true;
-  // function_tolerance while some camera's focal length is refined: it couples with
-  // depth and moves slowly. Measured on templeRing from COLMAP's 2x-too-short guess: 1e-4 stops
-  // at 1389 px, 1e-7 reaches 1556 px in 167 iterations (truth 1520; ATE 11.6% -> 0.96% of the
-  // extent).
+  // function_tolerance while some camera's focal length is refined: it couples with depth and
+  // moves slowly. From COLMAP's guess on templeRing (half the true focal length) the ordinary
+  // tolerance stops far short of the truth, and this one reaches it within
+  // intrinsics_max_num_iterations.
   double intrinsics_function_tolerance = 1e-7;
   int intrinsics_max_num_iterations = 200;
 
@@ -86,7 +88,7 @@ struct BundleAdjustmentSummary {
   // Where they were: image id -> observations detached from their points (gross errors gather in
   // an image whose pose or matches are wrong).
   std::map<uint32_t, int> filtered_per_image;
-  int num_priors = 0;  // centre priors of registered images
+  int num_priors = 0;  // pose priors of registered images
   bool converged = false;
   double seconds = 0.0;
 };
@@ -117,6 +119,6 @@ BundleAdjustmentSummary BundleAdjust(
     const KeypointBearings& bearings, const std::map<uint32_t, double>& focal_lengths_px,
     Reconstruction* reconstruction,
     const BundleAdjustmentOptions& options = BundleAdjustmentOptions(),
-    const std::map<uint32_t, PositionPrior>& priors = {}, std::ostream* progress = nullptr);
+    const std::map<uint32_t, PosePrior>& priors = {}, std::ostream* progress = nullptr);
 
 }  // namespace ramap

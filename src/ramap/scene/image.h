@@ -16,7 +16,7 @@ namespace ramap {
 constexpr uint64_t kInvalidPoint3DId = std::numeric_limits<uint64_t>::max();
 
 // COLMAP's PosePrior::CoordinateSystem (databases of 3.10 on), with its integer values: what the
-// three numbers of a position prior are.
+// three numbers of a pose prior are.
 enum class PriorCoordinateSystem : int { kUndefined = -1, kWgs84 = 0, kCartesian = 1 };
 
 struct Point2D {

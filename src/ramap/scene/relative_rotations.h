@@ -1,5 +1,5 @@
-// A graph of relative rotations between cameras: the input of rotation averaging, as plain data
-// (the algorithms on it are graph/rotation_graph.h's).
+// The view graph as rotation averaging reads it: relative rotations between cameras, as plain data
+// (the algorithms on it are graph/view_graph_algorithms.h's).
 //
 // Convention, used by every rotation-averaging file in ramap: an absolute rotation R_i is
 // cam_from_world (COLMAP, x_cam = R_i x_world + t_i); an edge (i, j) holds R_ij = R_j R_i^T, the
@@ -25,7 +25,7 @@ struct RelativeRotationEdge {
   size_t pair_index = 0;
 };
 
-struct RotationGraph {
+struct ViewGraph {
   std::vector<uint32_t> node_ids;           // distinct ids; edges refer to nodes by id
   std::vector<RelativeRotationEdge> edges;  // no self loops; parallel edges are allowed
 };

@@ -1,7 +1,7 @@
-// The view graph: every verified image pair with the matches the mapper reads from it, its
-// relative pose (or why it has none) and its weight. The stages after relative poses see it
-// through views: the rotation graph (scene/relative_rotations.h) holds one edge per accepted pair,
-// each edge naming its pair by index.
+// The view graph's pairs: every verified image pair with the matches the mapper reads from it,
+// its relative pose (or why it has none) and its weight. The stages after relative poses see the
+// accepted ones as a ViewGraph (scene/relative_rotations.h): one edge per accepted pair, each
+// edge naming its pair by index.
 #pragma once
 
 #include <Eigen/Core>
@@ -95,7 +95,8 @@ struct ImagePair {
   // Which of the pair's verified matches (its two-view geometry's inlier_matches, in order) the
   // estimate explains; the later stages read their bearings (InlierMatches). One bit per match:
   // neither the correspondences (100 bytes per match) nor a copy of the matches (8 bytes, as much
-  // as the database's own) are kept, which on long drives were most of the mapper's memory.
+  // as the database's own) are kept, which on long drives were a large share of the mapper's
+  // memory (BENCHMARKS.md, "Scale").
   std::vector<bool> is_inlier;
 
   bool accepted() const { return estimate.success; }
@@ -108,8 +109,8 @@ std::vector<FeatureMatch> InlierMatches(const ImagePair& pair, const TwoViewGeom
 // read from a file that gives none).
 double RelativeRotationWeight(int num_inliers);
 
-// The accepted pairs as a rotation graph: one edge per accepted pair (pair_index set), weighted by
+// The accepted pairs as a view graph: one edge per accepted pair (pair_index set), weighted by
 // RelativeRotationWeight, over the images they join (in increasing id order).
-RotationGraph AcceptedRotationGraph(const std::vector<ImagePair>& pairs);
+ViewGraph AcceptedViewGraph(const std::vector<ImagePair>& pairs);
 
 }  // namespace ramap

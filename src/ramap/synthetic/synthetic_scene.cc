@@ -165,7 +165,7 @@ std::vector<Eigen::Vector3d> MakePoints(const SyntheticSceneOptions& options,
       points.push_back(r * RandomUnitVector(rng));
       continue;
     }
-    // In the view of a random frame, so that every part of any path has structure in front of it.
+    // In the view of a random frame, so that every part of any path has landmarks in front of it.
     const size_t frame = std::uniform_int_distribution<size_t>(0, poses.size() - 1)(rng);
     if (options.facade_distance > 0) {
       points.push_back(poses[frame].Inverse() * FacadePoint(options, rng));
@@ -650,7 +650,7 @@ void AddOutlierPairs(const SyntheticSceneOptions& options, size_t num_images, Rn
 }
 
 // An aliased pair's two images: any two, or on a sequence two at most aliased_max_frame_gap apart
-// (repeated structure is seen again from nearby places).
+// (repeated facades is seen again from nearby places).
 std::optional<std::pair<size_t, size_t>> RandomAliasedPair(const SyntheticSceneOptions& options,
                                                            size_t num_images, Rng& rng) {
   if (options.aliased_max_frame_gap <= 0) return RandomImagePair(num_images, rng);
@@ -703,7 +703,7 @@ std::vector<std::pair<Eigen::Vector3d, uint32_t>> AliasedFirstViews(
 }
 
 // Aliased pairs: pairs not matched yet whose verified matches obey a wrong relative pose
-// (AliasedRelativePose), as repetitive structure gives.
+// (AliasedRelativePose), as repetitive scenes gives.
 void AddAliasedPairs(const SyntheticSceneOptions& options, const std::vector<Rigid3d>& poses,
                      const std::vector<Eigen::Vector3d>& points, Rng& rng,
                      std::set<std::pair<size_t, size_t>>* matched_pairs, SceneObservations* seen,

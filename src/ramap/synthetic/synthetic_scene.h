@@ -94,7 +94,7 @@ struct SyntheticSceneOptions {
   // instead of anywhere in view: this far left and right of a random frame's camera (along its x
   // axis), from facade_height above it to 1.5 below (the ground; y points down), a random
   // distance in [min_depth, max_depth] ahead, with facade_roughness of noise across the facade
-  // (windows, balconies). A street: near-planar structure on both sides, little in the middle.
+  // (windows, balconies). A street: near-planar facades on both sides, little in the middle.
   double facade_distance = 0.0;
   double facade_height = 10.0;
   double facade_roughness = 0.2;
@@ -106,7 +106,7 @@ struct SyntheticSceneOptions {
   // the frames, no frame number) instead of frame_000001.png...: a collection, for the matching
   // plans that must not take it for a video.
   bool photo_names = false;
-  // Aliased pairs, as repetitive structure (facades, fences) gives: two frames that are not
+  // Aliased pairs, as repetitive scenes (facades, fences) gives: two frames that are not
   // matched by the layout get verified matches consistent with a relative pose whose rotation is
   // aliased_min_angle_deg to aliased_max_angle_deg off the true one (about a random axis). Their
   // number: num_aliased_pairs, or aliased_pair_ratio of the pairs matched otherwise, whichever is
@@ -135,7 +135,8 @@ struct SyntheticSceneOptions {
   uint64_t seed = 1;
 
   static Camera DefaultCamera();
-  // Throws InputError("--Synthetic.<option>", ...) on a value out of range.
+  // Throws InputError("--Synthetic.<option>", ...) on a value out of range
+  // ("SyntheticSceneOptions::<field>" for settings no command line reaches).
   void Check() const;
 };
 

@@ -26,8 +26,8 @@ class ScopedBlasThreads {
 
 // One BLAS thread for as long as it lives, then the limit there was before. For stages that
 // factorise many small systems on several threads of their own: each factorisation is too small
-// to share, and OpenBLAS's extra threads only spin (yielding) beside the busy ones. On a
-// 4541-frame drive this took the 148 translation windows' solves from 2.9-3.2 s to 1.6-2.1 s.
+// to share, and OpenBLAS's extra threads only spin (yielding) beside the busy ones. On a long
+// drive this made the translation windows' solves much quicker (BENCHMARKS.md, "Scale").
 class SingleBlasThread : public ScopedBlasThreads {
  public:
   SingleBlasThread() : ScopedBlasThreads(1) {}

@@ -40,6 +40,8 @@ enum class OptionType { kBool, kInteger, kNumber, kChoice, kText };
 template <typename Settings>
 struct OptionDeclaration {
   std::string name;  // "Section.option": --Section.option on the command line
+  // Names the option had before (README, "Renamed"): accepted as aliases of `name`.
+  std::vector<std::string> former_names;
   OptionType type = OptionType::kNumber;
   OptionRange range;                 // numeric options
   std::vector<std::string> choices;  // kChoice: the accepted words
@@ -172,6 +174,7 @@ void AppendOptions(const OptionTable<Inner>& inner, Access access, OptionTable<O
   for (const OptionDeclaration<Inner>& d : inner) {
     OptionDeclaration<Outer> lifted;
     lifted.name = d.name;
+    lifted.former_names = d.former_names;
     lifted.type = d.type;
     lifted.range = d.range;
     lifted.choices = d.choices;
@@ -185,14 +188,24 @@ void AppendOptions(const OptionTable<Inner>& inner, Access access, OptionTable<O
   }
 }
 
-// The declaration named `name`, or nullptr.
+// The declaration named `name` (or formerly named so), or nullptr.
 template <typename Settings>
 const OptionDeclaration<Settings>* FindOption(const OptionTable<Settings>& table,
                                               const std::string& name) {
   for (const OptionDeclaration<Settings>& d : table) {
     if (d.name == name) return &d;
+    if (std::find(d.former_names.begin(), d.former_names.end(), name) != d.former_names.end())
+      return &d;
   }
   return nullptr;
+}
+
+// `declaration` with `former` as an alias of its name.
+template <typename Settings>
+OptionDeclaration<Settings> FormerlyNamed(OptionDeclaration<Settings> declaration,
+                                          std::string former) {
+  declaration.former_names.push_back(std::move(former));
+  return declaration;
 }
 
 template <typename Settings>
@@ -263,6 +276,7 @@ std::string OptionTableMarkdown(const OptionTable<Settings>& table, const Settin
   for (const OptionDeclaration<Settings>& d : table) {
     std::string help;
     for (const char c : d.help) help += c == '|' ? std::string("\\|") : std::string(1, c);
+    for (const std::string& former : d.former_names) help += " (formerly `--" + former + "`)";
     out += "| `--" + d.name + "` | " + d.text(defaults) + " | " +
            OptionValueHint(d.type, d.range, d.choices) + " | " + help + " |\n";
   }

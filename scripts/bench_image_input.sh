@@ -145,9 +145,10 @@ for entry in "${RAMAP_DATASETS[@]}"; do
     [[ $refine == 1 ]] && label+=", +BA"
     label+=")"
     [[ $variant == "sift 1" ]] && label+=" (defaults)"
+    # The first "pairs verified" line is the matching stage; later ones are loop closure's.
     stages=$(awk -v total="$seconds" '
       /^\[ramap\] features:/ { features = $NF == "s" ? $(NF-1) : features }
-      /^\[ramap\] matching:/ { matching = $(NF-1) }
+      /^\[ramap\] matching: .*pairs verified, / && matching == "" { matching = $(NF-1) }
       END { printf "%.1f / %.1f / %.1f", features, matching, total - features - matching }' "$log")
     row "$name" "$label" "$seconds" "$dir/sparse/0" "$dir/database.db" "$stages"
   done

@@ -80,7 +80,7 @@ TEST(PriorAlignment, RobustFitFindsTheSimilarityAndReportsTheOutliers) {
   // Default threshold: 3 x the 3D deviation of the priors (0.05 m per axis here).
   EXPECT_NEAR(alignment.summary.threshold_m, 3 * 0.05 * std::sqrt(3.0), 1e-12);
   // The inlier priors mapped back into the model frame are the model's centres.
-  for (const CenterPrior& prior : PriorsInModelFrame(alignment)) {
+  for (const PosePriorInModel& prior : PriorsInModelFrame(alignment)) {
     EXPECT_LT((prior.center - centers.at(prior.image_id)).norm(), 1e-9);
   }
 }
@@ -135,7 +135,7 @@ TEST(PriorAlignment, TranslationAveragingWithExactPriorsLandsOnThem) {
         {geometry.image_id1, geometry.image_id2,
          (centers.at(geometry.image_id2) - centers.at(geometry.image_id1)).normalized()});
   }
-  std::vector<CenterPrior> priors;
+  std::vector<PosePriorInModel> priors;
   for (const auto& [id, center] : centers) {
     if (id % 3 == 0) priors.push_back({id, center, Eigen::Matrix3d::Identity() / 0.5});
   }

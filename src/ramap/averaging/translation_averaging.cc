@@ -688,11 +688,11 @@ std::vector<uint32_t> LargestConnectedImages(
 }
 
 // The usable priors of the solved images.
-std::vector<CenterPrior> PriorsOfSolvedImages(const std::vector<uint32_t>& solved,
-                                              const std::vector<CenterPrior>& priors) {
+std::vector<PosePriorInModel> PriorsOfSolvedImages(const std::vector<uint32_t>& solved,
+                                                   const std::vector<PosePriorInModel>& priors) {
   const std::set<uint32_t> solved_set(solved.begin(), solved.end());
-  std::vector<CenterPrior> used;
-  for (const CenterPrior& prior : priors) {
+  std::vector<PosePriorInModel> used;
+  for (const PosePriorInModel& prior : priors) {
     if (solved_set.count(prior.image_id) && prior.center.allFinite() &&
         prior.sqrt_information.allFinite()) {
       used.push_back(prior);
@@ -706,7 +706,7 @@ std::vector<CenterPrior> PriorsOfSolvedImages(const std::vector<uint32_t>& solve
 // rows, then prior rows. `column` maps an image to its camera index (the gauge camera: -1).
 StackedSystem AssembleSystem(const std::vector<Constraint>& constraints,
                              const std::vector<PairRow>& pairs,
-                             const std::vector<CenterPrior>& used_priors,
+                             const std::vector<PosePriorInModel>& used_priors,
                              const std::map<uint32_t, int>& column, int num_cameras,
                              const TranslationAveragingOptions& options) {
   const int num_position_cols = 3 * num_cameras;
@@ -800,7 +800,7 @@ namespace {
 // `x` and `column` are the solution and each image's camera index in it.
 void SolveConnected(const std::map<uint32_t, Eigen::Quaterniond>& rotations,
                     std::vector<Constraint>* constraints, std::vector<PairRow>* pairs,
-                    const std::vector<CenterPrior>& priors,
+                    const std::vector<PosePriorInModel>& priors,
                     const TranslationAveragingOptions& options, TranslationAveragingResult* result,
                     Eigen::VectorXd* x, std::map<uint32_t, int>* column) {
   result->unconstrained_images.clear();
@@ -809,7 +809,7 @@ void SolveConnected(const std::map<uint32_t, Eigen::Quaterniond>& rotations,
   if (solved.size() < 2)
     throw StageFailure("translation averaging: fewer than two cameras connected");
   // Priors of positioned cameras; with any, they fix the gauge and no camera is held.
-  const std::vector<CenterPrior> used_priors = PriorsOfSolvedImages(solved, priors);
+  const std::vector<PosePriorInModel> used_priors = PriorsOfSolvedImages(solved, priors);
   const bool has_priors = !used_priors.empty();
   column->clear();
   result->gauge_image_id = has_priors ? 0 : solved.front();
@@ -893,7 +893,7 @@ TranslationAveragingResult AverageTranslations(
     const std::map<uint32_t, Eigen::Quaterniond>& rotations,
     const std::vector<PairDirection>& pair_directions, const std::vector<Track>& tracks,
     const KeypointBearings& bearings, const TranslationAveragingOptions& options,
-    const std::vector<CenterPrior>& priors) {
+    const std::vector<PosePriorInModel>& priors) {
   options.Check();
   Timer timer;
   TranslationAveragingResult result;

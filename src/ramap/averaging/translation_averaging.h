@@ -47,9 +47,9 @@ struct PairDirection {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
 };
 
-// A camera centre measured in the world frame of the rotations: rows
+// A pose prior (a measured camera centre) in the world frame of the rotations: rows
 // prior_weight * sqrt_information * (c - center), residuals in standard deviations.
-struct CenterPrior {
+struct PosePriorInModel {
   uint32_t image_id = 0;
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   Eigen::Matrix3d sqrt_information = Eigen::Matrix3d::Identity();
@@ -190,6 +190,6 @@ TranslationAveragingResult AverageTranslations(
     const std::vector<PairDirection>& pair_directions, const std::vector<Track>& tracks,
     const KeypointBearings& bearings,
     const TranslationAveragingOptions& options = TranslationAveragingOptions(),
-    const std::vector<CenterPrior>& priors = {});
+    const std::vector<PosePriorInModel>& priors = {});
 
 }  // namespace ramap

@@ -120,12 +120,12 @@ PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& c
   return result;
 }
 
-std::vector<CenterPrior> PriorsInModelFrame(const PriorAlignment& alignment) {
+std::vector<PosePriorInModel> PriorsInModelFrame(const PriorAlignment& alignment) {
   const Sim3d model_from_prior = alignment.prior_from_model.Inverse();
   // r = diag(1/sigma) (s R c + t - p) = diag(1/sigma) s R (c - model_from_prior * p).
   const Eigen::Matrix3d scaled_rotation =
       alignment.prior_from_model.scale * alignment.prior_from_model.rotation.toRotationMatrix();
-  std::vector<CenterPrior> priors;
+  std::vector<PosePriorInModel> priors;
   for (const auto& [id, prior] : alignment.inliers) {
     priors.push_back({id, model_from_prior * prior.center,
                       prior.std_dev_m.cwiseInverse().asDiagonal() * scaled_rotation});

@@ -71,7 +71,7 @@ PriorAlignment AlignCentersToPriors(const std::map<uint32_t, Eigen::Vector3d>& c
 
 // The inlier priors of `alignment` as translation averaging rows in the model frame: the prior
 // mapped back through the fit, its information scaled and rotated with it.
-std::vector<CenterPrior> PriorsInModelFrame(const PriorAlignment& alignment);
+std::vector<PosePriorInModel> PriorsInModelFrame(const PriorAlignment& alignment);
 
 // Recomputes summary.rmse_m and the outliers' errors from the final camera centres of a
 // `reconstruction` aligned to its priors (after bundle adjustment moved them).

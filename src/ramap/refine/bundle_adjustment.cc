@@ -131,8 +131,8 @@ std::vector<int> FixedIntrinsics(const BundleAdjustmentOptions& options, const C
 }
 
 // A camera pose prior, in standard deviations per axis: (c - p) / sigma with c = -R^T t.
-struct CenterPriorError {
-  CenterPriorError(const Eigen::Vector3d& prior_center, const Eigen::Vector3d& std_dev_m)
+struct PosePriorError {
+  PosePriorError(const Eigen::Vector3d& prior_center, const Eigen::Vector3d& std_dev_m)
       : center(prior_center), inverse_std(std_dev_m.cwiseInverse()) {}
 
   template <typename T>
@@ -291,8 +291,8 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
     if (image == reconstruction->images.end()) continue;
     Rigid3d& pose = image->second.cam_from_world;
     if (!problem.HasParameterBlock(pose.rotation.coeffs().data())) continue;
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<CenterPriorError, 3, 4, 3>(
-                                 new CenterPriorError(prior.center, prior.std_dev_m)),
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PosePriorError, 3, 4, 3>(
+                                 new PosePriorError(prior.center, prior.std_dev_m)),
                              &prior_loss, pose.rotation.coeffs().data(), pose.translation.data());
     ++num_priors;
   }

@@ -122,19 +122,24 @@ def table(folders, unknown):
     return text
 
 
+def rewrite_between(path, begin, end, text):
+    """Replaces what stands between the markers `begin` and `end` in the file `path` by `text`
+    (written whole, then renamed into place); exits naming the file when a marker is missing."""
+    with open(path) as f:
+        content = f.read()
+    if begin not in content or end not in content:
+        sys.exit(f"{path}: no {begin} ... {end} markers; table printed only")
+    head, rest = content.split(begin, 1)
+    _, tail = rest.split(end, 1)
+    with open(path + ".tmp", "w") as f:
+        f.write(head + begin + "\n" + text + end + tail)
+    os.replace(path + ".tmp", path)
+
+
 def main(benchmarks, folders, intrinsics):
     text = table(folders, intrinsics == "unknown")
-    BEGIN, END = MARKERS[intrinsics]
     print(text)
-    with open(benchmarks) as f:
-        content = f.read()
-    if BEGIN not in content or END not in content:
-        sys.exit(f"{benchmarks}: no {BEGIN} ... {END} markers; table printed only")
-    head, rest = content.split(BEGIN, 1)
-    _, tail = rest.split(END, 1)
-    with open(benchmarks + ".tmp", "w") as f:
-        f.write(head + BEGIN + "\n" + text + END + tail)
-    os.replace(benchmarks + ".tmp", benchmarks)
+    rewrite_between(benchmarks, *MARKERS[intrinsics], text)
 
 
 if __name__ == "__main__":

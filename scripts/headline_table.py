@@ -16,6 +16,8 @@ import subprocess
 import sys
 import time
 
+from benchmark_table import rewrite_between
+
 BEGIN, END = "<!-- headline-table:begin -->", "<!-- headline-table:end -->"
 PEERS = ["COLMAP", "COLMAP 4.1.1", "GLOMAP"]
 RAMAP = "ramap+BA"
@@ -96,15 +98,7 @@ def main(paths):
     text = table(root)
     print(text)
     for path in paths:
-        with open(path) as f:
-            content = f.read()
-        if BEGIN not in content or END not in content:
-            sys.exit(f"{path}: no {BEGIN} ... {END} markers")
-        head, rest = content.split(BEGIN, 1)
-        _, tail = rest.split(END, 1)
-        with open(path + ".tmp", "w") as f:
-            f.write(head + BEGIN + "\n" + text + END + tail)
-        os.replace(path + ".tmp", path)
+        rewrite_between(path, BEGIN, END, text)
 
 
 if __name__ == "__main__":

@@ -16,7 +16,7 @@ import subprocess
 import sys
 import time
 
-from benchmark_table import rewrite_between
+from benchmark_table import auc3, fmt, ratio, rewrite_between
 
 BEGIN, END = "<!-- headline-table:begin -->", "<!-- headline-table:end -->"
 PEERS = ["COLMAP", "COLMAP 4.1.1", "GLOMAP"]
@@ -39,17 +39,11 @@ def reports(folder):
     return found
 
 
-def auc3(run):
+def auc3_cell(run):
+    """The run's AUC@3, or why there is none: no such run, it failed, or it is the reference."""
     if run is None or not run["succeeded"]:
         return "failed" if run is not None else "-"
-    evaluation = run.get("evaluation")
-    if not evaluation:
-        return "(reference)"
-    return f"{100 * evaluation['relative']['auc_by_threshold_deg']['3']:.1f}"
-
-
-def ratio(value):
-    return "-" if value is None else f"{value:.1f}x"
+    return "(reference)" if not run.get("evaluation") else fmt(auc3(run), 1)
 
 
 def rows(name, report, intrinsics):
@@ -58,7 +52,7 @@ def rows(name, report, intrinsics):
     if ramap is None:
         return []
     cells = [name, str(report["num_images"]), intrinsics]
-    cells += [auc3(runs.get(peer)) for peer in PEERS] + [auc3(ramap)]
+    cells += [auc3_cell(runs.get(peer)) for peer in PEERS] + [auc3_cell(ramap)]
     cells += [f"{ramap['seconds']:.1f}", ratio(ramap.get("speedup_over_colmap")),
               ratio(ramap.get("speedup_over_glomap"))]
     return ["| " + " | ".join(cells) + " |"]

@@ -70,10 +70,9 @@ int main(int argc, char** argv) {
     } catch (const std::filesystem::filesystem_error& error) {
       // A place that became unwritable during the run (a full disk, a mount gone read-only):
       // named as the user gave it, without the staging suffix.
-      std::string path = error.path1().string();
-      path = path.substr(0, path.find(".ramap-tmp-"));
-      std::cerr << "ramap " << name << ": error: cannot write " << path << ": "
-                << error.code().message() << "\n";
+      std::cerr << "ramap " << name << ": error: cannot write "
+                << ramap::FinalPathOf(error.path1().string()) << ": " << error.code().message()
+                << "\n";
       return 2;
     } catch (const std::exception& error) {
       std::cerr << "ramap " << name << ": internal error: " << error.what() << "\n";

@@ -73,6 +73,15 @@ TEST(StagedOutput, NewFolderAppearsOnCommit) {
   EXPECT_TRUE(fs::exists(final_path + "/new.txt"));
 }
 
+TEST(StagedOutput, FinalPathOfAStagedPathIsTheCallersPath) {
+  test::TempDir dir;
+  StagedPath file(dir / "edges.txt");
+  EXPECT_EQ(FinalPathOf(file.path()), dir / "edges.txt");
+  StagedPath folder(dir / "sparse/");
+  EXPECT_EQ(FinalPathOf(folder.path() + "/0/images.bin"), dir / "sparse");
+  EXPECT_EQ(FinalPathOf(dir / "model/images.bin"), dir / "model/images.bin");
+}
+
 TEST(StagedOutput, InterruptRemovesStagedAndCreatedOutputs) {
   test::TempDir dir;
   StagedPath staged(dir / "model");

@@ -20,12 +20,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// What a staged name adds to its final path, before the process id and a counter.
+constexpr const char* kStagingSuffix = ".ramap-tmp-";
+
 std::string MakeStagingName(const std::string& final_path) {
   static std::atomic<int> counter{0};
   fs::path path(final_path);
   // Strip a trailing separator so that "out/" stages as "out.ramap-tmp-..." beside it.
   if (!path.has_filename()) path = path.parent_path();
-  return path.string() + ".ramap-tmp-" + std::to_string(::getpid()) + "-" +
+  return path.string() + kStagingSuffix + std::to_string(::getpid()) + "-" +
          std::to_string(counter++);
 }
 
@@ -131,6 +134,10 @@ void ForwardInterrupt(int signal) {
 }
 
 }  // namespace
+
+std::string FinalPathOf(const std::string& path) {
+  return path.substr(0, path.find(kStagingSuffix));
+}
 
 void InstallInterruptCleanup() {
   // The cleanup runs as ordinary code in a thread of its own (removing folders is not safe in a

@@ -48,6 +48,10 @@ class CreatedOutput {
   bool kept_ = false;
 };
 
+// The final path a staged path stands for (for a path inside a staged folder, that folder's),
+// as the caller named it; any other path unchanged. Names an output in an error message.
+std::string FinalPathOf(const std::string& path);
+
 // On SIGINT, SIGTERM or SIGHUP, every staged path and every CreatedOutput not yet kept is removed
 // and the process exits with 128 + the signal, whichever thread the signal reaches. Call once from
 // main().

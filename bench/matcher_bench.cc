@@ -7,8 +7,6 @@
 // Descriptors are the synthetic SIFT-like ones (synthetic/synthetic_descriptors.h): half of the
 // second image's rows are noisy views of the first image's, as in a well-overlapping pair. The
 // time does not depend on their content.
-#include <cblas.h>
-
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -18,6 +16,7 @@
 #include "ramap/features/descriptor_matching.h"
 #include "ramap/synthetic/synthetic_descriptors.h"
 #include "ramap/util/blas_threads.h"
+#include "ramap/util/cblas.h"
 #include "ramap/util/parallel.h"
 
 namespace {

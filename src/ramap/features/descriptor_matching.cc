@@ -1,13 +1,13 @@
 #include "ramap/features/descriptor_matching.h"
 
-#include <cblas.h>
-
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+
+#include "ramap/util/cblas.h"
 
 namespace ramap {
 namespace {

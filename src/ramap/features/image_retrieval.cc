@@ -1,7 +1,5 @@
 #include "ramap/features/image_retrieval.h"
 
-#include <cblas.h>
-
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -11,6 +9,7 @@
 
 #include "ramap/features/descriptor_matching.h"
 #include "ramap/util/blas_threads.h"
+#include "ramap/util/cblas.h"
 #include "ramap/util/error.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/parallel.h"

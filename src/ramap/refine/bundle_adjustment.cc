@@ -1,6 +1,7 @@
 #include "ramap/refine/bundle_adjustment.h"
 
 #include <ceres/ceres.h>
+#include <ceres/product_manifold.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <stdexcept>
 
 #include "ramap/geometry/camera_distortion.h"
+#include "ramap/refine/reprojection_costs.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/progress_line.h"
 #include "ramap/util/run_observer.h"
@@ -38,75 +40,6 @@ class BetweenIterations : public ceres::IterationCallback {
   ProgressLine* line_;
 };
 
-// Pixel-scaled error on the normalised plane; parameters: quaternion (x, y, z, w as Eigen stores
-// it), translation, point.
-struct NormalizedPlaneError {
-  NormalizedPlaneError(const Eigen::Vector3d& bearing, double focal_px)
-      : observed(bearing.head<2>() / bearing.z()), focal(focal_px) {}
-
-  template <typename T>
-  bool operator()(const T* const rotation, const T* const translation, const T* const point,
-                  T* residual) const {
-    const Eigen::Map<const Eigen::Quaternion<T>> q(rotation);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t(translation);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> X(point);
-    const Eigen::Matrix<T, 3, 1> x = q * X + t;
-    residual[0] = T(focal) * (x[0] / x[2] - T(observed.x()));
-    residual[1] = T(focal) * (x[1] / x[2] - T(observed.y()));
-    return true;
-  }
-
-  Eigen::Vector2d observed;
-  double focal;
-};
-
-// Pixel error through the camera model: keypoint against the projection of the point, with the
-// camera's kNumParams parameters as a parameter block (some held constant by a SubsetManifold).
-template <int kNumParams>
-struct PixelError {
-  PixelError(CameraModel camera_model, const Eigen::Vector2d& keypoint)
-      : model(camera_model), observed(keypoint) {}
-
-  template <typename T>
-  bool operator()(const T* const rotation, const T* const translation, const T* const point,
-                  const T* const params, T* residual) const {
-    const Eigen::Map<const Eigen::Quaternion<T>> q(rotation);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t(translation);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> X(point);
-    const Eigen::Matrix<T, 3, 1> x = q * X + t;
-    T pixel[2];
-    if (!ProjectPerspective(model, params, x.data(), pixel)) return false;
-    residual[0] = pixel[0] - T(observed.x());
-    residual[1] = pixel[1] - T(observed.y());
-    return true;
-  }
-
-  CameraModel model;
-  Eigen::Vector2d observed;
-};
-
-template <int kNumParams>
-ceres::CostFunction* NewPixelError(CameraModel model, const Eigen::Vector2d& keypoint) {
-  return new ceres::AutoDiffCostFunction<PixelError<kNumParams>, 2, 4, 3, 3, kNumParams>(
-      new PixelError<kNumParams>(model, keypoint));
-}
-
-ceres::CostFunction* PixelErrorFor(CameraModel model, const Eigen::Vector2d& keypoint) {
-  switch (NumCameraParams(model)) {
-    case 3:
-      return NewPixelError<3>(model, keypoint);
-    case 4:
-      return NewPixelError<4>(model, keypoint);
-    case 5:
-      return NewPixelError<5>(model, keypoint);
-    case 8:
-      return NewPixelError<8>(model, keypoint);
-    case 12:
-      return NewPixelError<12>(model, keypoint);
-  }
-  return nullptr;
-}
-
 // Whether `camera` arrived with values the user or EXIF gave (see keep_prior_intrinsics).
 bool HeldAsGiven(const BundleAdjustmentOptions& options, const Camera& camera) {
   return options.keep_prior_intrinsics && camera.has_prior_focal_length;
@@ -130,15 +63,16 @@ std::vector<int> FixedIntrinsics(const BundleAdjustmentOptions& options, const C
   return fixed;
 }
 
-// A camera pose prior, in standard deviations per axis: (c - p) / sigma with c = -R^T t.
+// A camera pose prior, in standard deviations per axis: (c - p) / sigma with c = -R^T t, on a
+// PoseBlock.
 struct PosePriorError {
   PosePriorError(const Eigen::Vector3d& prior_center, const Eigen::Vector3d& std_dev_m)
       : center(prior_center), inverse_std(std_dev_m.cwiseInverse()) {}
 
   template <typename T>
-  bool operator()(const T* const rotation, const T* const translation, T* residual) const {
-    const Eigen::Map<const Eigen::Quaternion<T>> q(rotation);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t(translation);
+  bool operator()(const T* const pose, T* residual) const {
+    const Eigen::Map<const Eigen::Quaternion<T>> q(pose);
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t(pose + 4);
     const Eigen::Matrix<T, 3, 1> c = -(q.conjugate() * t);
     for (int k = 0; k < 3; ++k) residual[k] = T(inverse_std[k]) * (c[k] - T(center[k]));
     return true;
@@ -246,9 +180,13 @@ ceres::Solver::Options SolverOptions(const BundleAdjustmentOptions& options,
     solver_options.trust_region_strategy_type = ceres::DOGLEG;
     solver_options.use_nonmonotonic_steps = true;
   }
-  solver_options.num_threads = options.num_threads;
-  // Dense Schur is fastest while the reduced camera system is small.
-  solver_options.linear_solver_type = num_images <= 50 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
+  // Dense Schur is fastest while the reduced camera system is small. Its threads then eliminate
+  // points that nearly all touch the same few camera blocks, each update under that block's
+  // lock: on two cores one thread solves such a problem faster than two (BENCHMARKS.md, "Where
+  // the seconds of bundle adjustment go").
+  const bool dense = num_images <= 50;
+  solver_options.linear_solver_type = dense ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
+  solver_options.num_threads = dense ? 1 : options.num_threads;
   solver_options.logging_type = ceres::SILENT;
   return solver_options;
 }
@@ -267,43 +205,44 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   std::vector<std::unique_ptr<ceres::SubsetManifold>> intrinsics_manifolds;  // outlive `problem`
   ceres::Problem problem(problem_options);
   ceres::CauchyLoss loss(options.loss_scale_px);
-  ceres::EigenQuaternionManifold quaternion_manifold;
+  ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>> pose_manifold;
+  std::map<uint32_t, PoseBlock> poses;  // of the images observed
+  const auto pose_block = [&](uint32_t image_id) {
+    auto [it, added] = poses.try_emplace(image_id);
+    if (added) {
+      const Rigid3d& pose = reconstruction->images.at(image_id).cam_from_world;
+      it->second << pose.rotation.coeffs(), pose.translation;
+    }
+    return it->second.data();
+  };
   for (const Observation& o : observations) {
-    Image& image = reconstruction->images.at(o.image_id);
-    Rigid3d& pose = image.cam_from_world;
+    const Image& image = reconstruction->images.at(o.image_id);
+    double* pose = pose_block(o.image_id);
     double* point = reconstruction->points3D.at(o.point3D_id).xyz.data();
     if (o.in_pixels) {
       Camera& camera = reconstruction->cameras.at(shared.at(image.camera_id));
-      problem.AddResidualBlock(PixelErrorFor(camera.model, image.points2D[o.point2D_idx].xy), &loss,
-                               pose.rotation.coeffs().data(), pose.translation.data(), point,
-                               camera.params.data());
+      problem.AddResidualBlock(NewPixelCost(camera.model, image.points2D[o.point2D_idx].xy), &loss,
+                               pose, point, camera.params.data());
       continue;
     }
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NormalizedPlaneError, 2, 4, 3, 3>(
-                                 new NormalizedPlaneError(*o.bearing, o.focal_px)),
-                             &loss, pose.rotation.coeffs().data(), pose.translation.data(), point);
+    problem.AddResidualBlock(NewNormalizedPlaneCost(*o.bearing, o.focal_px), &loss, pose, point);
   }
   HoldFixedIntrinsics(options, reconstruction, &problem, &intrinsics_manifolds);
   ceres::HuberLoss prior_loss(1.0);
   int num_priors = 0;
   for (const auto& [image_id, prior] : priors) {
-    const auto image = reconstruction->images.find(image_id);
-    if (image == reconstruction->images.end()) continue;
-    Rigid3d& pose = image->second.cam_from_world;
-    if (!problem.HasParameterBlock(pose.rotation.coeffs().data())) continue;
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PosePriorError, 3, 4, 3>(
+    const auto pose = poses.find(image_id);
+    if (pose == poses.end()) continue;
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PosePriorError, 3, 7>(
                                  new PosePriorError(prior.center, prior.std_dev_m)),
-                             &prior_loss, pose.rotation.coeffs().data(), pose.translation.data());
+                             &prior_loss, pose->second.data());
     ++num_priors;
   }
   bool gauge_fixed = num_priors >= 3;
-  for (auto& [image_id, image] : reconstruction->images) {
-    double* rotation = image.cam_from_world.rotation.coeffs().data();
-    if (!problem.HasParameterBlock(rotation)) continue;
-    problem.SetManifold(rotation, &quaternion_manifold);
+  for (auto& [image_id, pose] : poses) {
+    problem.SetManifold(pose.data(), &pose_manifold);
     if (!gauge_fixed) {
-      problem.SetParameterBlockConstant(rotation);
-      problem.SetParameterBlockConstant(image.cam_from_world.translation.data());
+      problem.SetParameterBlockConstant(pose.data());
       gauge_fixed = true;
     }
   }
@@ -324,7 +263,12 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   ceres::Solve(solver_options, &problem, &summary);
   line.Finish(summary.iterations.size(), summary.termination_type != ceres::USER_FAILURE);
   CheckForStop();
-  for (auto& [image_id, image] : reconstruction->images) image.cam_from_world.rotation.normalize();
+  for (const auto& [image_id, pose] : poses) {
+    Rigid3d& cam_from_world = reconstruction->images.at(image_id).cam_from_world;
+    cam_from_world.rotation.coeffs() = pose.head<4>();
+    cam_from_world.rotation.normalize();
+    cam_from_world.translation = pose.tail<3>();
+  }
   for (auto& [camera_id, camera] : reconstruction->cameras)
     camera.params = reconstruction->cameras.at(shared.at(camera_id)).params;
   return summary;

@@ -474,6 +474,9 @@ void AddCalibration(Table& t) {
       "points of the first BA when a focal length is still unknown after the view "
       "graph (a second pass follows; 0: all)"));
   t.push_back(Bool(
+      "Mapper.calibration_subset_only", [](auto& o) -> auto& { return o.calibration_subset_only; },
+      "1: the full BA holds the intrinsics the subset found (0: refines them again)"));
+  t.push_back(Bool(
       "ViewGraphCalibration.enable",
       [](auto& o) -> auto& { return o.view_graph_calibration.enable; },
       "1: estimate the focal length of cameras without a prior (prior_focal_length "

@@ -81,6 +81,13 @@ struct MapperOptions {
   // less time and at the same accuracy but on one set (BENCHMARKS.md, "Self-calibration on a
   // subset first").
   int calibration_num_points = 2000;
+  // After the subset found the intrinsics, the full bundle adjustment holds them (unless some
+  // camera was given: its test needs the full adjustment's intrinsics freed), through bearings
+  // undistorted with them: it then costs what a calibrated run's does, since the residuals no
+  // longer pass through the camera model and no point's row couples with a shared intrinsics block.
+  // The subset's thousands of points fix a focal length and k1 far more tightly than averaging
+  // needs (BENCHMARKS.md, "Same database, unknown intrinsics"). 0: the full BA refines them again.
+  bool calibration_subset_only = true;
   // Components with fewer images are not written (COLMAP's Mapper.min_model_size is 10; ramap
   // writes smaller ones too because small data sets are common among its users).
   int min_component_size = 3;

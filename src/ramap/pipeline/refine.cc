@@ -75,6 +75,14 @@ void LogGivenIntrinsicsTest(const MapperContext& context, const GivenIntrinsicsT
   }
 }
 
+// Whether BA holds some camera of `model` as given
+// (BundleAdjustmentOptions::keep_prior_intrinsics).
+bool AnyHeldAsGiven(const BundleAdjustmentOptions& ba, const Reconstruction& model) {
+  return ba.keep_prior_intrinsics &&
+         std::any_of(model.cameras.begin(), model.cameras.end(),
+                     [](const auto& entry) { return entry.second.has_prior_focal_length; });
+}
+
 // Where some camera's focal length is refined, first on a subset of the points: the focal
 // length's long valley (BundleAdjustmentOptions::intrinsics_function_tolerance) is crossed there,
 // cheaply, and every track is triangulated again through the poses and intrinsics it found, for
@@ -107,24 +115,26 @@ bool CalibrateOnSubset(const MapperContext& context, const std::vector<Track>& t
 
 // Bundle adjustment, the test of the given intrinsics, and (when the data proved some wrong)
 // bundle adjustment again, from where it stopped, through the intrinsics the test found.
-void AdjustComponent(const MapperContext& context, const BundleAdjustmentOptions& ba_options,
+// `bearings` are those of `adjusted`'s images through the intrinsics it starts from.
+void AdjustComponent(const MapperContext& context, const ImageBearings& bearings,
+                     const BundleAdjustmentOptions& ba_options,
                      const std::map<uint32_t, PosePrior>& priors, MapperComponentSummary* component,
                      Reconstruction* adjusted) {
   const MapperOptions& options = context.options;
   BundleAdjustmentSummary& ba = component->bundle_adjustment;
-  ba = BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, adjusted,
-                    ba_options, priors, context.log.progress());
+  ba = BundleAdjust(bearings.bearings, bearings.focal_lengths_px, adjusted, ba_options, priors,
+                    context.log.progress());
   LogBundleAdjustment(context, ba, "");
   GivenIntrinsicsTestSummary& test = component->given_intrinsics_test;
-  test = TestGivenIntrinsics(context.bearings.bearings, context.bearings.focal_lengths_px,
-                             ba_options, options.given_intrinsics_test, adjusted);
+  test = TestGivenIntrinsics(bearings.bearings, bearings.focal_lengths_px, ba_options,
+                             options.given_intrinsics_test, adjusted);
   LogGivenIntrinsicsTest(context, test);
   if (std::none_of(test.groups.begin(), test.groups.end(), ChangesIntrinsics)) return;
   // The cameras the test changed have new bearings.
   std::map<uint32_t, Camera> cameras;
-  const ImageBearings bearings = BearingsThrough(context, *adjusted, &cameras);
+  const ImageBearings tested = BearingsThrough(context, *adjusted, &cameras);
   const BundleAdjustmentSummary first = ba;
-  ba = BundleAdjust(bearings.bearings, bearings.focal_lengths_px, adjusted, ba_options, priors,
+  ba = BundleAdjust(tested.bearings, tested.focal_lengths_px, adjusted, ba_options, priors,
                     context.log.progress());
   LogBundleAdjustment(context, ba, "again through the tested intrinsics: ");
   ba.seconds += first.seconds + test.seconds;
@@ -156,13 +166,23 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
   const std::map<uint32_t, PosePrior> priors =
       use_priors ? prior_alignment->inliers : std::map<uint32_t, PosePrior>();
   BundleAdjustmentOptions ba_options = options.bundle_adjustment;
-  // After the subset crossed the focal length's valley the ordinary tolerance suffices.
+  ImageBearings subset_bearings;
+  const ImageBearings* bearings = &context.bearings;
   if (CalibrateOnSubset(context, tracks, priors, component, reconstruction)) {
+    if (options.calibration_subset_only && !AnyHeldAsGiven(ba_options, *reconstruction)) {
+      std::map<uint32_t, Camera> cameras;
+      subset_bearings = BearingsThrough(context, *reconstruction, &cameras);
+      bearings = &subset_bearings;
+      ba_options.refine_focal_length = false;
+      ba_options.refine_principal_point = false;
+      ba_options.refine_extra_params = false;
+    }
+    // After the subset crossed the focal length's valley the ordinary tolerance suffices.
     ba_options.intrinsics_function_tolerance =
         std::max(ba_options.intrinsics_function_tolerance, ba_options.function_tolerance);
   }
   Reconstruction adjusted = PointsForBundleAdjustment(*reconstruction, ba_options);
-  AdjustComponent(context, ba_options, priors, component, &adjusted);
+  AdjustComponent(context, *bearings, ba_options, priors, component, &adjusted);
   component->most_filtered_images =
       MostFilteredImages(context.database, component->bundle_adjustment);
   prior_alignment->summary.used_in_bundle_adjustment = use_priors;

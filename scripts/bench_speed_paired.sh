@@ -8,7 +8,9 @@
 #   scripts/bench_speed_paired.sh [NAME ...]   (default: the four collections)
 #
 # Settings: RAMAP_INTRINSICS=unknown (default; the databases of build/bench-unknown-intrinsics) or
-# known (build/bench, the peers' and ramap's intrinsics fixed), RAMAP_RUNS (default 3).
+# known (build/bench, the peers' and ramap's intrinsics fixed), RAMAP_RUNS (default 3),
+# RAMAP_BINARY (default build/ramap), RAMAP_PEERS=0 to leave GLOMAP out (else scripts/peers.sh
+# builds COLMAP 4.1.1 once, 1-1.5 h; COLMAP 3.8 is Debian's).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 intrinsics=${RAMAP_INTRINSICS:-unknown}
@@ -17,7 +19,9 @@ bench=$root/build/bench
 [[ $intrinsics == unknown ]] && bench=$root/build/bench-unknown-intrinsics
 names=("$@")
 ((${#names[@]})) || names=(fountain-P11 Herz-Jesus-P8 templeRing lund_door)
-peer=$(bash "$root/scripts/peers.sh")
+ramap=${RAMAP_BINARY:-$root/build/ramap}
+peer=
+[[ ${RAMAP_PEERS:-1} != 0 ]] && peer=$(bash "$root/scripts/peers.sh")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fixed_ramap=() fixed_glomap=() fixed_colmap=()
@@ -36,12 +40,14 @@ for name in "${names[@]}"; do
   db=$bench/$name/database.db
   [[ -f $db ]] || { echo "bench_speed_paired: $name: no database, skipped" >&2; continue; }
   images=$bench/$name/images
-  ramap_cmd="$root/build/ramap mapper --database_path $db --output_path $work/$name/ramap --Mapper.num_threads 2 ${fixed_ramap[*]}"
+  ramap_cmd="$ramap mapper --database_path $db --output_path $work/$name/ramap --Mapper.num_threads 2 ${fixed_ramap[*]}"
   mkdir -p "$work/$name/glomap" "$work/$name/colmap"
   cp "$db" "$work/$name/glomap.db" && cp "$db" "$work/$name/colmap.db"
   glomap_cmd="$peer global_mapper --database_path $work/$name/glomap.db --image_path $images --output_path $work/$name/glomap --GlobalMapper.num_threads 2 ${fixed_glomap[*]}"
   colmap_cmd="colmap mapper --database_path $work/$name/colmap.db --image_path $images --output_path $work/$name/colmap --Mapper.num_threads 2 ${fixed_colmap[*]}"
-  for peer_name in GLOMAP "COLMAP 3.8"; do
+  peer_names=("COLMAP 3.8")
+  [[ -n $peer ]] && peer_names=(GLOMAP "COLMAP 3.8")
+  for peer_name in "${peer_names[@]}"; do
     peer_cmd=$glomap_cmd
     [[ $peer_name == GLOMAP ]] || peer_cmd=$colmap_cmd
     report=$work/$name.$RANDOM.txt

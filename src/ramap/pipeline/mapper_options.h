@@ -85,8 +85,9 @@ struct MapperOptions {
   // camera was given: its test needs the full adjustment's intrinsics freed), through bearings
   // undistorted with them: it then costs what a calibrated run's does, since the residuals no
   // longer pass through the camera model and no point's row couples with a shared intrinsics block.
-  // The subset's thousands of points fix a focal length and k1 far more tightly than averaging
-  // needs (BENCHMARKS.md, "Same database, unknown intrinsics"). 0: the full BA refines them again.
+  // The subset's thousands of points fix a focal length and k1 about as well as the full BA did:
+  // the poses' accuracy moves by a fraction of a point either way (BENCHMARKS.md, "Where the
+  // seconds of bundle adjustment go"). 0: the full BA refines them again.
   bool calibration_subset_only = true;
   // Components with fewer images are not written (COLMAP's Mapper.min_model_size is 10; ramap
   // writes smaller ones too because small data sets are common among its users).

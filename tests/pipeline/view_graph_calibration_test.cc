@@ -135,20 +135,31 @@ TEST(ViewGraphCalibration, OneGuessedCameraPerImageCalibratedAsOne) {
     EXPECT_TRUE(camera.view_graph.estimated) << "camera " << camera.camera_id;
 }
 
-TEST(ViewGraphCalibration, RadialDistortionRecoveredByBundleAdjustment) {
+// A collection through a SIMPLE_RADIAL camera (f 500, k -0.1) with `num_points` landmarks.
+SyntheticScene RadialCameraScene(int num_points) {
   SyntheticSceneOptions options = test::NoisyCollection(13);
+  options.num_points = num_points;
   Camera camera;
   camera.model = CameraModel::kSimpleRadial;
   camera.width = 640;
   camera.height = 480;
   camera.params = {500.0, 320.0, 240.0, -0.1};
   options.camera = camera;
-  const SyntheticScene scene = BuildSyntheticScene(options);
-  // COLMAP's defaults for an unknown camera: 1.2 x the longest side, k = 0.
+  return BuildSyntheticScene(options);
+}
+
+// `scene`'s database with COLMAP's defaults for an unknown camera: 1.2 x the longest side, k = 0.
+FeatureDatabase WithColmapsGuess(const SyntheticScene& scene) {
   FeatureDatabase database = scene.database;
   Camera& guess = database.cameras.at(1);
   guess.params = {1.2 * 640, 320.0, 240.0, 0.0};
   guess.has_prior_focal_length = false;
+  return database;
+}
+
+TEST(ViewGraphCalibration, RadialDistortionRecoveredByBundleAdjustment) {
+  const SyntheticScene scene = RadialCameraScene(test::NoisyCollection(13).num_points);
+  const FeatureDatabase database = WithColmapsGuess(scene);
 
   MapperOptions mapper;
   mapper.refine = true;
@@ -166,19 +177,8 @@ TEST(ViewGraphCalibration, RadialDistortionRecoveredByBundleAdjustment) {
 // out), the poses here were ten times further off (rotations 0.18 deg, positions 0.3% of the
 // extent). A subset of a few hundred points leaves k 0.02 off here: the default is what is held.
 TEST(ViewGraphCalibration, IntrinsicsTheSubsetFoundAreHeldByTheFullAdjustment) {
-  SyntheticSceneOptions options = test::NoisyCollection(13);
-  options.num_points = 6000;  // more than twice the subset, so that it runs
-  Camera camera;
-  camera.model = CameraModel::kSimpleRadial;
-  camera.width = 640;
-  camera.height = 480;
-  camera.params = {500.0, 320.0, 240.0, -0.1};
-  options.camera = camera;
-  const SyntheticScene scene = BuildSyntheticScene(options);
-  FeatureDatabase database = scene.database;
-  Camera& guess = database.cameras.at(1);
-  guess.params = {1.2 * 640, 320.0, 240.0, 0.0};
-  guess.has_prior_focal_length = false;
+  const SyntheticScene scene = RadialCameraScene(6000);  // over twice the subset, so that it runs
+  const FeatureDatabase database = WithColmapsGuess(scene);
   std::vector<std::string> names;
   for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
 

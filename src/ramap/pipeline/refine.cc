@@ -75,12 +75,10 @@ void LogGivenIntrinsicsTest(const MapperContext& context, const GivenIntrinsicsT
   }
 }
 
-// Whether BA holds some camera of `model` as given
-// (BundleAdjustmentOptions::keep_prior_intrinsics).
+// Whether BA holds some camera of `model` as given.
 bool AnyHeldAsGiven(const BundleAdjustmentOptions& ba, const Reconstruction& model) {
-  return ba.keep_prior_intrinsics &&
-         std::any_of(model.cameras.begin(), model.cameras.end(),
-                     [](const auto& entry) { return entry.second.has_prior_focal_length; });
+  return std::any_of(model.cameras.begin(), model.cameras.end(),
+                     [&](const auto& entry) { return HeldAsGiven(ba, entry.second); });
 }
 
 // Where some camera's focal length is refined, first on a subset of the points: the focal

@@ -40,11 +40,6 @@ class BetweenIterations : public ceres::IterationCallback {
   ProgressLine* line_;
 };
 
-// Whether `camera` arrived with values the user or EXIF gave (see keep_prior_intrinsics).
-bool HeldAsGiven(const BundleAdjustmentOptions& options, const Camera& camera) {
-  return options.keep_prior_intrinsics && camera.has_prior_focal_length;
-}
-
 // The parameters of `camera` that `options` keeps fixed, by index into COLMAP's order.
 std::vector<int> FixedIntrinsics(const BundleAdjustmentOptions& options, const Camera& camera) {
   const bool single = HasSingleFocalLength(camera.model);
@@ -335,6 +330,10 @@ void BundleAdjustmentOptions::Check() const {
   CheckOption(intrinsics_max_num_iterations >= 0,
               "BundleAdjustmentOptions::intrinsics_max_num_iterations", ">= 0",
               intrinsics_max_num_iterations);
+}
+
+bool HeldAsGiven(const BundleAdjustmentOptions& options, const Camera& camera) {
+  return options.keep_prior_intrinsics && camera.has_prior_focal_length;
 }
 
 bool RefinesIntrinsics(const BundleAdjustmentOptions& options, const Camera& camera) {

@@ -99,6 +99,9 @@ struct BundleAdjustmentSummary {
 Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
                                          const BundleAdjustmentOptions& options);
 
+// Whether `camera` arrived with values the user or EXIF gave and `options` keeps them
+// (keep_prior_intrinsics).
+bool HeldAsGiven(const BundleAdjustmentOptions& options, const Camera& camera);
 // Whether BundleAdjust refines some intrinsic parameter of `camera` under `options`.
 bool RefinesIntrinsics(const BundleAdjustmentOptions& options, const Camera& camera);
 // Whether it refines the focal length of `camera` (not held as given, a perspective model).

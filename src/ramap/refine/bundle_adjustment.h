@@ -70,8 +70,9 @@ struct BundleAdjustmentOptions {
   // function_tolerance while some camera's focal length is refined: it couples with depth and
   // moves slowly. From COLMAP's guess on templeRing (half the true focal length) the ordinary
   // tolerance stops far short of the truth, and this one reaches it within
-  // intrinsics_max_num_iterations. A tenth of it (1e-7) took a fifth more time on the sets without
-  // a calibration for the same poses (BENCHMARKS.md, "Where the seconds of bundle adjustment go").
+  // intrinsics_max_num_iterations. A tenth of it (1e-7) took more dogleg steps on the real sets
+  // without a calibration and ended at the same poses (`KINDS=bench-unknown-intrinsics
+  // scripts/reproduce_mapper.sh` with each).
   double intrinsics_function_tolerance = 1e-6;
   int intrinsics_max_num_iterations = 200;
 

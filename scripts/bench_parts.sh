@@ -18,8 +18,11 @@ trap 'rm -rf "$work"' EXIT
 source "$root/scripts/datasets/list.sh"
 variants=(
   "defaults|"
-  "no BA|--Mapper.refine 0"
+  "no final BA (the subset's only)|--Mapper.refine 0"
+  "averaging alone|--Mapper.refine 0 --Mapper.subset_adjustment 0"
   "+1 BA round|--BundleAdjustment.num_rounds 2"
+  "no filtering between BA's solves|--BundleAdjustment.max_reprojection_error_px 1e9"
+  "loss scale 2 px (before)|--BundleAdjustment.loss_scale_px 2"
   "no re-registration|--Reregistration.enable 0"
   "no test of given intrinsics (k1)|--BundleAdjustment.given_intrinsics_test 0"
   "no second averaging pass|--Mapper.max_focal_change_in_bundle_adjustment 0"

@@ -23,9 +23,9 @@ rm -rf "$out" && mkdir -p "$out"
 colmap_threshold=$(python3 -c "print(3 * 3 ** 0.5 * $noise)")
 variants=(
   "COLMAP mapper + colmap model_aligner|colmap"
-  "no priors (Sim3 fit for reference)|--Mapper.refine 0 --PosePrior.align 0"
-  "aligned to GPS only|--Mapper.refine 0 --PosePrior.use_in_translation_averaging 0 --PosePrior.use_in_bundle_adjustment 0"
-  "GPS in translation averaging|--Mapper.refine 0"
+  "no priors (Sim3 fit for reference)|--Mapper.refine 0 --Mapper.subset_adjustment 0 --PosePrior.align 0"
+  "aligned to GPS only|--Mapper.refine 0 --Mapper.subset_adjustment 0 --PosePrior.use_in_translation_averaging 0 --PosePrior.use_in_bundle_adjustment 0"
+  "GPS in translation averaging|--Mapper.refine 0 --Mapper.subset_adjustment 0"
   "GPS in TA, BA without GPS|--Mapper.refine 1 --PosePrior.use_in_bundle_adjustment 0"
   "GPS in TA and BA|--Mapper.refine 1"
 )

@@ -3,8 +3,8 @@
 # place): synthetic drives along KITTI 06's ground truth (1101 frames, as scripts/bench_scale.sh
 # builds them: facades, 4-column keypoints, 0.7 px noise, 2% outlier matches, next 10 frames and
 # revisits within 8 m), with a share of aliased pairs whose matches obey a relative rotation off by
-# an angle in a range, then `ramap mapper --Mapper.refine 0` under four settings of the edge and
-# row rejection:
+# an angle in a range, then averaging alone (`ramap mapper --Mapper.refine 0
+# --Mapper.subset_adjustment 0`) under four settings of the edge and row rejection:
 #   paper     rotation pruning at the paper's fixed 45 deg alone (no direction check, no row
 #             rejection)
 #   fixed     fixed thresholds: rotation pruning at 45 deg, the cycle check of the pair
@@ -78,7 +78,7 @@ for run in "${runs[@]}"; do
     out=$scene/sparse_$name
     rm -rf "$out" "$out.json"
     if "$ramap" mapper --database_path "$scene/database.db" --output_path "$out" \
-        --Mapper.refine 0 --Mapper.num_threads 2 "${extra[@]}" > "$out.log" 2>&1 &&
+        --Mapper.refine 0 --Mapper.subset_adjustment 0 --Mapper.num_threads 2 "${extra[@]}" > "$out.log" 2>&1 &&
        "$ramap" evaluate --model_path "$out/0" --ground_truth "$scene/ground_truth.txt" \
         --ground_truth_format tum --database_path "$scene/database.db" \
         --output_path "$out.json" > /dev/null 2>&1; then

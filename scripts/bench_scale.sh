@@ -4,8 +4,9 @@
 # benchmark specifies them (each frame matched with its next 10 and with every frame within 8 m that is
 # more than 100 frames away; 3% of the pairs aliased, i.e. verified matches of a relative pose
 # 0-40 deg off; 2% outlier matches; landmarks on facades 8 m left and right of the road, seen
-# within 40 m; 4-column keypoints), then `ramap mapper`
-# (averaging alone, --Mapper.refine 0, unless RAMAP_REFINE=1) and `ramap evaluate` against the drive's ground truth.
+# within 40 m; 4-column keypoints), then `ramap mapper` (averaging alone, --Mapper.refine 0
+# --Mapper.subset_adjustment 0, unless RAMAP_REFINE=1) and `ramap evaluate` against the drive's
+# ground truth.
 # Prints one markdown table row per drive (stage times from summary.json, peak memory, ATE as a
 # share of the path, rotation error) and the log-log slopes of time and memory against frames.
 #
@@ -61,7 +62,8 @@ for run in "${runs[@]}"; do
   fi
   rm -rf "$scene/sparse" "$scene/eval.json"
   "$ramap" mapper --database_path "$scene/database.db" --output_path "$scene/sparse" \
-    --Mapper.refine "$refine" --Mapper.num_threads "$threads" "${extra_args[@]}" > "$scene/mapper.log"
+    --Mapper.refine "$refine" --Mapper.subset_adjustment 0 --Mapper.num_threads "$threads" \
+    "${extra_args[@]}" > "$scene/mapper.log"
   "$ramap" evaluate --model_path "$scene/sparse/0" --ground_truth "$scene/ground_truth.txt" \
     --ground_truth_format tum --database_path "$scene/database.db" \
     --output_path "$scene/eval.json" > /dev/null

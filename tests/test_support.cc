@@ -235,6 +235,7 @@ SyntheticSceneOptions WithFacadeRepeats(SyntheticSceneOptions options, int num_p
 MapperOptions AveragingOnly() {
   MapperOptions options;
   options.refine = false;
+  options.subset_adjustment = false;
   return options;
 }
 

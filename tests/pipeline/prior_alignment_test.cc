@@ -148,7 +148,7 @@ TEST(PriorAlignment, TranslationAveragingWithExactPriorsLandsOnThem) {
 }
 
 struct MapperCase {
-  bool refine;
+  bool refine;  // false: averaging alone (no BA of any kind)
   bool priors_in_translation_averaging;
 };
 
@@ -161,6 +161,7 @@ TEST_P(AlignedMapper, ModelInThePriorsFrameWithOutliersReported) {
   const PosePriors priors = NoisyPriors(scene.ground_truth, 0.3, {12, 40});
   MapperOptions options;
   options.refine = GetParam().refine;
+  options.subset_adjustment = GetParam().refine;
   options.prior_alignment.use_in_translation_averaging = GetParam().priors_in_translation_averaging;
   const MapperResult result = RunMapper(scene.database, options, "synthetic", nullptr, priors);
   ASSERT_EQ(result.reconstructions.size(), 1u);

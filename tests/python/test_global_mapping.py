@@ -39,9 +39,11 @@ def test_same_poses_as_the_command_line_with_one_thread(default_scene, tmp_path)
 def test_options_flat_and_nested_are_the_same_options(default_scene):
     database = default_scene / "database.db"
     flat = ramap.global_mapping(database, options={"Mapper.refine": 0,
+                                                   "Mapper.subset_adjustment": 0,
                                                    "RotationAveraging.max_pcg_iterations": 20})
-    nested = ramap.global_mapping(database, options={"Mapper": {"refine": False},
-                                                     "RotationAveraging": {"max_pcg_iterations": 20}})
+    nested = ramap.global_mapping(database, options={
+        "Mapper": {"refine": False, "subset_adjustment": False},
+        "RotationAveraging": {"max_pcg_iterations": 20}})
     assert poses(flat[0]).keys() == poses(nested[0]).keys()
     for name, pose in poses(flat[0]).items():
         assert np.array_equal(pose, poses(nested[0])[name])

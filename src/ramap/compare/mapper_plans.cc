@@ -37,7 +37,8 @@ std::string RamapMapperCommand(const std::string& binary, const std::string& out
       ShellQuote(binary) + " mapper --database_path " + ShellQuote(options.database_path) +
       " --output_path " + ShellQuote(output_folder) + " --Mapper.num_threads " +
       std::to_string(options.num_threads) + " --Mapper.refine " + (refine ? "1" : "0");
-  if (refine && !options.refine_intrinsics) {
+  // Without --Mapper.refine the subset's adjustment (Mapper.subset_adjustment) refines too.
+  if (!options.refine_intrinsics) {
     command +=
         " --BundleAdjustment.refine_focal_length 0 --BundleAdjustment.refine_principal_point 0"
         " --BundleAdjustment.refine_extra_params 0";

@@ -24,7 +24,8 @@ struct MapperPlan {
 };
 
 // The runs in report order: COLMAP; with a peer binary, "COLMAP <peer_version>" (its incremental
-// mapper) and GLOMAP; ramap (averaging alone); ramap+BA.
+// mapper) and GLOMAP; ramap (--Mapper.refine 0: averaging, then BA on a subset of the tracks);
+// ramap+BA.
 std::vector<MapperPlan> MapperPlans(const CompareOptions& options, const std::string& peer_version);
 
 // The version a COLMAP binary prints in its help ("4.1.1"), or "peer" when it names none.

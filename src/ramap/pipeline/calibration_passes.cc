@@ -29,19 +29,24 @@ MapperOptions FirstPassOptions(const MapperOptions& options,
   const bool unknown_focal =
       std::any_of(calibration.cameras.begin(), calibration.cameras.end(),
                   [](const CameraCalibration& camera) { return !camera.estimated; });
-  if (!options.refine || !unknown_focal || options.calibration_num_points == 0 ||
+  if (!options.AdjustsAfterAveraging() || !unknown_focal || options.calibration_num_points == 0 ||
       !(options.max_focal_change_in_bundle_adjustment > 0) ||
       !options.bundle_adjustment.refine_focal_length) {
     return options;
   }
   MapperOptions pass = options;
-  BundleAdjustmentOptions& ba = pass.bundle_adjustment;
+  pass.bundle_adjustment = SubsetAdjustmentOptions(options);
+  summary->calibration_pass = true;
+  return pass;
+}
+
+BundleAdjustmentOptions SubsetAdjustmentOptions(const MapperOptions& options) {
+  BundleAdjustmentOptions ba = options.bundle_adjustment;
   ba.max_num_points = ba.max_num_points == 0
                           ? options.calibration_num_points
                           : std::min(ba.max_num_points, options.calibration_num_points);
   ba.min_observations_per_image = std::min(ba.min_observations_per_image, 50);
-  summary->calibration_pass = true;
-  return pass;
+  return ba;
 }
 
 double FocalChangeInBundleAdjustment(const MapperResult& result,

@@ -16,6 +16,10 @@ namespace ramap {
 // One progress line for the view-graph calibration: each unknown camera's guess and estimate.
 void LogViewGraphCalibration(const ViewGraphCalibrationSummary& calibration, StageLog* log);
 
+// The bundle adjustment options of a subset's adjustment: at most calibration_num_points points
+// (the longest tracks), each image keeping at least 50 of its observations.
+BundleAdjustmentOptions SubsetAdjustmentOptions(const MapperOptions& options);
+
 // The options of the first pass: a calibration pass's BA (summary->calibration_pass set) adjusts
 // at most calibration_num_points points when the view graph left some camera's focal length
 // unknown, since a second pass follows.

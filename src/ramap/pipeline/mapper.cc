@@ -75,8 +75,8 @@ std::optional<Reconstruction> ReconstructComponent(const MapperContext& context,
       context, poses, translations->tracks, context.bearings, context.cameras, "", &component);
   ReregisterComponent(context, translations->tracks, &poses, &component, &reconstruction);
 
-  // 6. Optionally, bundle adjustment and triangulation again.
-  if (options.refine) {
+  // 6. Bundle adjustment (the final one, or the subset's) and triangulation again.
+  if (options.AdjustsAfterAveraging()) {
     RefineComponent(context, translations->tracks, &prior_alignment, &component, &reconstruction);
   }
   // Reported with the errors of the final model, as in the component's summary.
@@ -200,7 +200,8 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& giv
   const ScopedBlasThreads blas_threads(options.num_threads);
   MapperResult first = RunMapperPass(database, options, source, progress, priors, nullptr);
   first.summary.peak_rss_mib = PeakResidentMebibytes();
-  if (!options.refine || !(options.max_focal_change_in_bundle_adjustment > 0)) return first;
+  if (!options.AdjustsAfterAveraging() || !(options.max_focal_change_in_bundle_adjustment > 0))
+    return first;
   std::map<uint32_t, Camera> refined = database.cameras;
   std::map<uint32_t, Camera> written;
   const double change = FocalChangeInBundleAdjustment(first, &written);

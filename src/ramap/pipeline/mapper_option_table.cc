@@ -396,6 +396,11 @@ void AddBundleAdjuster(Table& t) {
       [](auto& o) -> auto& { return o.bundle_adjustment.loss_scale_px; }, Above(0),
       "the robust loss's scale, pixels"));
   t.push_back(Number(
+      "BundleAdjustment.max_reprojection_error_px",
+      [](auto& o) -> auto& { return o.bundle_adjustment.max_reprojection_error_px; }, Above(0),
+      "observations farther from their point after BA are detached and BA solves "
+      "again without them (a huge value: no filtering)"));
+  t.push_back(Number(
       "BundleAdjustment.function_tolerance",
       [](auto& o) -> auto& { return o.bundle_adjustment.function_tolerance; }, AtLeast(0),
       "Ceres's relative cost decrease to stop at"));
@@ -421,7 +426,12 @@ void AddBundleAdjuster(Table& t) {
 void AddRefinement(Table& t) {
   t.push_back(Bool(
       "Mapper.refine", [](auto& o) -> auto& { return o.refine; },
-      "1: bundle adjustment after averaging; 0: averaging alone (faster)"));
+      "1: bundle adjustment after averaging; 0: no final BA (faster; see "
+      "Mapper.subset_adjustment)"));
+  t.push_back(Bool(
+      "Mapper.subset_adjustment", [](auto& o) -> auto& { return o.subset_adjustment; },
+      "with Mapper.refine 0, 1: BA on the Mapper.calibration_num_points longest tracks "
+      "only, then every track triangulated again; 0: averaging alone"));
   t.push_back(Number(
       "BundleAdjustment.num_rounds", [](auto& o) -> auto& { return o.num_refinement_rounds; },
       AtLeast(1),
@@ -472,7 +482,7 @@ void AddCalibration(Table& t) {
       "Mapper.calibration_num_points", [](auto& o) -> auto& { return o.calibration_num_points; },
       AtLeast(0),
       "points of the first BA when a focal length is still unknown after the view "
-      "graph (a second pass follows; 0: all)"));
+      "graph (a second pass follows), and of Mapper.subset_adjustment (0: all)"));
   t.push_back(Bool(
       "Mapper.calibration_subset_only", [](auto& o) -> auto& { return o.calibration_subset_only; },
       "1: the full BA holds the intrinsics the subset found (0: refines them again)"));
@@ -545,7 +555,7 @@ void AddPosePriors(Table& t) {
   t.push_back(Bool(
       "PosePrior.use_in_bundle_adjustment",
       [](auto& o) -> auto& { return o.prior_alignment.use_in_bundle_adjustment; },
-      "1: priors as residuals of the bundle adjustment (Mapper.refine 1)"));
+      "1: priors as residuals of the bundle adjustment (the final one or the subset's)"));
 }
 
 Table BuildMapperOptionTable() {

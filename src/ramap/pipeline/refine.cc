@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "ramap/pipeline/bearings.h"
+#include "ramap/pipeline/calibration_passes.h"
 #include "ramap/pipeline/mapper_options.h"
 #include "ramap/pipeline/mapper_summary.h"
 #include "ramap/pipeline/track_triangulation.h"
@@ -98,9 +99,7 @@ bool CalibrateOnSubset(const MapperContext& context, const std::vector<Track>& t
       static_cast<int>(reconstruction->points3D.size()) <= 2 * num_points) {
     return false;
   }
-  BundleAdjustmentOptions subset_options = ba;
-  subset_options.max_num_points = num_points;
-  subset_options.min_observations_per_image = std::min(ba.min_observations_per_image, 50);
+  const BundleAdjustmentOptions subset_options = SubsetAdjustmentOptions(options);
   Reconstruction subset = PointsForBundleAdjustment(*reconstruction, subset_options);
   const BundleAdjustmentSummary calibration =
       BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, &subset,
@@ -163,6 +162,18 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
       prior_alignment->summary.aligned && options.prior_alignment.use_in_bundle_adjustment;
   const std::map<uint32_t, PosePrior> priors =
       use_priors ? prior_alignment->inliers : std::map<uint32_t, PosePrior>();
+  prior_alignment->summary.used_in_bundle_adjustment = use_priors;
+  if (!options.refine) {
+    // The subset's adjustment alone (MapperOptions::subset_adjustment), given intrinsics tested.
+    const BundleAdjustmentOptions subset_options = SubsetAdjustmentOptions(options);
+    Reconstruction subset = PointsForBundleAdjustment(*reconstruction, subset_options);
+    AdjustComponent(context, context.bearings, subset_options, priors, component, &subset);
+    component->most_filtered_images =
+        MostFilteredImages(context.database, component->bundle_adjustment);
+    *reconstruction =
+        TriangulateThrough(context, tracks, subset, "with the subset's poses", component);
+    return;
+  }
   BundleAdjustmentOptions ba_options = options.bundle_adjustment;
   ImageBearings subset_bearings;
   const ImageBearings* bearings = &context.bearings;
@@ -183,7 +194,6 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
   AdjustComponent(context, *bearings, ba_options, priors, component, &adjusted);
   component->most_filtered_images =
       MostFilteredImages(context.database, component->bundle_adjustment);
-  prior_alignment->summary.used_in_bundle_adjustment = use_priors;
   *reconstruction =
       TriangulateThrough(context, tracks, adjusted, "again with the refined poses", component);
   for (int round = 1; round < options.num_refinement_rounds; ++round) {

@@ -1,5 +1,7 @@
-// Stage 6 of the mapper on one component (optional, on by default): bundle adjustment of the
-// averaged model (refine/bundle_adjustment.h), then every track triangulated again.
+// Stage 6 of the mapper on one component: bundle adjustment of the averaged model
+// (refine/bundle_adjustment.h), then every track triangulated again. The full adjustment
+// (MapperOptions::refine, the default), or only that of a subset of the tracks
+// (MapperOptions::subset_adjustment).
 #pragma once
 
 #include <vector>
@@ -11,10 +13,11 @@
 
 namespace ramap {
 
-// Bundle adjustment on the best-connected points of `reconstruction` (with the inlier priors of a
-// component aligned to its priors, when use_in_bundle_adjustment), then `tracks` triangulated again
-// with the refined poses into `reconstruction`, through the refined intrinsics when BA refined them
-// (they change every bearing of the component's images).
+// Bundle adjustment on the best-connected points of `reconstruction` (up to
+// BundleAdjustmentOptions::max_num_points, or the subset's when MapperOptions::refine is off),
+// with the inlier priors of a component aligned to its priors when use_in_bundle_adjustment; then
+// `tracks` triangulated again with the refined poses into `reconstruction`, through the refined
+// intrinsics when BA refined them (they change every bearing of the component's images).
 void RefineComponent(const MapperContext& context, const std::vector<Track>& tracks,
                      PriorAlignment* prior_alignment, MapperComponentSummary* component,
                      Reconstruction* reconstruction);

@@ -163,21 +163,13 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
   const std::map<uint32_t, PosePrior> priors =
       use_priors ? prior_alignment->inliers : std::map<uint32_t, PosePrior>();
   prior_alignment->summary.used_in_bundle_adjustment = use_priors;
-  if (!options.refine) {
-    // The subset's adjustment alone (MapperOptions::subset_adjustment), given intrinsics tested.
-    const BundleAdjustmentOptions subset_options = SubsetAdjustmentOptions(options);
-    Reconstruction subset = PointsForBundleAdjustment(*reconstruction, subset_options);
-    AdjustComponent(context, context.bearings, subset_options, priors, component, &subset);
-    component->most_filtered_images =
-        MostFilteredImages(context.database, component->bundle_adjustment);
-    *reconstruction =
-        TriangulateThrough(context, tracks, subset, "with the subset's poses", component);
-    return;
-  }
-  BundleAdjustmentOptions ba_options = options.bundle_adjustment;
+  // Without the final BA, the subset's adjustment alone (MapperOptions::subset_adjustment): one
+  // round on the subset's points, the given intrinsics tested on them.
+  BundleAdjustmentOptions ba_options =
+      options.refine ? options.bundle_adjustment : SubsetAdjustmentOptions(options);
   ImageBearings subset_bearings;
   const ImageBearings* bearings = &context.bearings;
-  if (CalibrateOnSubset(context, tracks, priors, component, reconstruction)) {
+  if (options.refine && CalibrateOnSubset(context, tracks, priors, component, reconstruction)) {
     if (options.calibration_subset_only && !AnyHeldAsGiven(ba_options, *reconstruction)) {
       std::map<uint32_t, Camera> cameras;
       subset_bearings = BearingsThrough(context, *reconstruction, &cameras);
@@ -194,9 +186,11 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
   AdjustComponent(context, *bearings, ba_options, priors, component, &adjusted);
   component->most_filtered_images =
       MostFilteredImages(context.database, component->bundle_adjustment);
-  *reconstruction =
-      TriangulateThrough(context, tracks, adjusted, "again with the refined poses", component);
-  for (int round = 1; round < options.num_refinement_rounds; ++round) {
+  *reconstruction = TriangulateThrough(
+      context, tracks, adjusted,
+      options.refine ? "again with the refined poses" : "with the subset's poses", component);
+  const int num_rounds = options.refine ? options.num_refinement_rounds : 1;
+  for (int round = 1; round < num_rounds; ++round) {
     std::map<uint32_t, Camera> cameras;
     const ImageBearings bearings = BearingsThrough(context, *reconstruction, &cameras);
     Reconstruction again = PointsForBundleAdjustment(*reconstruction, ba_options);

@@ -450,7 +450,7 @@ void AddRefinement(Table& t) {
   t.push_back(Bool(
       "BundleAdjustment.given_intrinsics_test",
       [](auto& o) -> auto& { return o.given_intrinsics_test.enable; },
-      "1: after BA, free given focal lengths (and add distortion to pinhole "
+      "1: before BA, free given focal lengths (and add distortion to pinhole "
       "cameras) on a subset of the points; keep a change only if it lowers the "
       "reprojection RMSE clearly"));
   t.push_back(Number(

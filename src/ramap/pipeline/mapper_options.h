@@ -72,7 +72,7 @@ struct MapperOptions {
   // costs much more time and gains nothing on the benchmark databases but sceaux_castle, whose
   // lens the given PINHOLE camera ignores (BENCHMARKS.md, "BA in rounds").
   int num_refinement_rounds = 1;
-  // After it, whether the data prove given intrinsics wrong (refine/given_intrinsics_test.h).
+  // Before it, whether the data prove given intrinsics wrong (refine/given_intrinsics_test.h).
   GivenIntrinsicsTestOptions given_intrinsics_test;
   // When bundle adjustment moves a focal length by more than this fraction from the value
   // averaging used (a guess the view graph could not correct: forward motion, a turntable), the

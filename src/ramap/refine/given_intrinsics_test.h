@@ -1,9 +1,9 @@
 // Whether the data prove given intrinsics wrong. Bundle adjustment keeps the focal length and
 // principal point of a camera the database marks known (BundleAdjustmentOptions::
-// keep_prior_intrinsics). Afterwards, from those converged poses, a subset of the points is
-// adjusted again, each group of identical cameras sharing one set of intrinsics:
-//   1. the given intrinsics held: the control, since a subset adjusted alone fits better than the
-//      whole did;
+// keep_prior_intrinsics). Before it (pipeline/refine.cc), from the poses the model has, a subset
+// of the points is adjusted, each group of identical cameras sharing one set of intrinsics:
+//   1. the given intrinsics held: the control, so that both steps are measured on the same
+//      subset, adjusted alike;
 //   2. the focal length freed, and radial distortion added to a camera given without any
 //      (SIMPLE_PINHOLE, PINHOLE become SIMPLE_RADIAL, or OPENCV where fx != fy).
 // Unless step 2 lowers the group's reprojection RMSE by a clear margin, nothing changes: a true

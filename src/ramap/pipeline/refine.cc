@@ -111,14 +111,12 @@ bool CalibrateOnSubset(const MapperContext& context, const std::vector<Track>& t
 }
 
 // The given intrinsics tested (refine/given_intrinsics_test.h) from the poses `reconstruction`
-// has, before bundle adjustment rather than after it: the test adjusts its own subset of the
-// points from those poses, so BA then runs once, through the intrinsics the test kept, instead of
-// a second time when the data proved the given ones wrong (lund_door from its EXIF focal length:
-// half the mapper's time, the same accuracy). Where the test changed some camera, `*bearings`
-// become those through it (kept in `tested`); the points stay where they were triangulated:
-// triangulated again through the new intrinsics but the old poses, sceaux_castle's BA (k1 added)
-// stopped 16 AUC@3 points lower.
-void TestGivenIntrinsicsFirst(const MapperContext& context,
+// has, before bundle adjustment rather than after it: BA then runs once, through the intrinsics
+// the test kept, instead of a second time where the data proved the given ones wrong (lund_door
+// from its EXIF focal length), and it starts from the poses the test's subset was adjusted to,
+// every track triangulated again through them and the kept intrinsics. Where the test changed
+// some camera, `*bearings` become those through it (kept in `tested`).
+void TestGivenIntrinsicsFirst(const MapperContext& context, const std::vector<Track>& tracks,
                               const BundleAdjustmentOptions& ba_options,
                               MapperComponentSummary* component, Reconstruction* reconstruction,
                               ImageBearings* tested, const ImageBearings** bearings) {
@@ -126,10 +124,15 @@ void TestGivenIntrinsicsFirst(const MapperContext& context,
   test = TestGivenIntrinsics((*bearings)->bearings, (*bearings)->focal_lengths_px, ba_options,
                              context.options.given_intrinsics_test, reconstruction);
   LogGivenIntrinsicsTest(context, test);
-  if (std::none_of(test.groups.begin(), test.groups.end(), ChangesIntrinsics)) return;
-  std::map<uint32_t, Camera> cameras;
-  *tested = BearingsThrough(context, *reconstruction, &cameras);
-  *bearings = tested;
+  if (std::any_of(test.groups.begin(), test.groups.end(), ChangesIntrinsics)) {
+    std::map<uint32_t, Camera> cameras;
+    *tested = BearingsThrough(context, *reconstruction, &cameras);
+    *bearings = tested;
+  }
+  if (test.poses_adjusted) {
+    *reconstruction =
+        TriangulateThrough(context, tracks, *reconstruction, "with the tested poses", component);
+  }
 }
 
 // The images BA detached the most observations from, by name (MapperComponentSummary).
@@ -175,7 +178,7 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
         std::max(ba_options.intrinsics_function_tolerance, ba_options.function_tolerance);
   }
   ImageBearings tested_bearings;
-  TestGivenIntrinsicsFirst(context, ba_options, component, reconstruction, &tested_bearings,
+  TestGivenIntrinsicsFirst(context, tracks, ba_options, component, reconstruction, &tested_bearings,
                            &bearings);
   Reconstruction adjusted = PointsForBundleAdjustment(*reconstruction, ba_options);
   BundleAdjustmentSummary& ba = component->bundle_adjustment;

@@ -153,13 +153,15 @@ struct Trials {
   // The subset adjusted with the cameras of each group of `cameras` as it has them (the others as
   // in `start`), under `options`: the errors per group afterwards, the adjusted intrinsics in
   // `cameras`.
+  // The adjusted subset itself in `adjusted`.
   std::map<uint32_t, GroupError> Adjust(const BundleAdjustmentOptions& options,
-                                        std::map<uint32_t, Camera>* cameras) const {
-    Reconstruction trial = start;
-    for (const auto& [group, camera] : *cameras) SetGroup(groups.at(group), camera, &trial);
-    BundleAdjust(bearings, focal_lengths_px, &trial, options);
-    for (auto& [group, camera] : *cameras) camera = trial.cameras.at(group);
-    return GroupErrors(trial, group_of_camera);
+                                        std::map<uint32_t, Camera>* cameras,
+                                        Reconstruction* adjusted) const {
+    *adjusted = start;
+    for (const auto& [group, camera] : *cameras) SetGroup(groups.at(group), camera, adjusted);
+    BundleAdjust(bearings, focal_lengths_px, adjusted, options);
+    for (auto& [group, camera] : *cameras) camera = adjusted->cameras.at(group);
+    return GroupErrors(*adjusted, group_of_camera);
   }
 };
 
@@ -245,9 +247,13 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
     for (const uint32_t camera_id : camera_ids) trials.group_of_camera[camera_id] = group;
   }
   std::map<uint32_t, Camera> control = given;
-  const std::map<uint32_t, GroupError> held_errors = trials.Adjust(held, &control);
+  Reconstruction held_subset;
+  const std::map<uint32_t, GroupError> held_errors = trials.Adjust(held, &control, &held_subset);
 
-  // 2. Distortion added and the focal length freed.
+  // 2. Distortion added and the focal length freed, from the control's poses and points: nearer
+  // its minimum than the model's poses, which may be averaging's.
+  trials.start.images = held_subset.images;
+  trials.start.points3D = held_subset.points3D;
   BundleAdjustmentOptions freed = held;
   freed.keep_prior_intrinsics = false;
   freed.refine_principal_point = false;
@@ -256,7 +262,9 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
     if (ba.refine_extra_params && HasNoDistortion(camera.model))
       camera = WithRadialDistortion(camera);
   }
-  const std::map<uint32_t, GroupError> freed_errors = trials.Adjust(freed, &distorted);
+  Reconstruction freed_subset;
+  const std::map<uint32_t, GroupError> freed_errors =
+      trials.Adjust(freed, &distorted, &freed_subset);
   std::map<uint32_t, Camera> focal_only;  // 3: the groups whose focal length moved too far
   for (const auto& [group, camera_ids] : groups) {
     const auto before = held_errors.find(group);
@@ -270,8 +278,10 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
 
   // 3. The focal length alone, where step 2 proved it wrong and added distortion too: the
   // distortion stays only if it adds a clear margin.
+  Reconstruction focal_only_subset;
   const std::map<uint32_t, GroupError> focal_only_errors =
-      focal_only.empty() ? std::map<uint32_t, GroupError>() : trials.Adjust(freed, &focal_only);
+      focal_only.empty() ? std::map<uint32_t, GroupError>()
+                         : trials.Adjust(freed, &focal_only, &focal_only_subset);
   for (GivenIntrinsicsTest& test : summary.groups) {
     const uint32_t group = test.camera_ids.front();
     const auto alone = focal_only.find(group);
@@ -283,6 +293,17 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
                                    alone != focal_only.end() ? &alone->second : nullptr);
     test.final_model = CameraModelName(kept.model);
     if (ChangesIntrinsics(test)) SetGroup(test.camera_ids, kept, reconstruction);
+  }
+  // The poses of the subset as step 2 left them where some camera changed, else as step 1 did:
+  // a start for the bundle adjustment that follows, nearer its minimum than the model's. Only
+  // where the subset held every image (MiddleImages), so that no pose moves without the others.
+  const Reconstruction& adjusted =
+      std::any_of(summary.groups.begin(), summary.groups.end(), ChangesIntrinsics) ? freed_subset
+                                                                                   : held_subset;
+  if (adjusted.images.size() == reconstruction->images.size()) {
+    for (auto& [image_id, image] : reconstruction->images)
+      image.cam_from_world = adjusted.images.at(image_id).cam_from_world;
+    summary.poses_adjusted = true;
   }
   summary.seconds = timer.ElapsedSeconds();
   return summary;

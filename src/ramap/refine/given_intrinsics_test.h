@@ -69,6 +69,8 @@ struct GivenIntrinsicsTest {
 struct GivenIntrinsicsTestSummary {
   std::vector<GivenIntrinsicsTest> groups;
   double seconds = 0.0;
+  // Whether the model's images took the poses of the test's subset (TestGivenIntrinsics).
+  bool poses_adjusted = false;
 };
 
 // Whether some test changed the intrinsics of its cameras.
@@ -76,8 +78,11 @@ bool ChangesIntrinsics(const GivenIntrinsicsTest& test);
 
 // Tests each group of `reconstruction`'s cameras whose focal length `ba` held because it was
 // given. The cameras of the groups whose tests passed take the tested model and intrinsics, which
-// a following adjustment holds (focal length and principal point) in turn; nothing else in
-// `reconstruction` changes. `bearings` and `focal_lengths_px` as for BundleAdjust.
+// a following adjustment holds (focal length and principal point) in turn. Where the subset held
+// every image, the images take the poses the subset was adjusted to, under the intrinsics kept
+// (or nearly: a distortion kept with the given focal length was adjusted with the freed one); the
+// points do not change, so they no longer fit those poses until triangulated again. `bearings` and
+// `focal_lengths_px` as for BundleAdjust.
 GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
                                                const std::map<uint32_t, double>& focal_lengths_px,
                                                const BundleAdjustmentOptions& ba,

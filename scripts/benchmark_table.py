@@ -34,6 +34,11 @@ def fmt(value, digits=2, suffix=""):
     return "-" if value is None else f"{value:.{digits}f}{suffix}"
 
 
+def percent(value):
+    """A fraction as a percentage; None (e.g. the ATE of two registered images) stays None."""
+    return None if value is None else 100 * value
+
+
 def focal_error(env, run):
     """Error (%) of the run's focal length against the data set's known one (its first
     parameter: f or fx), for the single camera these databases have."""
@@ -103,8 +108,8 @@ def table(folders, unknown):
                 cells += [fmt(100 * auc["1"], 1), fmt(100 * auc["3"], 1), fmt(100 * auc["5"], 1),
                           fmt(e["rotation_error_deg"]["median"], 3),
                           fmt(e["relative"]["rotation_error_median_deg"], 3), fmt(ate["rmse"], 4),
-                          fmt(100 * ate["rmse_over_path_length"], 2, "%"),
-                          fmt(100 * ate["rmse_over_extent"], 2, "%")]
+                          fmt(percent(ate["rmse_over_path_length"]), 2, "%"),
+                          fmt(percent(ate["rmse_over_extent"]), 2, "%")]
             else:
                 cells += ["", "", "", "(reference)", "", "", "", ""]
             cells += [fmt(run["seconds"]), ratio(speedup)]

@@ -204,6 +204,17 @@ Camera KeptCamera(const GivenIntrinsicsTest& test, const Camera& given, const Ca
   return given;
 }
 
+// The poses of `subset` (step 2's where some camera changed, else step 1's) into
+// `reconstruction`: a start for the bundle adjustment that follows, nearer its minimum than the
+// model's. Only where the subset held every image (MiddleImages), so that no pose moves without
+// the others; returns whether it did.
+bool TakeSubsetPoses(const Reconstruction& subset, Reconstruction* reconstruction) {
+  if (subset.images.size() != reconstruction->images.size()) return false;
+  for (auto& [image_id, image] : reconstruction->images)
+    image.cam_from_world = subset.images.at(image_id).cam_from_world;
+  return true;
+}
+
 }  // namespace
 
 void GivenIntrinsicsTestOptions::Check() const {
@@ -294,17 +305,8 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
     test.final_model = CameraModelName(kept.model);
     if (ChangesIntrinsics(test)) SetGroup(test.camera_ids, kept, reconstruction);
   }
-  // The poses of the subset as step 2 left them where some camera changed, else as step 1 did:
-  // a start for the bundle adjustment that follows, nearer its minimum than the model's. Only
-  // where the subset held every image (MiddleImages), so that no pose moves without the others.
-  const Reconstruction& adjusted =
-      std::any_of(summary.groups.begin(), summary.groups.end(), ChangesIntrinsics) ? freed_subset
-                                                                                   : held_subset;
-  if (adjusted.images.size() == reconstruction->images.size()) {
-    for (auto& [image_id, image] : reconstruction->images)
-      image.cam_from_world = adjusted.images.at(image_id).cam_from_world;
-    summary.poses_adjusted = true;
-  }
+  const bool changed = std::any_of(summary.groups.begin(), summary.groups.end(), ChangesIntrinsics);
+  summary.poses_adjusted = TakeSubsetPoses(changed ? freed_subset : held_subset, reconstruction);
   summary.seconds = timer.ElapsedSeconds();
   return summary;
 }

@@ -152,11 +152,12 @@ struct Trials {
 
   // The subset adjusted with the cameras of each group of `cameras` as it has them (the others as
   // in `start`), under `options`: the errors per group afterwards, the adjusted intrinsics in
-  // `cameras`.
-  // The adjusted subset itself in `adjusted`.
+  // `cameras`, the adjusted subset itself in `adjusted` when given.
   std::map<uint32_t, GroupError> Adjust(const BundleAdjustmentOptions& options,
                                         std::map<uint32_t, Camera>* cameras,
-                                        Reconstruction* adjusted) const {
+                                        Reconstruction* adjusted = nullptr) const {
+    Reconstruction trial;
+    if (adjusted == nullptr) adjusted = &trial;
     *adjusted = start;
     for (const auto& [group, camera] : *cameras) SetGroup(groups.at(group), camera, adjusted);
     BundleAdjust(bearings, focal_lengths_px, adjusted, options);
@@ -289,10 +290,8 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
 
   // 3. The focal length alone, where step 2 proved it wrong and added distortion too: the
   // distortion stays only if it adds a clear margin.
-  Reconstruction focal_only_subset;
   const std::map<uint32_t, GroupError> focal_only_errors =
-      focal_only.empty() ? std::map<uint32_t, GroupError>()
-                         : trials.Adjust(freed, &focal_only, &focal_only_subset);
+      focal_only.empty() ? std::map<uint32_t, GroupError>() : trials.Adjust(freed, &focal_only);
   for (GivenIntrinsicsTest& test : summary.groups) {
     const uint32_t group = test.camera_ids.front();
     const auto alone = focal_only.find(group);

@@ -138,4 +138,27 @@ TEST(BundleAdjustment, PointSubsetPrefersLongTracksAndCoversEveryImage) {
 }
 
 }  // namespace
+TEST(BundleAdjustment, LongTracksThinnedEvenlyKeepingTheirEnds) {
+  std::mt19937 rng(5);
+  const Scene scene = MakeScene(rng);  // every point seen by images 1-10
+  BundleAdjustmentOptions options;
+  options.max_observations_per_point = 4;
+  const Reconstruction subset = PointsForBundleAdjustment(scene.reconstruction, options);
+  ASSERT_EQ(subset.points3D.size(), 200u);
+  for (const auto& [id, point] : subset.points3D) {
+    std::vector<uint32_t> images;
+    for (const TrackElement& e : point.track) images.push_back(e.image_id);
+    EXPECT_EQ(images, (std::vector<uint32_t>{1, 4, 7, 10})) << "point " << id;
+  }
+  // The thinned observations are detached; the kept ones still name their point.
+  for (const auto& [image_id, image] : subset.images) {
+    const bool kept = image_id == 1 || image_id == 4 || image_id == 7 || image_id == 10;
+    for (const Point2D& point : image.points2D) {
+      EXPECT_EQ(point.point3D_id != kInvalidPoint3DId, kept) << "image " << image_id;
+    }
+  }
+  options.max_observations_per_point = 1;
+  EXPECT_THROW(PointsForBundleAdjustment(scene.reconstruction, options), std::exception);
+}
+
 }  // namespace ramap

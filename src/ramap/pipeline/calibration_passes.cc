@@ -46,6 +46,8 @@ BundleAdjustmentOptions SubsetAdjustmentOptions(const MapperOptions& options) {
                           ? options.calibration_num_points
                           : std::min(ba.max_num_points, options.calibration_num_points);
   ba.min_observations_per_image = std::min(ba.min_observations_per_image, 50);
+  // Few points, each with every observation: the count already bounds the cost.
+  ba.max_observations_per_point = 0;
   return ba;
 }
 

@@ -409,6 +409,11 @@ void AddBundleAdjuster(Table& t) {
       [](auto& o) -> auto& { return o.bundle_adjustment.max_num_points; }, AtLeast(0),
       "points adjusted at most (0: all); every track is triangulated again "
       "after"));
+  t.push_back(Number(
+      "BundleAdjustment.max_observations_per_point",
+      [](auto& o) -> auto& { return o.bundle_adjustment.max_observations_per_point; }, AtLeast(0),
+      "observations of one point adjusted at most, spread evenly along its track (0: all); "
+      "every track is triangulated again after"));
   t.push_back(Bool(
       "BundleAdjustment.refine_focal_length",
       [](auto& o) -> auto& { return o.bundle_adjustment.refine_focal_length; },

@@ -308,6 +308,21 @@ int FilterObservations(const std::vector<Observation>& observations, double max_
   return num_filtered;
 }
 
+// `track` thinned to at most `max_count` observations spread evenly over its images in id order
+// (a sequence's frame order), the first and last kept, so the point keeps its widest baseline
+// (0: all).
+std::vector<TrackElement> ThinnedTrack(std::vector<TrackElement> track, int max_count) {
+  if (max_count <= 0 || static_cast<int>(track.size()) <= max_count) return track;
+  std::sort(track.begin(), track.end(),
+            [](const TrackElement& a, const TrackElement& b) { return a.image_id < b.image_id; });
+  std::vector<TrackElement> thinned;
+  const double step = static_cast<double>(track.size() - 1) / (max_count - 1);
+  for (int i = 0; i < max_count; ++i) {
+    thinned.push_back(track[static_cast<size_t>(std::lround(i * step))]);
+  }
+  return thinned;
+}
+
 }  // namespace
 
 void BundleAdjustmentOptions::Check() const {
@@ -321,6 +336,8 @@ void BundleAdjustmentOptions::Check() const {
   CheckOption(max_reprojection_error_px > 0, "BundleAdjustmentOptions::max_reprojection_error_px",
               "> 0", max_reprojection_error_px);
   CheckOption(max_num_points >= 0, s + "max_num_points", ">= 0", max_num_points);
+  CheckOption(max_observations_per_point == 0 || max_observations_per_point >= 2,
+              s + "max_observations_per_point", "0 or >= 2", max_observations_per_point);
   CheckOption(min_observations_per_image >= 0,
               "BundleAdjustmentOptions::min_observations_per_image", ">= 0",
               min_observations_per_image);
@@ -369,36 +386,47 @@ std::map<uint32_t, uint32_t> SharedIntrinsics(const BundleAdjustmentOptions& opt
 
 Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
                                          const BundleAdjustmentOptions& options) {
-  if (options.max_num_points == 0 ||
-      static_cast<int>(reconstruction.points3D.size()) <= options.max_num_points) {
-    return reconstruction;
-  }
+  options.Check();
+  const bool all_points =
+      options.max_num_points == 0 ||
+      static_cast<int>(reconstruction.points3D.size()) <= options.max_num_points;
+  std::map<uint64_t, std::vector<TrackElement>> chosen;  // point id -> the observations adjusted
   std::vector<uint64_t> by_length;
   for (const auto& [id, point] : reconstruction.points3D) by_length.push_back(id);
   std::stable_sort(by_length.begin(), by_length.end(), [&](uint64_t a, uint64_t b) {
     return reconstruction.points3D.at(a).track.size() > reconstruction.points3D.at(b).track.size();
   });
   std::map<uint32_t, int> per_image;
-  std::set<uint64_t> chosen;
   for (const uint64_t id : by_length) {
-    const std::vector<TrackElement>& track = reconstruction.points3D.at(id).track;
+    std::vector<TrackElement> track =
+        ThinnedTrack(reconstruction.points3D.at(id).track, options.max_observations_per_point);
     const bool needed = std::any_of(track.begin(), track.end(), [&](const TrackElement& e) {
       return per_image[e.image_id] < options.min_observations_per_image;
     });
-    if (static_cast<int>(chosen.size()) >= options.max_num_points && !needed) continue;
-    chosen.insert(id);
+    if (!all_points && static_cast<int>(chosen.size()) >= options.max_num_points && !needed) {
+      continue;
+    }
     for (const TrackElement& e : track) ++per_image[e.image_id];
+    chosen.emplace(id, std::move(track));
   }
   Reconstruction subset = reconstruction;
-  for (auto it = subset.points3D.begin(); it != subset.points3D.end();) {
-    it = chosen.count(it->first) ? std::next(it) : subset.points3D.erase(it);
-  }
   for (auto& [image_id, image] : subset.images) {
-    for (Point2D& point : image.points2D) {
-      if (point.point3D_id != kInvalidPoint3DId && !chosen.count(point.point3D_id)) {
-        point.point3D_id = kInvalidPoint3DId;
+    for (Point2D& point : image.points2D) point.point3D_id = kInvalidPoint3DId;
+  }
+  for (auto it = subset.points3D.begin(); it != subset.points3D.end();) {
+    const auto kept = chosen.find(it->first);
+    if (kept == chosen.end()) {
+      it = subset.points3D.erase(it);
+      continue;
+    }
+    it->second.track = kept->second;
+    for (const TrackElement& e : kept->second) {
+      const auto image = subset.images.find(e.image_id);
+      if (image != subset.images.end() && e.point2D_idx < image->second.points2D.size()) {
+        image->second.points2D[e.point2D_idx].point3D_id = it->first;
       }
     }
+    ++it;
   }
   return subset;
 }

@@ -53,6 +53,10 @@ struct BundleAdjustmentOptions {
   // largest, fountain-P11, which it trims.
   int max_num_points = 20000;
   int min_observations_per_image = 200;
+  // Observations of one point adjusted at most (0: all), spread evenly over its track's images;
+  // the others rejoin when every track is triangulated again. Schur elimination's work grows with
+  // the square of a track's length, its information about the poses only linearly.
+  int max_observations_per_point = 0;
   // Intrinsics refined with the poses (COLMAP's --BundleAdjustment.refine_* and their defaults).
   // "Extra" parameters are the distortion coefficients.
   bool refine_focal_length = true;
@@ -100,8 +104,8 @@ struct BundleAdjustmentSummary {
 };
 
 // The points BundleAdjust would adjust under `options` (max_num_points,
-// min_observations_per_image): a copy of `reconstruction` with the other points removed (and their
-// observations detached).
+// min_observations_per_image, max_observations_per_point): a copy of `reconstruction` with the
+// other points removed, and their observations and the thinned ones detached.
 Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
                                          const BundleAdjustmentOptions& options);
 

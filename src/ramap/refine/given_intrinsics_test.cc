@@ -246,6 +246,7 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
   BundleAdjustmentOptions held = ba;
   held.max_num_points = options.num_points;
   held.min_observations_per_image = std::min(held.min_observations_per_image, 50);
+  held.max_observations_per_point = 0;  // few points: each with every observation
   held.max_reprojection_error_px = 1e9;
   Trials trials{
       bearings,

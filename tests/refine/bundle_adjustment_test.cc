@@ -77,6 +77,7 @@ TEST(BundleAdjustment, RecoversPerturbedPosesAndPoints) {
   EXPECT_GT(summary.initial_rmse_px, 1.0);
   EXPECT_LT(summary.final_rmse_px, 1e-3);
   EXPECT_EQ(summary.num_filtered_observations, 1);
+  EXPECT_EQ(summary.num_solves, 1);  // one detached observation of 2000: not worth a second solve
   EXPECT_EQ(summary.filtered_per_image, (std::map<uint32_t, int>{{5, 1}}));
   EXPECT_EQ(scene.reconstruction.images.at(5).points2D[0].point3D_id, kInvalidPoint3DId);
   EXPECT_EQ(scene.reconstruction.points3D.at(0).track.size(), 9u);
@@ -159,6 +160,28 @@ TEST(BundleAdjustment, LongTracksThinnedEvenlyKeepingTheirEnds) {
   }
   options.max_observations_per_point = 1;
   EXPECT_THROW(PointsForBundleAdjustment(scene.reconstruction, options), std::exception);
+}
+
+TEST(BundleAdjustment, SolvesAgainWhenManyObservationsAreDetached) {
+  std::mt19937 rng(11);
+  Scene scene = MakeScene(rng);
+  // Image 5's observations of 40 points (2% of all) are wrong by 25 px.
+  for (size_t i = 0; i < 40; ++i) {
+    scene.bearings[5][i] = (scene.bearings[5][i] + Eigen::Vector3d(0.05, 0, 0)).normalized();
+  }
+  BundleAdjustmentOptions options;
+  options.refine_focal_length = options.refine_extra_params = false;
+  Scene once = scene;
+  const BundleAdjustmentSummary twice =
+      BundleAdjust(scene.bearings, {{1, 500.0}}, &scene.reconstruction, options);
+  EXPECT_EQ(twice.num_filtered_observations, 40);
+  EXPECT_EQ(twice.num_solves, 2);
+  EXPECT_LT(twice.final_rmse_px, 1e-3);
+  options.min_filtered_fraction_to_solve_again = 0.05;
+  const BundleAdjustmentSummary single =
+      BundleAdjust(once.bearings, {{1, 500.0}}, &once.reconstruction, options);
+  EXPECT_EQ(single.num_filtered_observations, 40);
+  EXPECT_EQ(single.num_solves, 1);
 }
 
 }  // namespace ramap

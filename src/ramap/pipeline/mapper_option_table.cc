@@ -398,8 +398,14 @@ void AddBundleAdjuster(Table& t) {
   t.push_back(Number(
       "BundleAdjustment.max_reprojection_error_px",
       [](auto& o) -> auto& { return o.bundle_adjustment.max_reprojection_error_px; }, Above(0),
-      "observations farther from their point after BA are detached and BA solves "
-      "again without them (a huge value: no filtering)"));
+      "observations farther from their point after BA are detached (a huge value: no "
+      "filtering)"));
+  t.push_back(Number(
+      "BundleAdjustment.min_filtered_fraction_to_solve_again",
+      [](auto& o) -> auto& { return o.bundle_adjustment.min_filtered_fraction_to_solve_again; },
+      AtLeast(0, 1),
+      "BA solves again without the detached observations when they are at least this fraction "
+      "of all (0: whenever any was)"));
   t.push_back(Number(
       "BundleAdjustment.function_tolerance",
       [](auto& o) -> auto& { return o.bundle_adjustment.function_tolerance; }, AtLeast(0),

@@ -110,6 +110,7 @@ nlohmann::json ComponentToJson(const MapperComponentSummary& c) {
                                       {"final_rmse_px", ba.final_rmse_px},
                                       {"num_iterations", ba.num_iterations},
                                       {"num_filtered_observations", ba.num_filtered_observations},
+                                      {"num_solves", ba.num_solves},
                                       {"converged", ba.converged},
                                       {"seconds", ba.seconds}};
     nlohmann::json filtered = nlohmann::json::array();

@@ -338,6 +338,10 @@ void BundleAdjustmentOptions::Check() const {
   CheckOption(max_num_points >= 0, s + "max_num_points", ">= 0", max_num_points);
   CheckOption(max_observations_per_point == 0 || max_observations_per_point >= 2,
               s + "max_observations_per_point", "0 or >= 2", max_observations_per_point);
+  CheckOption(
+      min_filtered_fraction_to_solve_again >= 0 && min_filtered_fraction_to_solve_again <= 1,
+      s + "min_filtered_fraction_to_solve_again", "in [0, 1]",
+      min_filtered_fraction_to_solve_again);
   CheckOption(min_observations_per_image >= 0,
               "BundleAdjustmentOptions::min_observations_per_image", ">= 0",
               min_observations_per_image);
@@ -448,18 +452,21 @@ BundleAdjustmentSummary BundleAdjust(const KeypointBearings& bearings,
   summary.num_observations = static_cast<int>(observations.size());
   summary.initial_rmse_px = RmsePx(observations, *reconstruction);
   const std::map<uint32_t, uint32_t> shared = SharedIntrinsics(options, *reconstruction);
-  // Solve, detach what still disagrees, and solve once more without it (as COLMAP's global BA).
+  // Solve, detach what still disagrees, and solve once more without it when it is much of the
+  // data (min_filtered_fraction_to_solve_again; COLMAP's global BA always does).
   for (int round = 0; round < 2 && !observations.empty(); ++round) {
     const ceres::Solver::Summary solve =
         Solve(observations, priors, options, shared, reconstruction, progress,
               round == 0 ? "bundle adjustment" : "bundle adjustment without the outliers");
     summary.num_iterations += static_cast<int>(solve.iterations.size());
+    ++summary.num_solves;
     summary.converged = solve.termination_type == ceres::CONVERGENCE;
     const int filtered = FilterObservations(observations, options.max_reprojection_error_px,
                                             reconstruction, &summary.filtered_per_image);
     summary.num_filtered_observations += filtered;
+    const double filtered_fraction = static_cast<double>(filtered) / observations.size();
     observations = UsableObservations(bearings, focal_lengths_px, *reconstruction, options);
-    if (filtered == 0) break;
+    if (filtered == 0 || filtered_fraction < options.min_filtered_fraction_to_solve_again) break;
   }
   summary.final_rmse_px = RmsePx(observations, *reconstruction);
   summary.num_points = static_cast<int>(reconstruction->points3D.size());

@@ -8,7 +8,6 @@
 #include <limits>
 #include <map>
 #include <memory>
-#include <set>
 #include <stdexcept>
 
 #include "ramap/geometry/camera_distortion.h"
@@ -404,11 +403,11 @@ Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
   for (const uint64_t id : by_length) {
     std::vector<TrackElement> track =
         ThinnedTrack(reconstruction.points3D.at(id).track, options.max_observations_per_point);
-    const bool needed = std::any_of(track.begin(), track.end(), [&](const TrackElement& e) {
-      return per_image[e.image_id] < options.min_observations_per_image;
-    });
-    if (!all_points && static_cast<int>(chosen.size()) >= options.max_num_points && !needed) {
-      continue;
+    if (!all_points && static_cast<int>(chosen.size()) >= options.max_num_points) {
+      const bool needed = std::any_of(track.begin(), track.end(), [&](const TrackElement& e) {
+        return per_image[e.image_id] < options.min_observations_per_image;
+      });
+      if (!needed) continue;
     }
     for (const TrackElement& e : track) ++per_image[e.image_id];
     chosen.emplace(id, std::move(track));

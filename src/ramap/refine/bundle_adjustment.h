@@ -49,7 +49,7 @@ struct BundleAdjustmentOptions {
   // BA solves again without the detached observations only when they are at least this fraction
   // of all (0: whenever any was detached, as COLMAP's global BA). Under the 1 px Cauchy loss an
   // observation 4 px off weighs at most 1/17 of an inlier, so a few of them barely pull the
-  // solution: on the benchmark sets (0.4-0.9% detached) solving again moved AUC@3 by at most 0.17
+  // solution: on the benchmark sets (under 1% detached) solving again moved AUC@3 by at most 0.17
   // either way and cost 12-21% of the mapper's time (BENCHMARKS.md, "Where the seconds of bundle
   // adjustment go"). Many detached observations (an image placed wrong) still get the second solve.
   double min_filtered_fraction_to_solve_again = 0.01;
@@ -65,7 +65,8 @@ struct BundleAdjustmentOptions {
   // the square of a track's length, its information about the poses only linearly. Only long
   // videos have such tracks: on the 4541-frame drive (tracks of 74 frames on average) 60 cut BA's
   // time by a fifth at a lower ATE; kitti07_first160 (tracks up to 102 frames) moved by less than
-  // 0.1 AUC@3 with or without a calibration, and by 0.15 at 40 (BENCHMARKS.md, "Scale").
+  // 0.1 AUC@3 with or without a calibration, and by 0.15 at 40 (BENCHMARKS.md, "Where the seconds
+  // of bundle adjustment go").
   int max_observations_per_point = 60;
   // Intrinsics refined with the poses (COLMAP's --BundleAdjustment.refine_* and their defaults).
   // "Extra" parameters are the distortion coefficients.

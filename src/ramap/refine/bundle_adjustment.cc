@@ -396,20 +396,27 @@ Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
   std::map<uint64_t, std::vector<TrackElement>> chosen;  // point id -> the observations adjusted
   std::vector<uint64_t> by_length;
   for (const auto& [id, point] : reconstruction.points3D) by_length.push_back(id);
-  std::stable_sort(by_length.begin(), by_length.end(), [&](uint64_t a, uint64_t b) {
-    return reconstruction.points3D.at(a).track.size() > reconstruction.points3D.at(b).track.size();
-  });
+  // Within the budget every point is taken, in any order, and no image's count matters.
+  if (!all_points) {
+    std::stable_sort(by_length.begin(), by_length.end(), [&](uint64_t a, uint64_t b) {
+      return reconstruction.points3D.at(a).track.size() >
+             reconstruction.points3D.at(b).track.size();
+    });
+  }
   std::map<uint32_t, int> per_image;
   for (const uint64_t id : by_length) {
     std::vector<TrackElement> track =
         ThinnedTrack(reconstruction.points3D.at(id).track, options.max_observations_per_point);
-    if (!all_points && static_cast<int>(chosen.size()) >= options.max_num_points) {
-      const bool needed = std::any_of(track.begin(), track.end(), [&](const TrackElement& e) {
-        return per_image[e.image_id] < options.min_observations_per_image;
-      });
-      if (!needed) continue;
+    if (!all_points) {
+      // Past the budget, a point is taken only while one of its images has too few observations.
+      if (static_cast<int>(chosen.size()) >= options.max_num_points &&
+          std::none_of(track.begin(), track.end(), [&](const TrackElement& e) {
+            return per_image[e.image_id] < options.min_observations_per_image;
+          })) {
+        continue;
+      }
+      for (const TrackElement& e : track) ++per_image[e.image_id];
     }
-    for (const TrackElement& e : track) ++per_image[e.image_id];
     chosen.emplace(id, std::move(track));
   }
   Reconstruction subset = reconstruction;

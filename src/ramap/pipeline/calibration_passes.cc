@@ -41,14 +41,10 @@ MapperOptions FirstPassOptions(const MapperOptions& options,
 }
 
 BundleAdjustmentOptions SubsetAdjustmentOptions(const MapperOptions& options) {
-  BundleAdjustmentOptions ba = options.bundle_adjustment;
-  ba.max_num_points = ba.max_num_points == 0
-                          ? options.calibration_num_points
-                          : std::min(ba.max_num_points, options.calibration_num_points);
-  ba.min_observations_per_image = std::min(ba.min_observations_per_image, 50);
-  // Few points, each with every observation: the count already bounds the cost.
-  ba.max_observations_per_point = 0;
-  return ba;
+  const int budget = options.bundle_adjustment.max_num_points;
+  return PointSubsetOptions(options.bundle_adjustment,
+                            budget == 0 ? options.calibration_num_points
+                                        : std::min(budget, options.calibration_num_points));
 }
 
 double FocalChangeInBundleAdjustment(const MapperResult& result,

@@ -352,6 +352,13 @@ void BundleAdjustmentOptions::Check() const {
               intrinsics_max_num_iterations);
 }
 
+BundleAdjustmentOptions PointSubsetOptions(BundleAdjustmentOptions options, int max_num_points) {
+  options.max_num_points = max_num_points;
+  options.min_observations_per_image = std::min(options.min_observations_per_image, 50);
+  options.max_observations_per_point = 0;
+  return options;
+}
+
 bool HeldAsGiven(const BundleAdjustmentOptions& options, const Camera& camera) {
   return options.keep_prior_intrinsics && camera.has_prior_focal_length;
 }

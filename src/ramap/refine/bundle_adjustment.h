@@ -123,6 +123,11 @@ struct BundleAdjustmentSummary {
 Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
                                          const BundleAdjustmentOptions& options);
 
+// `options` for a BA on a subset of at most `max_num_points` points (0: all), the longest tracks:
+// each image keeps at least 50 of its observations (or min_observations_per_image, if fewer), and
+// each point every observation, since the count already bounds the cost.
+BundleAdjustmentOptions PointSubsetOptions(BundleAdjustmentOptions options, int max_num_points);
+
 // Whether `camera` arrived with values the user or EXIF gave and `options` keeps them
 // (keep_prior_intrinsics).
 bool HeldAsGiven(const BundleAdjustmentOptions& options, const Camera& camera);

@@ -243,10 +243,7 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
   if (!options.enable || groups.empty()) return summary;
   // 1. The control, with nothing filtered, so that every step is measured on the same
   // observations.
-  BundleAdjustmentOptions held = ba;
-  held.max_num_points = options.num_points;
-  held.min_observations_per_image = std::min(held.min_observations_per_image, 50);
-  held.max_observations_per_point = 0;  // few points: each with every observation
+  BundleAdjustmentOptions held = PointSubsetOptions(ba, options.num_points);
   held.max_reprojection_error_px = 1e9;
   Trials trials{
       bearings,

@@ -29,9 +29,9 @@ int RunBundleAdjuster(int argc, char** argv) {
       app,
       MapperOptionSections(
           {}, {"BundleAdjustment.max_num_iterations", "BundleAdjustment.loss_scale_px",
-               "BundleAdjustment.function_tolerance", "BundleAdjustment.max_num_points",
-               "BundleAdjustment.refine_focal_length", "BundleAdjustment.refine_principal_point",
-               "BundleAdjustment.refine_extra_params"}),
+               "BundleAdjustment.function_tolerance", "BundleAdjustment.pose_tolerance_deg",
+               "BundleAdjustment.max_num_points", "BundleAdjustment.refine_focal_length",
+               "BundleAdjustment.refine_principal_point", "BundleAdjustment.refine_extra_params"}),
       &mapper);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   ResolveMapperOptions(&mapper);

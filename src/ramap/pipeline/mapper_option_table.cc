@@ -411,6 +411,11 @@ void AddBundleAdjuster(Table& t) {
       [](auto& o) -> auto& { return o.bundle_adjustment.function_tolerance; }, AtLeast(0),
       "Ceres's relative cost decrease to stop at"));
   t.push_back(Number(
+      "BundleAdjustment.pose_tolerance_deg",
+      [](auto& o) -> auto& { return o.bundle_adjustment.pose_tolerance_deg; }, AtLeast(0),
+      "also stop once two successive steps each moved every camera by less than this angle "
+      "(0: off)"));
+  t.push_back(Number(
       "BundleAdjustment.max_num_points",
       [](auto& o) -> auto& { return o.bundle_adjustment.max_num_points; }, AtLeast(0),
       "points adjusted at most (0: all); every track is triangulated again "

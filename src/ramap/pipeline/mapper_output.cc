@@ -112,6 +112,7 @@ nlohmann::json ComponentToJson(const MapperComponentSummary& c) {
                                       {"num_filtered_observations", ba.num_filtered_observations},
                                       {"num_solves", ba.num_solves},
                                       {"converged", ba.converged},
+                                      {"poses_settled", ba.poses_settled},
                                       {"seconds", ba.seconds}};
     nlohmann::json filtered = nlohmann::json::array();
     for (const auto& [name, count] : c.most_filtered_images)

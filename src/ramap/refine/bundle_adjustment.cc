@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "ramap/geometry/camera_distortion.h"
+#include "ramap/refine/pose_convergence.h"
 #include "ramap/refine/reprojection_costs.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/progress_line.h"
@@ -185,6 +186,60 @@ ceres::Solver::Options SolverOptions(const BundleAdjustmentOptions& options,
   return solver_options;
 }
 
+// The median depth of each image's observed points, for PoseConvergence.
+std::map<uint32_t, double> MedianDepths(const std::vector<Observation>& observations,
+                                        const Reconstruction& reconstruction) {
+  std::map<uint32_t, std::vector<double>> depths;
+  for (const Observation& o : observations) {
+    const Rigid3d& pose = reconstruction.images.at(o.image_id).cam_from_world;
+    depths[o.image_id].push_back((pose * reconstruction.points3D.at(o.point3D_id).xyz).z());
+  }
+  std::map<uint32_t, double> medians;
+  for (auto& [image_id, values] : depths) {
+    auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+    std::nth_element(values.begin(), middle, values.end());
+    medians[image_id] = *middle;
+  }
+  return medians;
+}
+
+// The intrinsics `problem` refines, for PoseConvergence.
+std::vector<RefinedIntrinsics> RefinedIntrinsicsIn(const ceres::Problem& problem,
+                                                   const BundleAdjustmentOptions& options,
+                                                   const Reconstruction& reconstruction) {
+  std::vector<RefinedIntrinsics> refined;
+  for (const auto& [camera_id, camera] : reconstruction.cameras) {
+    if (!problem.HasParameterBlock(camera.params.data()) || !RefinesIntrinsics(options, camera))
+      continue;
+    refined.push_back({camera.params.data(), HasSingleFocalLength(camera.model) ? 1 : 2});
+  }
+  return refined;
+}
+
+// The pose priors' residuals on `poses`, which get the pose manifold; the first pose is held fixed
+// (gauge) unless three or more priors fix the frame.
+void AddPriorsAndGauge(const std::map<uint32_t, PosePrior>& priors, ceres::LossFunction* prior_loss,
+                       ceres::Manifold* pose_manifold, std::map<uint32_t, PoseBlock>* poses,
+                       ceres::Problem* problem) {
+  int num_priors = 0;
+  for (const auto& [image_id, prior] : priors) {
+    const auto pose = poses->find(image_id);
+    if (pose == poses->end()) continue;
+    problem->AddResidualBlock(new ceres::AutoDiffCostFunction<PosePriorError, 3, 7>(
+                                  new PosePriorError(prior.center, prior.std_dev_m)),
+                              prior_loss, pose->second.data());
+    ++num_priors;
+  }
+  bool gauge_fixed = num_priors >= 3;
+  for (auto& [image_id, pose] : *poses) {
+    problem->SetManifold(pose.data(), pose_manifold);
+    if (!gauge_fixed) {
+      problem->SetParameterBlockConstant(pose.data());
+      gauge_fixed = true;
+    }
+  }
+}
+
 // One Ceres solve over `observations`; the first image observed is held fixed (gauge) unless
 // three or more pose priors fix it.
 ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
@@ -223,23 +278,7 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   }
   HoldFixedIntrinsics(options, reconstruction, &problem, &intrinsics_manifolds);
   ceres::HuberLoss prior_loss(1.0);
-  int num_priors = 0;
-  for (const auto& [image_id, prior] : priors) {
-    const auto pose = poses.find(image_id);
-    if (pose == poses.end()) continue;
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PosePriorError, 3, 7>(
-                                 new PosePriorError(prior.center, prior.std_dev_m)),
-                             &prior_loss, pose->second.data());
-    ++num_priors;
-  }
-  bool gauge_fixed = num_priors >= 3;
-  for (auto& [image_id, pose] : poses) {
-    problem.SetManifold(pose.data(), &pose_manifold);
-    if (!gauge_fixed) {
-      problem.SetParameterBlockConstant(pose.data());
-      gauge_fixed = true;
-    }
-  }
+  AddPriorsAndGauge(priors, &prior_loss, &pose_manifold, &poses, &problem);
   // The slow valley is the focal length's: distortion alone converges at the ordinary tolerance.
   const bool refines_focal_length = std::any_of(
       reconstruction->cameras.begin(), reconstruction->cameras.end(), [&](const auto& entry) {
@@ -253,6 +292,13 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   line.SetTotalIsALimit();
   BetweenIterations between(&line);
   solver_options.callbacks.push_back(&between);
+  PoseConvergence still(&poses, MedianDepths(observations, *reconstruction),
+                        RefinedIntrinsicsIn(problem, options, *reconstruction),
+                        options.pose_tolerance_deg);
+  if (options.pose_tolerance_deg > 0) {
+    solver_options.update_state_every_iteration = true;
+    solver_options.callbacks.push_back(&still);
+  }
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options, &problem, &summary);
   line.Finish(summary.iterations.size(), summary.termination_type != ceres::USER_FAILURE);
@@ -328,6 +374,7 @@ void BundleAdjustmentOptions::Check() const {
   const std::string s = "--BundleAdjustment.";
   CheckOption(max_num_iterations >= 0, s + "max_num_iterations", ">= 0", max_num_iterations);
   CheckOption(function_tolerance >= 0, s + "function_tolerance", ">= 0", function_tolerance);
+  CheckOption(pose_tolerance_deg >= 0, s + "pose_tolerance_deg", ">= 0", pose_tolerance_deg);
   CheckOption(loss_scale_px > 0, s + "loss_scale_px", "> 0", loss_scale_px);
   CheckOption(min_bearing_z > 0 && min_bearing_z < 1, "BundleAdjustmentOptions::min_bearing_z",
               "in (0, 1)", min_bearing_z);
@@ -473,7 +520,9 @@ BundleAdjustmentSummary BundleAdjust(const KeypointBearings& bearings,
               round == 0 ? "bundle adjustment" : "bundle adjustment without the outliers");
     summary.num_iterations += static_cast<int>(solve.iterations.size());
     ++summary.num_solves;
-    summary.converged = solve.termination_type == ceres::CONVERGENCE;
+    // USER_SUCCESS: PoseConvergence ended the solve (the progress callback only aborts).
+    summary.poses_settled = solve.termination_type == ceres::USER_SUCCESS;
+    summary.converged = solve.termination_type == ceres::CONVERGENCE || summary.poses_settled;
     const int filtered = FilterObservations(observations, options.max_reprojection_error_px,
                                             reconstruction, &summary.filtered_per_image);
     summary.num_filtered_observations += filtered;

@@ -1,0 +1,59 @@
+// A stopping rule for bundle adjustment that looks at what the mapper returns: the poses. Ceres
+// stops when an iteration lowers the cost by less than a fraction (function_tolerance), but that
+// cost is mostly the points': on a small, well-connected scene the poses stop moving after a few
+// iterations while thousands of points go on settling and the cost keeps falling. Those points are
+// triangulated again after BA anyway. This callback ends the solve once two successive accepted
+// steps each moved every camera by less than a tolerance, measured as angles: its rotation, its
+// centre's displacement as seen from its points (displacement over their median depth), and its
+// refined focal length and principal point (relative change). A long chain whose poses still drift
+// keeps iterating to Ceres's own tolerance.
+#pragma once
+
+#include <ceres/iteration_callback.h>
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "ramap/refine/reprojection_costs.h"
+
+namespace ramap {
+
+// The intrinsics a solve refines: the camera's parameter array, and how many of its leading
+// entries are focal lengths (1 or 2) and principal point (2); distortion is left out, since it
+// moves with the focal length.
+struct RefinedIntrinsics {
+  const double* params = nullptr;
+  int num_focal_lengths = 1;
+};
+
+class PoseConvergence : public ceres::IterationCallback {
+ public:
+  // `poses` are Ceres's parameter blocks (kept up to date every iteration:
+  // Solver::Options::update_state_every_iteration); `median_depths` the median depth of each
+  // image's observed points at the start, in the poses' units.
+  PoseConvergence(const std::map<uint32_t, PoseBlock>* poses,
+                  std::map<uint32_t, double> median_depths,
+                  std::vector<RefinedIntrinsics> intrinsics, double tolerance_deg);
+
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override;
+
+  // Whether the solve ended here rather than at Ceres's own criteria.
+  bool stopped() const { return stopped_; }
+
+ private:
+  // The largest angle any camera moved by since the last accepted step, in degrees.
+  double LargestMotionDeg() const;
+  void Remember();
+
+  const std::map<uint32_t, PoseBlock>* poses_;
+  std::map<uint32_t, double> median_depths_;
+  std::vector<RefinedIntrinsics> intrinsics_;
+  double tolerance_deg_;
+  std::map<uint32_t, PoseBlock> last_poses_;
+  std::vector<std::vector<double>> last_intrinsics_;
+  int num_still_steps_ = 0;
+  bool stopped_ = false;
+};
+
+}  // namespace ramap

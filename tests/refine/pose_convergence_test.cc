@@ -1,0 +1,100 @@
+#include "ramap/refine/pose_convergence.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace ramap {
+namespace {
+
+constexpr double kRadPerDeg = M_PI / 180.0;
+
+PoseBlock Pose(const Eigen::Quaterniond& rotation, const Eigen::Vector3d& centre) {
+  PoseBlock pose;
+  pose << rotation.coeffs(), -(rotation * centre);
+  return pose;
+}
+
+ceres::IterationSummary Step(int iteration, bool successful) {
+  ceres::IterationSummary summary;
+  summary.iteration = iteration;
+  summary.step_is_successful = successful;
+  return summary;
+}
+
+// Turns camera `image_id` about the y axis by `angle_deg` more.
+void Turn(std::map<uint32_t, PoseBlock>* poses, uint32_t image_id, double angle_deg) {
+  PoseBlock& pose = poses->at(image_id);
+  const Eigen::Quaterniond q(pose[3], pose[0], pose[1], pose[2]);
+  const Eigen::Vector3d centre = -(q.conjugate() * pose.tail<3>());
+  pose = Pose(
+      Eigen::Quaterniond(Eigen::AngleAxisd(angle_deg * kRadPerDeg, Eigen::Vector3d::UnitY())) * q,
+      centre);
+}
+
+std::map<uint32_t, PoseBlock> TwoCameras() {
+  return {{1, Pose(Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero())},
+          {2, Pose(Eigen::Quaterniond::Identity(), Eigen::Vector3d(1, 0, 0))}};
+}
+
+TEST(PoseConvergence, StopsAfterTwoStillStepsAndIgnoresRejectedOnes) {
+  std::map<uint32_t, PoseBlock> poses = TwoCameras();
+  PoseConvergence still(&poses, {{1, 10.0}, {2, 10.0}}, {}, 1e-3);
+  EXPECT_EQ(still(Step(0, true)), ceres::SOLVER_CONTINUE);
+  Turn(&poses, 2, 0.01);  // moving: well above the tolerance
+  EXPECT_EQ(still(Step(1, true)), ceres::SOLVER_CONTINUE);
+  Turn(&poses, 2, 5e-4);  // the first still step
+  EXPECT_EQ(still(Step(2, true)), ceres::SOLVER_CONTINUE);
+  // A rejected step leaves the state as it was: neither a still step nor a moving one.
+  EXPECT_EQ(still(Step(3, false)), ceres::SOLVER_CONTINUE);
+  EXPECT_FALSE(still.stopped());
+  Turn(&poses, 2, 5e-4);  // the second
+  EXPECT_EQ(still(Step(4, true)), ceres::SOLVER_TERMINATE_SUCCESSFULLY);
+  EXPECT_TRUE(still.stopped());
+}
+
+TEST(PoseConvergence, AMovingStepStartsTheCountAgain) {
+  std::map<uint32_t, PoseBlock> poses = TwoCameras();
+  PoseConvergence still(&poses, {}, {}, 1e-3);
+  Turn(&poses, 2, 5e-4);
+  EXPECT_EQ(still(Step(1, true)), ceres::SOLVER_CONTINUE);
+  Turn(&poses, 1, 2e-3);  // the other camera still turns
+  EXPECT_EQ(still(Step(2, true)), ceres::SOLVER_CONTINUE);
+  Turn(&poses, 2, 5e-4);
+  EXPECT_EQ(still(Step(3, true)), ceres::SOLVER_CONTINUE);
+  EXPECT_FALSE(still.stopped());
+}
+
+// The same displacement of a camera's centre is a large motion seen from points 1 unit away and a
+// negligible one from points 1000 units away.
+TEST(PoseConvergence, ACentreMovesByItsDisplacementOverItsPointsDepth) {
+  for (const double depth : {1.0, 1000.0}) {
+    std::map<uint32_t, PoseBlock> poses = TwoCameras();
+    PoseConvergence still(&poses, {{1, depth}, {2, depth}}, {}, 1e-3);
+    for (int iteration = 1; iteration <= 2; ++iteration) {
+      poses.at(2).tail<3>() += Eigen::Vector3d(1e-4, 0, 0);  // 0.0057 deg at depth 1
+      still(Step(iteration, true));
+    }
+    EXPECT_EQ(still.stopped(), depth > 1.0) << "depth " << depth;
+  }
+}
+
+TEST(PoseConvergence, ARefinedFocalLengthStillMovingKeepsItGoing) {
+  std::map<uint32_t, PoseBlock> poses = TwoCameras();
+  std::vector<double> params = {1000.0, 320.0, 240.0, 0.0};  // SIMPLE_RADIAL
+  PoseConvergence still(&poses, {}, {{params.data(), 1}}, 1e-3);
+  for (int iteration = 1; iteration <= 3; ++iteration) {
+    params[0] += 1.0;  // 0.1%: 0.057 deg
+    EXPECT_EQ(still(Step(iteration, true)), ceres::SOLVER_CONTINUE);
+  }
+  for (int iteration = 4; iteration <= 5; ++iteration) {
+    params[0] += 1e-3;
+    params[3] += 0.01;  // distortion is not watched: it moves with the focal length
+    still(Step(iteration, true));
+  }
+  EXPECT_TRUE(still.stopped());
+}
+
+}  // namespace
+}  // namespace ramap

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "ramap/util/error.h"
+#include "ramap/util/image_codecs.h"
 #include "ramap/util/staged_output.h"
 
 namespace ramap {
@@ -108,7 +108,7 @@ void WritePng(const cv::Mat& image, const std::string& path) {
       path,
       [&](std::ostream& out) {
         std::vector<uchar> bytes;
-        if (!cv::imencode(".png", image, bytes)) throw InputError(path, "cannot encode PNG");
+        if (!EncodeImage(".png", image, &bytes)) throw InputError(path, "cannot encode PNG");
         out.write(reinterpret_cast<const char*>(bytes.data()),
                   static_cast<std::streamsize>(bytes.size()));
       },

@@ -4,7 +4,6 @@
 #include <cctype>
 #include <filesystem>
 #include <map>
-#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <sstream>
 
@@ -12,6 +11,7 @@
 #include "ramap/io/exif.h"
 #include "ramap/io/image_list.h"
 #include "ramap/util/error.h"
+#include "ramap/util/image_codecs.h"
 #include "ramap/util/number_list.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/parallel.h"
@@ -124,7 +124,7 @@ ImageResult ReadImageFeatures(const std::string& path, const ImageReaderOptions&
     result.problem = "empty file";
     return result;
   }
-  const cv::Mat grey = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  const cv::Mat grey = ReadImageFile(path, cv::IMREAD_GRAYSCALE);
   if (grey.empty()) {
     result.problem = "not an image OpenCV can read";
     return result;

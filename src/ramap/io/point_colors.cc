@@ -2,7 +2,8 @@
 
 #include <cmath>
 #include <map>
-#include <opencv2/imgcodecs.hpp>
+
+#include "ramap/util/image_codecs.h"
 
 namespace ramap {
 
@@ -12,7 +13,7 @@ PointColorSummary ColorPointsFromImages(const std::string& image_path,
   std::map<uint64_t, Eigen::Vector3d> sums;
   std::map<uint64_t, int> counts;
   for (const auto& [image_id, image] : reconstruction->images) {
-    const cv::Mat bgr = cv::imread(image_path + "/" + image.name, cv::IMREAD_COLOR);
+    const cv::Mat bgr = ReadImageFile(image_path + "/" + image.name, cv::IMREAD_COLOR);
     if (bgr.empty()) {
       summary.unreadable_images.push_back(image.name);
       continue;

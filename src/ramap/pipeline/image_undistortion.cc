@@ -4,12 +4,12 @@
 #include <fstream>
 #include <memory>
 #include <mutex>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <set>
 
 #include "ramap/geometry/camera_projection.h"
 #include "ramap/util/error.h"
+#include "ramap/util/image_codecs.h"
 #include "ramap/util/parallel.h"
 #include "ramap/util/staged_output.h"
 #include "ramap/util/timer.h"
@@ -68,7 +68,7 @@ struct CameraRemap {
 std::unique_ptr<StagedPath> UndistortImageFile(const std::string& source_path,
                                                const std::string& final_path, const Camera& camera,
                                                const CameraRemap& remap) {
-  const cv::Mat image = cv::imread(source_path, cv::IMREAD_UNCHANGED);
+  const cv::Mat image = ReadImageFile(source_path, cv::IMREAD_UNCHANGED);
   if (image.empty()) throw InputError(source_path, "cannot read the image");
   if (image.cols != static_cast<int>(camera.width) ||
       image.rows != static_cast<int>(camera.height)) {
@@ -81,7 +81,7 @@ std::unique_ptr<StagedPath> UndistortImageFile(const std::string& source_path,
   cv::remap(image, undistorted, remap.map_x, remap.map_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
   std::vector<uint8_t> bytes;
   const std::string extension = fs::path(final_path).extension().string();
-  if (!cv::imencode(extension.empty() ? ".png" : extension, undistorted, bytes)) {
+  if (!EncodeImage(extension.empty() ? ".png" : extension, undistorted, &bytes)) {
     throw InputError(final_path, "cannot encode the undistorted image");
   }
   std::error_code ec;

@@ -1,0 +1,21 @@
+// Image files decoded and encoded by OpenCV's imgcodecs, loaded on first use from a plug-in
+// (src/plugins/image_codecs.cc, libramap_image_codecs.so). Linked into ramap itself, imgcodecs
+// brings over a hundred shared libraries (GDAL, Poppler, OpenEXR, codecs) whose loading and
+// relocation cost every ramap command about 50 ms at start (49 ms against 9 ms for the other
+// libraries, measured with `perf stat`), though the mapper and most commands read no image.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>  // the cv::IMREAD_* flags only: ramap does not link imgcodecs
+#include <string>
+#include <vector>
+
+namespace ramap {
+
+// cv::imread(path, flags) (cv::IMREAD_*); empty when the file cannot be read or decoded.
+cv::Mat ReadImageFile(const std::string& path, int flags);
+
+// cv::imencode(extension, image, bytes): false when OpenCV cannot encode it in that format.
+bool EncodeImage(const std::string& extension, const cv::Mat& image, std::vector<uchar>* bytes);
+
+}  // namespace ramap

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <sstream>
+#include <string>
 
 #include "ramap/eval/pose_metrics.h"
 #include "ramap/geometry/camera_projection.h"
@@ -247,6 +249,15 @@ TEST(ViewGraphCalibration, SubsetAdjustmentCalibratesWithoutTheFinalBundleAdjust
             4 * evaluations[true].rotation_error_median_deg);
 }
 
+// The bundle adjustments a mapper's progress log records (their stage lines).
+int CountBundleAdjustments(const std::string& log) {
+  std::istringstream lines(log);
+  int count = 0;
+  for (std::string line; std::getline(lines, line);)
+    count += line.rfind("[ramap] bundle adjustment  ", 0) == 0;
+  return count;
+}
+
 // Views fixating the origin from one distance: every pair's optical axes meet at equal distances,
 // where F leaves the focal length free. The elevations vary (not one orbit, a critical motion for
 // BA too), so the views together fix it.
@@ -284,7 +295,17 @@ TEST(ViewGraphCalibration, FocalLengthTheViewGraphCannotFixFoundByACalibrationPa
 
   MapperOptions mapper;
   mapper.refine = true;
-  const MapperResult result = RunMapper(database, mapper, "synthetic");
+  // A subset of fewer than half the scene's 3400 tracks, so that the subset's calibration runs.
+  mapper.calibration_num_points = 1000;
+  std::ostringstream progress;
+  const MapperResult result = RunMapper(database, mapper, "synthetic", &progress);
+  // The first pass ends with its calibration subset: the second averages again and keeps none of
+  // its poses, so no other BA runs before it.
+  const std::string log = progress.str();
+  const std::string first_pass = log.substr(0, log.find("averaging again"));
+  ASSERT_NE(first_pass.size(), log.size()) << log;
+  EXPECT_EQ(CountBundleAdjustments(first_pass), 1) << first_pass;
+  EXPECT_EQ(CountBundleAdjustments(log), 3) << log;  // then the subset and the full BA
   ASSERT_EQ(result.summary.cameras.size(), 1u);
   const CameraCalibration& view_graph = result.summary.cameras[0].view_graph;
   EXPECT_FALSE(view_graph.estimated) << view_graph.estimated_focal_px;

@@ -16,10 +16,14 @@ PoseBlock Pose(const Eigen::Quaterniond& rotation, const Eigen::Vector3d& centre
   return pose;
 }
 
-ceres::IterationSummary Step(int iteration, bool successful) {
+// The trust region's initial radius in these tests.
+constexpr double kRadius = 1e4;
+
+ceres::IterationSummary Step(int iteration, bool successful, double radius = 3 * kRadius) {
   ceres::IterationSummary summary;
   summary.iteration = iteration;
   summary.step_is_successful = successful;
+  summary.trust_region_radius = radius;
   return summary;
 }
 
@@ -40,7 +44,7 @@ std::map<uint32_t, PoseBlock> TwoCameras() {
 
 TEST(PoseConvergence, StopsAfterTwoStillStepsAndIgnoresRejectedOnes) {
   std::map<uint32_t, PoseBlock> poses = TwoCameras();
-  PoseConvergence still(&poses, {{1, 10.0}, {2, 10.0}}, {}, 1e-3);
+  PoseConvergence still(&poses, {{1, 10.0}, {2, 10.0}}, {}, 1e-3, kRadius);
   EXPECT_EQ(still(Step(0, true)), ceres::SOLVER_CONTINUE);
   Turn(&poses, 2, 0.01);  // moving: well above the tolerance
   EXPECT_EQ(still(Step(1, true)), ceres::SOLVER_CONTINUE);
@@ -54,9 +58,24 @@ TEST(PoseConvergence, StopsAfterTwoStillStepsAndIgnoresRejectedOnes) {
   EXPECT_TRUE(still.stopped());
 }
 
+// Rejected steps shrink the trust region, and with it the next steps, wherever the solve is: small
+// steps count only once the region is back to its initial size.
+TEST(PoseConvergence, StepsInAShrunkenTrustRegionDoNotCount) {
+  std::map<uint32_t, PoseBlock> poses = TwoCameras();
+  PoseConvergence still(&poses, {}, {}, 1e-3, kRadius);
+  for (int iteration = 1; iteration <= 4; ++iteration) {
+    Turn(&poses, 2, 5e-4);
+    EXPECT_EQ(still(Step(iteration, true, kRadius / 8)), ceres::SOLVER_CONTINUE);
+  }
+  Turn(&poses, 2, 5e-4);
+  EXPECT_EQ(still(Step(5, true, kRadius)), ceres::SOLVER_CONTINUE);
+  Turn(&poses, 2, 5e-4);
+  EXPECT_EQ(still(Step(6, true, 3 * kRadius)), ceres::SOLVER_TERMINATE_SUCCESSFULLY);
+}
+
 TEST(PoseConvergence, AMovingStepStartsTheCountAgain) {
   std::map<uint32_t, PoseBlock> poses = TwoCameras();
-  PoseConvergence still(&poses, {}, {}, 1e-3);
+  PoseConvergence still(&poses, {}, {}, 1e-3, kRadius);
   Turn(&poses, 2, 5e-4);
   EXPECT_EQ(still(Step(1, true)), ceres::SOLVER_CONTINUE);
   Turn(&poses, 1, 2e-3);  // the other camera still turns
@@ -71,7 +90,7 @@ TEST(PoseConvergence, AMovingStepStartsTheCountAgain) {
 TEST(PoseConvergence, ACentreMovesByItsDisplacementOverItsPointsDepth) {
   for (const double depth : {1.0, 1000.0}) {
     std::map<uint32_t, PoseBlock> poses = TwoCameras();
-    PoseConvergence still(&poses, {{1, depth}, {2, depth}}, {}, 1e-3);
+    PoseConvergence still(&poses, {{1, depth}, {2, depth}}, {}, 1e-3, kRadius);
     for (int iteration = 1; iteration <= 2; ++iteration) {
       poses.at(2).tail<3>() += Eigen::Vector3d(1e-4, 0, 0);  // 0.0057 deg at depth 1
       still(Step(iteration, true));
@@ -83,7 +102,7 @@ TEST(PoseConvergence, ACentreMovesByItsDisplacementOverItsPointsDepth) {
 TEST(PoseConvergence, ARefinedFocalLengthStillMovingKeepsItGoing) {
   std::map<uint32_t, PoseBlock> poses = TwoCameras();
   std::vector<double> params = {1000.0, 320.0, 240.0, 0.0};  // SIMPLE_RADIAL
-  PoseConvergence still(&poses, {}, {{params.data(), 1}}, 1e-3);
+  PoseConvergence still(&poses, {}, {{params.data(), 1}}, 1e-3, kRadius);
   for (int iteration = 1; iteration <= 3; ++iteration) {
     params[0] += 1.0;  // 0.1%: 0.057 deg
     EXPECT_EQ(still(Step(iteration, true)), ceres::SOLVER_CONTINUE);

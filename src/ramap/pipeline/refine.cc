@@ -166,6 +166,9 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
   const ImageBearings* bearings = &context.bearings;
   if (options.refine && CalibrateOnSubset(context, tracks, priors, component, reconstruction)) {
     if (options.calibration_subset_only && !AnyHeldAsGiven(ba_options, *reconstruction)) {
+      // A calibration pass ends here: the second pass averages again through these intrinsics
+      // and keeps none of this pass's poses, so a BA that holds the intrinsics would be wasted.
+      if (context.summary.calibration_pass) return;
       std::map<uint32_t, Camera> cameras;
       subset_bearings = BearingsThrough(context, *reconstruction, &cameras);
       bearings = &subset_bearings;

@@ -294,7 +294,7 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   solver_options.callbacks.push_back(&between);
   PoseConvergence still(&poses, MedianDepths(observations, *reconstruction),
                         RefinedIntrinsicsIn(problem, options, *reconstruction),
-                        options.pose_tolerance_deg);
+                        options.pose_tolerance_deg, solver_options.initial_trust_region_radius);
   if (options.pose_tolerance_deg > 0) {
     solver_options.update_state_every_iteration = true;
     solver_options.callbacks.push_back(&still);

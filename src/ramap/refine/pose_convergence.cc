@@ -26,18 +26,25 @@ Eigen::Vector3d Centre(const PoseBlock& pose) {
 
 PoseConvergence::PoseConvergence(const std::map<uint32_t, PoseBlock>* poses,
                                  std::map<uint32_t, double> median_depths,
-                                 std::vector<RefinedIntrinsics> intrinsics, double tolerance_deg)
+                                 std::vector<RefinedIntrinsics> intrinsics, double tolerance_deg,
+                                 double min_trust_region_radius)
     : poses_(poses),
       median_depths_(std::move(median_depths)),
       intrinsics_(std::move(intrinsics)),
-      tolerance_deg_(tolerance_deg) {
+      tolerance_deg_(tolerance_deg),
+      min_trust_region_radius_(min_trust_region_radius) {
   Remember();
 }
 
 ceres::CallbackReturnType PoseConvergence::operator()(const ceres::IterationSummary& summary) {
   // A rejected step leaves the state where it was: it says nothing about convergence.
   if (summary.iteration == 0 || !summary.step_is_successful) return ceres::SOLVER_CONTINUE;
-  num_still_steps_ = LargestMotionDeg() < tolerance_deg_ ? num_still_steps_ + 1 : 0;
+  // A step is small either because the solution is near or because rejected steps shrank the
+  // trust region: only the first counts. The region grows again on steps its model predicts well,
+  // as near a minimum, and stays small while the solve crawls along a curved valley (a focal length
+  // far from the truth).
+  const bool trusted = summary.trust_region_radius >= min_trust_region_radius_;
+  num_still_steps_ = trusted && LargestMotionDeg() < tolerance_deg_ ? num_still_steps_ + 1 : 0;
   Remember();
   if (num_still_steps_ < kNumStillSteps) return ceres::SOLVER_CONTINUE;
   stopped_ = true;

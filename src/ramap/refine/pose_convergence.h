@@ -5,8 +5,10 @@
 // triangulated again after BA anyway. This callback ends the solve once two successive accepted
 // steps each moved every camera by less than a tolerance, measured as angles: its rotation, its
 // centre's displacement as seen from its points (displacement over their median depth), and its
-// refined focal length and principal point (relative change). A long chain whose poses still drift
-// keeps iterating to Ceres's own tolerance.
+// refined focal length and principal point (relative change). A step counts only while the trust
+// region is at least its initial size: after rejected steps it shrinks, and so do the steps,
+// near a minimum or not. A long chain whose poses still drift, and a focal length crawling along
+// its valley, keep iterating to Ceres's own tolerance.
 #pragma once
 
 #include <ceres/iteration_callback.h>
@@ -31,10 +33,12 @@ class PoseConvergence : public ceres::IterationCallback {
  public:
   // `poses` are Ceres's parameter blocks (kept up to date every iteration:
   // Solver::Options::update_state_every_iteration); `median_depths` the median depth of each
-  // image's observed points at the start, in the poses' units.
+  // image's observed points at the start, in the poses' units; `min_trust_region_radius` the
+  // solve's initial trust region radius.
   PoseConvergence(const std::map<uint32_t, PoseBlock>* poses,
                   std::map<uint32_t, double> median_depths,
-                  std::vector<RefinedIntrinsics> intrinsics, double tolerance_deg);
+                  std::vector<RefinedIntrinsics> intrinsics, double tolerance_deg,
+                  double min_trust_region_radius);
 
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override;
 
@@ -50,6 +54,7 @@ class PoseConvergence : public ceres::IterationCallback {
   std::map<uint32_t, double> median_depths_;
   std::vector<RefinedIntrinsics> intrinsics_;
   double tolerance_deg_;
+  double min_trust_region_radius_;
   std::map<uint32_t, PoseBlock> last_poses_;
   std::vector<std::vector<double>> last_intrinsics_;
   int num_still_steps_ = 0;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "ramap/geometry/camera_distortion.h"
@@ -292,12 +293,13 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   line.SetTotalIsALimit();
   BetweenIterations between(&line);
   solver_options.callbacks.push_back(&between);
-  PoseConvergence still(&poses, MedianDepths(observations, *reconstruction),
-                        RefinedIntrinsicsIn(problem, options, *reconstruction),
-                        options.pose_tolerance_deg, solver_options.initial_trust_region_radius);
+  std::optional<PoseConvergence> still;
   if (options.pose_tolerance_deg > 0) {
+    still.emplace(&poses, MedianDepths(observations, *reconstruction),
+                  RefinedIntrinsicsIn(problem, options, *reconstruction),
+                  options.pose_tolerance_deg, solver_options.initial_trust_region_radius);
     solver_options.update_state_every_iteration = true;
-    solver_options.callbacks.push_back(&still);
+    solver_options.callbacks.push_back(&*still);
   }
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options, &problem, &summary);

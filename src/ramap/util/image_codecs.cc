@@ -31,7 +31,8 @@ std::vector<fs::path> PluginCandidates() {
     if (!error) candidates.push_back(self.parent_path() / kPluginName);
   }
 #ifdef RAMAP_IMAGE_CODECS_BUILD_DIR
-  candidates.push_back(fs::path(RAMAP_IMAGE_CODECS_BUILD_DIR) / kPluginName);
+  const fs::path built = fs::path(RAMAP_IMAGE_CODECS_BUILD_DIR) / kPluginName;
+  if (candidates.empty() || candidates.front() != built) candidates.push_back(built);
 #endif
   return candidates;
 }
@@ -39,7 +40,10 @@ std::vector<fs::path> PluginCandidates() {
 ImageCodecs LoadImageCodecs() {
   std::string problems;
   for (const fs::path& candidate : PluginCandidates()) {
-    if (!fs::exists(candidate)) continue;
+    if (!fs::exists(candidate)) {
+      problems += "; " + candidate.string() + ": no such file";
+      continue;
+    }
     // Never unloaded: OpenCV's codecs keep static state for the life of the process.
     void* plugin = dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (plugin == nullptr) {
@@ -53,7 +57,7 @@ ImageCodecs LoadImageCodecs() {
     problems += "; " + candidate.string() + " lacks its entry points";
   }
   throw std::runtime_error(std::string("cannot load ramap's image codecs (") + kPluginName +
-                           ", built beside the ramap binary)" + problems);
+                           ", built beside the ramap binary; rebuild ramap)" + problems);
 }
 
 const ImageCodecs& Codecs() {

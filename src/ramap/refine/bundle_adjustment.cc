@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "ramap/geometry/camera_distortion.h"
 #include "ramap/refine/pose_convergence.h"
@@ -17,6 +18,7 @@
 #include "ramap/util/option_check.h"
 #include "ramap/util/progress_line.h"
 #include "ramap/util/run_observer.h"
+#include "ramap/util/statistics.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
@@ -196,11 +198,7 @@ std::map<uint32_t, double> MedianDepths(const std::vector<Observation>& observat
     depths[o.image_id].push_back((pose * reconstruction.points3D.at(o.point3D_id).xyz).z());
   }
   std::map<uint32_t, double> medians;
-  for (auto& [image_id, values] : depths) {
-    auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-    std::nth_element(values.begin(), middle, values.end());
-    medians[image_id] = *middle;
-  }
+  for (auto& [image_id, values] : depths) medians[image_id] = Median(std::move(values));
   return medians;
 }
 

@@ -136,6 +136,45 @@ TEST(BundleAdjustment, StopsWhenThePosesHaveSettled) {
   }
 }
 
+// BA solves with the world's origin among the points and returns the caller's frame: a scene far
+// from its origin, held there by pose priors, comes back where the priors and the truth put it.
+TEST(BundleAdjustment, ReturnsTheCallersFrameForASceneFarFromItsOrigin) {
+  std::mt19937 rng(13);
+  Scene scene = MakeScene(rng);
+  const Eigen::Vector3d offset(400, -250, 120);
+  std::map<uint32_t, PosePrior> priors;
+  for (auto& [id, image] : scene.reconstruction.images) {
+    image.cam_from_world.translation -= image.cam_from_world.rotation * offset;
+    scene.true_poses[id] = image.cam_from_world;
+    if (id % 3 == 1)
+      priors[id] = {CameraCenter(image.cam_from_world), Eigen::Vector3d::Constant(0.01)};
+  }
+  for (auto& [id, point] : scene.reconstruction.points3D) {
+    point.xyz += offset;
+    scene.true_points[id] = point.xyz;
+  }
+  std::normal_distribution<double> noise(0, 0.02);
+  for (auto& [id, image] : scene.reconstruction.images)
+    image.cam_from_world.translation += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+  for (auto& [id, point] : scene.reconstruction.points3D)
+    point.xyz += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+  BundleAdjustmentOptions options;
+  options.refine_focal_length = options.refine_extra_params = false;
+  const BundleAdjustmentSummary summary =
+      BundleAdjust(scene.bearings, {{1, 500.0}}, &scene.reconstruction, options, priors);
+  EXPECT_EQ(summary.num_priors, 4);
+  EXPECT_LT(summary.final_rmse_px, 1e-3);
+  for (const auto& [id, image] : scene.reconstruction.images) {
+    EXPECT_LT((CameraCenter(image.cam_from_world) - CameraCenter(scene.true_poses.at(id))).norm(),
+              1e-3)
+        << "image " << id;
+    EXPECT_LT(image.cam_from_world.rotation.angularDistance(scene.true_poses.at(id).rotation),
+              1e-4);
+  }
+  for (const auto& [id, point] : scene.reconstruction.points3D)
+    EXPECT_LT((point.xyz - scene.true_points.at(id)).norm(), 1e-3) << "point " << id;
+}
+
 TEST(BundleAdjustment, PointSubsetPrefersLongTracksAndCoversEveryImage) {
   std::mt19937 rng(3);
   Scene scene = MakeScene(rng);

@@ -19,11 +19,14 @@ PoseBlock Pose(const Eigen::Quaterniond& rotation, const Eigen::Vector3d& centre
 // The trust region's initial radius in these tests.
 constexpr double kRadius = 1e4;
 
-ceres::IterationSummary Step(int iteration, bool successful, double radius = 3 * kRadius) {
+// `quality`: the cost's decrease over the one the step's model predicted.
+ceres::IterationSummary Step(int iteration, bool successful, double radius = 3 * kRadius,
+                             double quality = 0.5) {
   ceres::IterationSummary summary;
   summary.iteration = iteration;
   summary.step_is_successful = successful;
   summary.trust_region_radius = radius;
+  summary.relative_decrease = quality;
   return summary;
 }
 
@@ -71,6 +74,26 @@ TEST(PoseConvergence, StepsInAShrunkenTrustRegionDoNotCount) {
   EXPECT_EQ(still(Step(5, true, kRadius)), ceres::SOLVER_CONTINUE);
   Turn(&poses, 2, 5e-4);
   EXPECT_EQ(still(Step(6, true, 3 * kRadius)), ceres::SOLVER_TERMINATE_SUCCESSFULLY);
+}
+
+// In a region shrunk below its initial size, a step counts when it lay well inside it: Ceres's
+// dogleg leaves the region as it was after a well-predicted step only then (a step that reached
+// the region's edge triples it). A step predicted less well may have been cut by the region.
+TEST(PoseConvergence, WellPredictedStepsInsideAShrunkenRegionCount) {
+  std::map<uint32_t, PoseBlock> poses = TwoCameras();
+  PoseConvergence still(&poses, {}, {}, 1e-3, kRadius);
+  EXPECT_EQ(still(Step(0, true, kRadius)), ceres::SOLVER_CONTINUE);
+  EXPECT_EQ(still(Step(1, false, kRadius / 2)), ceres::SOLVER_CONTINUE);  // rejected: halved
+  Turn(&poses, 2, 5e-4);
+  EXPECT_EQ(still(Step(2, true, kRadius / 2, 0.6)), ceres::SOLVER_CONTINUE);  // may be cut
+  Turn(&poses, 2, 5e-4);
+  EXPECT_EQ(still(Step(3, true, kRadius / 2, 1.5)), ceres::SOLVER_CONTINUE);  // inside: one
+  Turn(&poses, 2, 5e-4);
+  EXPECT_EQ(still(Step(4, true, 3 * kRadius / 4, 1.5)), ceres::SOLVER_CONTINUE);  // at the edge
+  Turn(&poses, 2, 5e-4);
+  EXPECT_EQ(still(Step(5, true, 3 * kRadius / 4, 1.5)), ceres::SOLVER_CONTINUE);  // inside: one
+  Turn(&poses, 2, 5e-4);
+  EXPECT_EQ(still(Step(6, true, 3 * kRadius / 4, 0.9)), ceres::SOLVER_TERMINATE_SUCCESSFULLY);
 }
 
 TEST(PoseConvergence, AMovingStepStartsTheCountAgain) {

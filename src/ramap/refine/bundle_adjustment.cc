@@ -215,6 +215,57 @@ std::vector<RefinedIntrinsics> RefinedIntrinsicsIn(const ceres::Problem& problem
   return refined;
 }
 
+// The coordinate-wise median of the points `observations` see: a point among them.
+Eigen::Vector3d MedianObservedPoint(const std::vector<Observation>& observations,
+                                    const Reconstruction& reconstruction) {
+  std::vector<double> coordinates[3];
+  for (const Observation& o : observations) {
+    const Eigen::Vector3d& xyz = reconstruction.points3D.at(o.point3D_id).xyz;
+    for (int k = 0; k < 3; ++k) coordinates[k].push_back(xyz[k]);
+  }
+  Eigen::Vector3d median = Eigen::Vector3d::Zero();
+  if (observations.empty()) return median;
+  for (int k = 0; k < 3; ++k) median[k] = Median(std::move(coordinates[k]));
+  return median;
+}
+
+// Ceres solves with the world's origin among the points, not at the first camera where averaging
+// put it. A camera's translation (cam_from_world) is its rotation times its offset from the
+// origin: a camera that turns about a point far from the origin moves its translation along an
+// arc, which Gauss-Newton follows in short steps. About the origin it moves its rotation alone.
+// Every camera circling the scene does so when a focal length moves far (a turntable from
+// COLMAP's guess, half the true value: every angle between views doubles). The reconstruction
+// returns to its own frame when this goes out of scope.
+class WorldOriginAmongThePoints {
+ public:
+  WorldOriginAmongThePoints(const std::vector<Observation>& observations,
+                            Reconstruction* reconstruction)
+      : origin_(MedianObservedPoint(observations, *reconstruction)),
+        reconstruction_(reconstruction) {
+    Move(origin_);
+  }
+  ~WorldOriginAmongThePoints() { Move(-origin_); }
+  WorldOriginAmongThePoints(const WorldOriginAmongThePoints&) = delete;
+  WorldOriginAmongThePoints& operator=(const WorldOriginAmongThePoints&) = delete;
+
+  // `priors` in the moved frame.
+  std::map<uint32_t, PosePrior> Moved(std::map<uint32_t, PosePrior> priors) const {
+    for (auto& [image_id, prior] : priors) prior.center -= origin_;
+    return priors;
+  }
+
+ private:
+  // The origin to `origin` (in the current frame); points and cameras stay where they are.
+  void Move(const Eigen::Vector3d& origin) {
+    for (auto& [point_id, point] : reconstruction_->points3D) point.xyz -= origin;
+    for (auto& [image_id, image] : reconstruction_->images)
+      image.cam_from_world.translation += image.cam_from_world.rotation * origin;
+  }
+
+  Eigen::Vector3d origin_;
+  Reconstruction* reconstruction_;
+};
+
 // The pose priors' residuals on `poses`, which get the pose manifold; the first pose is held fixed
 // (gauge) unless three or more priors fix the frame.
 void AddPriorsAndGauge(const std::map<uint32_t, PosePrior>& priors, ceres::LossFunction* prior_loss,
@@ -247,6 +298,7 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
                              const std::map<uint32_t, uint32_t>& shared,
                              Reconstruction* reconstruction, std::ostream* progress,
                              const std::string& what) {
+  const WorldOriginAmongThePoints origin(observations, reconstruction);
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -277,7 +329,7 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   }
   HoldFixedIntrinsics(options, reconstruction, &problem, &intrinsics_manifolds);
   ceres::HuberLoss prior_loss(1.0);
-  AddPriorsAndGauge(priors, &prior_loss, &pose_manifold, &poses, &problem);
+  AddPriorsAndGauge(origin.Moved(priors), &prior_loss, &pose_manifold, &poses, &problem);
   // The slow valley is the focal length's: distortion alone converges at the ordinary tolerance.
   const bool refines_focal_length = std::any_of(
       reconstruction->cameras.begin(), reconstruction->cameras.end(), [&](const auto& entry) {

@@ -14,6 +14,10 @@ constexpr double kDegPerRad = 180.0 / M_PI;
 // shrunken trust region without the poses having settled.
 constexpr int kNumStillSteps = 2;
 
+// Ceres's trust-region strategies grow the region after a step whose cost fell by more than this
+// fraction of what their model predicted (dogleg: to three times the step, if that is larger).
+constexpr double kWellPredicted = 0.75;
+
 Eigen::Quaterniond Rotation(const PoseBlock& pose) {
   return Eigen::Quaterniond(pose[3], pose[0], pose[1], pose[2]).normalized();
 }
@@ -37,13 +41,18 @@ PoseConvergence::PoseConvergence(const std::map<uint32_t, PoseBlock>* poses,
 }
 
 ceres::CallbackReturnType PoseConvergence::operator()(const ceres::IterationSummary& summary) {
+  // The radius Ceres reports is the one after this iteration's update.
+  const double radius_before =
+      std::exchange(last_trust_region_radius_, summary.trust_region_radius);
   // A rejected step leaves the state where it was: it says nothing about convergence.
   if (summary.iteration == 0 || !summary.step_is_successful) return ceres::SOLVER_CONTINUE;
   // A step is small either because the solution is near or because rejected steps shrank the
   // trust region: only the first counts. The region grows again on steps its model predicts well,
   // as near a minimum, and stays small while the solve crawls along a curved valley (a focal length
-  // far from the truth).
-  const bool trusted = summary.trust_region_radius >= min_trust_region_radius_;
+  // far from the truth). A well-predicted step that did not grow it was not bounded by it.
+  const bool unbounded =
+      summary.relative_decrease > kWellPredicted && summary.trust_region_radius == radius_before;
+  const bool trusted = summary.trust_region_radius >= min_trust_region_radius_ || unbounded;
   num_still_steps_ = trusted && LargestMotionDeg() < tolerance_deg_ ? num_still_steps_ + 1 : 0;
   Remember();
   if (num_still_steps_ < kNumStillSteps) return ceres::SOLVER_CONTINUE;

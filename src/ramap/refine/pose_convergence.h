@@ -5,10 +5,13 @@
 // triangulated again after BA anyway. This callback ends the solve once two successive accepted
 // steps each moved every camera by less than a tolerance, measured as angles: its rotation, its
 // centre's displacement as seen from its points (displacement over their median depth), and its
-// refined focal length and principal point (relative change). A step counts only while the trust
-// region is at least its initial size: after rejected steps it shrinks, and so do the steps,
-// near a minimum or not. A long chain whose poses still drift, and a focal length crawling along
-// its valley, keep iterating to Ceres's own tolerance.
+// refined focal length and principal point (relative change). A step counts only when the trust
+// region did not bound it: after rejected steps the region shrinks, and so do the steps, near a
+// minimum or not. It did not when the region is at least its initial size, or when a dogleg step
+// that its model predicted well (ratio above 0.75) left the region as it was: Ceres then grows a
+// region the step reached to three times the step, so the step lay well inside it. A long chain
+// whose poses still drift, and a focal length crawling along its valley, keep iterating to Ceres's
+// own tolerance.
 #pragma once
 
 #include <ceres/iteration_callback.h>
@@ -55,6 +58,7 @@ class PoseConvergence : public ceres::IterationCallback {
   std::vector<RefinedIntrinsics> intrinsics_;
   double tolerance_deg_;
   double min_trust_region_radius_;
+  double last_trust_region_radius_ = 0.0;  // after the previous iteration, rejected or not
   std::map<uint32_t, PoseBlock> last_poses_;
   std::vector<std::vector<double>> last_intrinsics_;
   int num_still_steps_ = 0;

@@ -372,8 +372,8 @@ void AddTriangulation(Table& t) {
   t.push_back(Number(
       "Reregistration.max_inlier_ratio",
       [](auto& o) -> auto& { return o.reregistration.max_inlier_ratio; }, AtLeast(0, 1),
-      "an image is tried when fewer of its keypoints on triangulated tracks are "
-      "observations of their points"));
+      "an image is tried when the fraction of its keypoints on triangulated tracks that "
+      "are observations of their points is below this times the median image's"));
   t.push_back(Number(
       "Reregistration.min_num_correspondences",
       [](auto& o) -> auto& { return o.reregistration.min_num_correspondences; }, AtLeast(4),

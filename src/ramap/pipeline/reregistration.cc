@@ -7,6 +7,7 @@
 #include "ramap/pipeline/mapper_summary.h"
 #include "ramap/pipeline/track_triangulation.h"
 #include "ramap/util/option_check.h"
+#include "ramap/util/statistics.h"
 #include "ramap/util/timer.h"
 
 namespace ramap {
@@ -50,6 +51,17 @@ std::map<uint32_t, Correspondences> CorrespondencesByImage(const std::vector<Tra
   return by_image;
 }
 
+// The median over the images of the fraction of their keypoints on triangulated tracks that are
+// observations of their points.
+double MedianObservedRatio(const std::map<uint32_t, Correspondences>& by_image) {
+  std::vector<double> ratios;
+  for (const auto& [image_id, c] : by_image) {
+    if (!c.bearings.empty())
+      ratios.push_back(static_cast<double>(c.num_observed) / c.bearings.size());
+  }
+  return ratios.empty() ? 0.0 : Median(std::move(ratios));
+}
+
 double RotationChangeDeg(const Rigid3d& a, const Rigid3d& b) {
   return a.rotation.angularDistance(b.rotation) * 180.0 / M_PI;
 }
@@ -75,10 +87,13 @@ std::vector<ReregisteredImage> ReregisterImages(const std::vector<Track>& tracks
   options.Check();
   std::vector<ReregisteredImage> tried;
   if (!options.enable) return tried;
-  for (const auto& [image_id, c] : CorrespondencesByImage(tracks, bearings, reconstruction)) {
+  const std::map<uint32_t, Correspondences> by_image =
+      CorrespondencesByImage(tracks, bearings, reconstruction);
+  const double max_observed_ratio = options.max_inlier_ratio * MedianObservedRatio(by_image);
+  for (const auto& [image_id, c] : by_image) {
     const int num_correspondences = static_cast<int>(c.bearings.size());
     if (num_correspondences < options.min_num_correspondences ||
-        c.num_observed >= options.max_inlier_ratio * num_correspondences) {
+        c.num_observed >= max_observed_ratio * num_correspondences) {
       continue;
     }
     const Image& image = reconstruction.images.at(image_id);

@@ -35,6 +35,9 @@ int RunBundleAdjuster(int argc, char** argv) {
       &mapper);
   if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
   ResolveMapperOptions(&mapper);
+  // A model's cameras carry no prior flag, so each would count as guessed: as COLMAP's command,
+  // this one refines a principal point only when asked.
+  mapper.bundle_adjustment.refine_guessed_principal_point = false;
   const BundleAdjustmentOptions& options = mapper.bundle_adjustment;
   const ModelFormat format = ModelFormatFromName(output_type, "--output_type");
   CheckModelOutputMayReplaceInput("--output_path", output_path, input_path);

@@ -175,6 +175,81 @@ TEST(BundleAdjustment, ReturnsTheCallersFrameForASceneFarFromItsOrigin) {
     EXPECT_LT((point.xyz - scene.true_points.at(id)).norm(), 1e-3) << "point " << id;
 }
 
+// MakeScene's camera without a calibration: COLMAP's guess puts its principal point at the image's
+// centre, while the true one lies 12 px right of it and 7 px above (the keypoints are projected
+// through it).
+Scene UncalibratedScene(std::mt19937& rng) {
+  Scene scene = MakeScene(rng);
+  Camera& camera = scene.reconstruction.cameras.at(1);
+  camera.model = CameraModel::kSimplePinhole;
+  camera.params = {500, 320, 240};
+  for (auto& [id, image] : scene.reconstruction.images) {
+    for (Point2D& point : image.points2D) {
+      const Eigen::Vector3d x = image.cam_from_world * scene.true_points.at(point.point3D_id);
+      point.xy = 500 * x.head<2>() / x.z() + Eigen::Vector2d(332, 233);
+    }
+  }
+  return scene;
+}
+
+double LargestRotationErrorDeg(const Scene& scene) {
+  double largest = 0;
+  for (const auto& [id, image] : scene.reconstruction.images) {
+    largest = std::max(
+        largest, image.cam_from_world.rotation.angularDistance(scene.true_poses.at(id).rotation));
+  }
+  return largest * 180 / M_PI;
+}
+
+// An uncalibrated camera's principal point is refined with its focal length; a calibrated one's
+// (prior_focal_length 1) is kept; so is any where refine_guessed_principal_point is off.
+TEST(BundleAdjustment, GuessedPrincipalPointRefinedWithTheFocalLength) {
+  std::mt19937 rng(17);
+  const Scene start = UncalibratedScene(rng);
+  BundleAdjustmentOptions options;
+  options.refine_extra_params = false;
+  Scene refined = start;
+  BundleAdjust(refined.bearings, {{1, 500.0}}, &refined.reconstruction, options);
+  const std::vector<double>& params = refined.reconstruction.cameras.at(1).params;
+  EXPECT_NEAR(params[1], 332, 0.05);
+  EXPECT_NEAR(params[2], 233, 0.05);
+  EXPECT_LT(LargestRotationErrorDeg(refined), 0.01);
+
+  Scene guess_kept = start;
+  options.refine_guessed_principal_point = false;
+  BundleAdjust(guess_kept.bearings, {{1, 500.0}}, &guess_kept.reconstruction, options);
+  EXPECT_EQ(guess_kept.reconstruction.cameras.at(1).params[1], 320);
+  EXPECT_GT(LargestRotationErrorDeg(guess_kept), 0.5);  // every camera turned by about 1.6 deg
+
+  Scene calibrated = start;
+  calibrated.reconstruction.cameras.at(1).has_prior_focal_length = true;
+  options = BundleAdjustmentOptions();
+  options.keep_prior_intrinsics = false;  // its focal length refined, its principal point not
+  BundleAdjust(calibrated.bearings, {{1, 500.0}}, &calibrated.reconstruction, options);
+  EXPECT_EQ(calibrated.reconstruction.cameras.at(1).params[1], 320);
+}
+
+// A refined principal point that moves beyond max_principal_point_shift is put back and held, and
+// BA solves again from the start: the result is the one with the principal point held.
+TEST(BundleAdjustment, DriftingPrincipalPointHeldAndSolvedAgain) {
+  std::mt19937 rng(17);
+  const Scene start = UncalibratedScene(rng);
+  BundleAdjustmentOptions options;
+  options.refine_extra_params = false;
+  options.max_principal_point_shift = 0.01;  // 6.4 px across, 4.8 px down: 12 px is beyond
+  Scene drifting = start;
+  const BundleAdjustmentSummary summary =
+      BundleAdjust(drifting.bearings, {{1, 500.0}}, &drifting.reconstruction, options);
+  EXPECT_EQ(summary.principal_points_drifted, std::vector<uint32_t>{1});
+  Scene held = start;
+  options.refine_guessed_principal_point = false;
+  const BundleAdjustmentSummary held_summary =
+      BundleAdjust(held.bearings, {{1, 500.0}}, &held.reconstruction, options);
+  EXPECT_TRUE(held_summary.principal_points_drifted.empty());
+  EXPECT_EQ(drifting.reconstruction.cameras.at(1).params, held.reconstruction.cameras.at(1).params);
+  EXPECT_GT(summary.num_iterations, held_summary.num_iterations);
+}
+
 TEST(BundleAdjustment, PointSubsetPrefersLongTracksAndCoversEveryImage) {
   std::mt19937 rng(3);
   Scene scene = MakeScene(rng);

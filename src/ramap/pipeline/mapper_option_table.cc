@@ -434,6 +434,16 @@ void AddBundleAdjuster(Table& t) {
       [](auto& o) -> auto& { return o.bundle_adjustment.refine_principal_point; },
       "1: refine each camera's principal point"));
   t.push_back(Bool(
+      "BundleAdjustment.refine_guessed_principal_point",
+      [](auto& o) -> auto& { return o.bundle_adjustment.refine_guessed_principal_point; },
+      "1: a camera without a prior focal length refines its principal point (a guess: "
+      "the image's centre) with its focal length"));
+  t.push_back(Number(
+      "BundleAdjustment.max_principal_point_shift",
+      [](auto& o) -> auto& { return o.bundle_adjustment.max_principal_point_shift; }, AtLeast(0),
+      "a refined principal point that moves farther (fraction of the image's width or "
+      "height) is put back and held, and BA solves again"));
+  t.push_back(Bool(
       "BundleAdjustment.refine_extra_params",
       [](auto& o) -> auto& { return o.bundle_adjustment.refine_extra_params; },
       "1: refine distortion coefficients"));

@@ -17,11 +17,15 @@ namespace {
 
 void LogBundleAdjustment(const MapperContext& context, const BundleAdjustmentSummary& ba,
                          const std::string& what) {
+  std::string held;
+  for (const uint32_t camera_id : ba.principal_points_drifted)
+    held += (held.empty() ? "; the principal point of camera " : ", ") + std::to_string(camera_id);
+  if (!held.empty()) held += " drifted: every guessed one held where it started, solved again";
   context.log.Record(stage::kBundleAdjustment, ba.seconds,
                      what + std::to_string(ba.num_points) + " points, RMSE " +
                          std::to_string(ba.initial_rmse_px) + " -> " +
                          std::to_string(ba.final_rmse_px) + " px, " +
-                         std::to_string(ba.num_iterations) + " iterations");
+                         std::to_string(ba.num_iterations) + " iterations" + held);
 }
 
 // The context's cameras with those of `model` in their place (in `cameras`), and the bearings of

@@ -53,9 +53,13 @@ std::vector<int> FixedIntrinsics(const BundleAdjustmentOptions& options, const C
   for (int k = 0; k < num_params; ++k) {
     const bool focal = k < (single ? 1 : 2);
     const bool principal_point = !focal && k < first_extra;
-    const bool refined = focal             ? options.refine_focal_length && !held
-                         : principal_point ? options.refine_principal_point && !held
-                                           : options.refine_extra_params;
+    const bool guessed_principal_point = options.refine_guessed_principal_point &&
+                                         options.refine_focal_length &&
+                                         !camera.has_prior_focal_length;
+    const bool refined = focal ? options.refine_focal_length && !held
+                         : principal_point
+                             ? (options.refine_principal_point || guessed_principal_point) && !held
+                             : options.refine_extra_params;
     if (!refined) fixed.push_back(k);
   }
   return fixed;
@@ -434,6 +438,8 @@ void BundleAdjustmentOptions::Check() const {
   CheckOption(max_reprojection_error_px > 0, "BundleAdjustmentOptions::max_reprojection_error_px",
               "> 0", max_reprojection_error_px);
   CheckOption(max_num_points >= 0, s + "max_num_points", ">= 0", max_num_points);
+  CheckOption(max_principal_point_shift >= 0, s + "max_principal_point_shift", ">= 0",
+              max_principal_point_shift);
   CheckOption(max_observations_per_point == 0 || max_observations_per_point >= 2,
               s + "max_observations_per_point", "0 or >= 2", max_observations_per_point);
   CheckOption(
@@ -547,13 +553,15 @@ Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
   return subset;
 }
 
-BundleAdjustmentSummary BundleAdjust(const KeypointBearings& bearings,
-                                     const std::map<uint32_t, double>& focal_lengths_px,
-                                     Reconstruction* reconstruction,
-                                     const BundleAdjustmentOptions& options,
-                                     const std::map<uint32_t, PosePrior>& priors,
-                                     std::ostream* progress) {
-  options.Check();
+namespace {
+
+// BundleAdjust without the check of the principal points.
+BundleAdjustmentSummary Adjust(const KeypointBearings& bearings,
+                               const std::map<uint32_t, double>& focal_lengths_px,
+                               Reconstruction* reconstruction,
+                               const BundleAdjustmentOptions& options,
+                               const std::map<uint32_t, PosePrior>& priors,
+                               std::ostream* progress) {
   Timer timer;
   BundleAdjustmentSummary summary;
   for (const auto& [image_id, prior] : priors)
@@ -586,6 +594,67 @@ BundleAdjustmentSummary BundleAdjust(const KeypointBearings& bearings,
   summary.num_points = static_cast<int>(reconstruction->points3D.size());
   summary.seconds = timer.ElapsedSeconds();
   return summary;
+}
+
+// Whether `options` refine the guessed principal point of some camera of `reconstruction`.
+bool RefinesGuessedPrincipalPoint(const BundleAdjustmentOptions& options,
+                                  const Reconstruction& reconstruction) {
+  if (!options.refine_guessed_principal_point || options.refine_principal_point) return false;
+  BundleAdjustmentOptions held = options;
+  held.refine_guessed_principal_point = false;
+  return std::any_of(reconstruction.cameras.begin(), reconstruction.cameras.end(),
+                     [&](const auto& entry) {
+                       return FixedIntrinsics(options, entry.second).size() <
+                              FixedIntrinsics(held, entry.second).size();
+                     });
+}
+
+// The cameras whose principal point moved from `start` by more than max_principal_point_shift.
+std::vector<uint32_t> DriftedPrincipalPoints(const std::map<uint32_t, Camera>& start,
+                                             const Reconstruction& reconstruction,
+                                             const BundleAdjustmentOptions& options) {
+  std::vector<uint32_t> drifted;
+  for (const auto& [camera_id, camera] : reconstruction.cameras) {
+    const Camera& before = start.at(camera_id);
+    const int first = HasSingleFocalLength(camera.model) ? 1 : 2;
+    const double shift_x = std::abs(camera.params[first] - before.params[first]);
+    const double shift_y = std::abs(camera.params[first + 1] - before.params[first + 1]);
+    if (shift_x > options.max_principal_point_shift * camera.width ||
+        shift_y > options.max_principal_point_shift * camera.height) {
+      drifted.push_back(camera_id);
+    }
+  }
+  return drifted;
+}
+
+}  // namespace
+
+BundleAdjustmentSummary BundleAdjust(const KeypointBearings& bearings,
+                                     const std::map<uint32_t, double>& focal_lengths_px,
+                                     Reconstruction* reconstruction,
+                                     const BundleAdjustmentOptions& options,
+                                     const std::map<uint32_t, PosePrior>& priors,
+                                     std::ostream* progress) {
+  options.Check();
+  if (!RefinesGuessedPrincipalPoint(options, *reconstruction))
+    return Adjust(bearings, focal_lengths_px, reconstruction, options, priors, progress);
+  const Reconstruction start = *reconstruction;
+  BundleAdjustmentSummary summary =
+      Adjust(bearings, focal_lengths_px, reconstruction, options, priors, progress);
+  summary.principal_points_drifted =
+      DriftedPrincipalPoints(start.cameras, *reconstruction, options);
+  if (summary.principal_points_drifted.empty()) return summary;
+  // Solved again from the start with every guessed principal point held: where one drifted, the
+  // poses followed it.
+  *reconstruction = start;
+  BundleAdjustmentOptions held = options;
+  held.refine_guessed_principal_point = false;
+  BundleAdjustmentSummary again =
+      Adjust(bearings, focal_lengths_px, reconstruction, held, priors, progress);
+  again.seconds += summary.seconds;
+  again.num_iterations += summary.num_iterations;
+  again.principal_points_drifted = std::move(summary.principal_points_drifted);
+  return again;
 }
 
 }  // namespace ramap

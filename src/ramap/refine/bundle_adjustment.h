@@ -81,6 +81,19 @@ struct BundleAdjustmentOptions {
   bool refine_focal_length = true;
   bool refine_principal_point = false;
   bool refine_extra_params = true;
+  // A camera without a prior focal length (COLMAP's "unknown": prior_focal_length 0) has a guessed
+  // principal point too, the image's centre. Where its focal length is refined, so is its
+  // principal point, as refine_principal_point would. A principal point off the centre by p px
+  // turns every camera by about p / f radians, which no pose can undo: from the centre, the
+  // benchmark sets' rotations erred by 0.5-1.0 deg (median), and by 0.06-0.45 deg with it refined.
+  // Each camera's principal point then ended within 2.5 px of the truth on fountain-P11,
+  // Herz-Jesus-P8 and templeRing, and halved its distance on kitti07_first160 (BENCHMARKS.md,
+  // "The principal point of an uncalibrated camera").
+  bool refine_guessed_principal_point = true;
+  // A refined guessed principal point farther from where BA started than this fraction of the
+  // image's width (x) or height (y) is put back and held, and BA solves again: views that cannot
+  // tell it from a turn of every camera (little rotation between them) let it drift.
+  double max_principal_point_shift = 0.1;
   // A camera whose focal length the database marks known (prior_focal_length 1: the user's
   // calibration, or EXIF) keeps its focal length and principal point; its distortion is refined as
   // refine_extra_params says (EXIF gives none, and the data determine it well).
@@ -122,6 +135,9 @@ struct BundleAdjustmentSummary {
   std::map<uint32_t, int> filtered_per_image;
   int num_priors = 0;  // pose priors of registered images
   bool converged = false;
+  // Cameras whose refined guessed principal point moved beyond max_principal_point_shift: BA
+  // solved again with every guessed principal point held where it started.
+  std::vector<uint32_t> principal_points_drifted;
   // Whether the last solve ended because the poses had settled (pose_tolerance_deg) before Ceres's
   // function tolerance was reached.
   bool poses_settled = false;

@@ -17,17 +17,6 @@ bool ValidDeviations(const Eigen::Vector3d& std_dev_m) {
   return std_dev_m.allFinite() && std_dev_m.minCoeff() > 0;
 }
 
-// Per-coordinate median of a non-empty set of points.
-Eigen::Vector3d MedianPoint(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d median;
-  for (int axis = 0; axis < 3; ++axis) {
-    std::vector<double> values;
-    for (const Eigen::Vector3d& p : points) values.push_back(p(axis));
-    median(axis) = Median(values);
-  }
-  return median;
-}
-
 std::string Vector(const Eigen::Vector3d& v) {
   std::ostringstream out;
   out << std::setprecision(10) << v.x() << " " << v.y() << " " << v.z();

@@ -222,15 +222,12 @@ std::vector<RefinedIntrinsics> RefinedIntrinsicsIn(const ceres::Problem& problem
 // The coordinate-wise median of the points `observations` see: a point among them.
 Eigen::Vector3d MedianObservedPoint(const std::vector<Observation>& observations,
                                     const Reconstruction& reconstruction) {
-  std::vector<double> coordinates[3];
-  for (const Observation& o : observations) {
-    const Eigen::Vector3d& xyz = reconstruction.points3D.at(o.point3D_id).xyz;
-    for (int k = 0; k < 3; ++k) coordinates[k].push_back(xyz[k]);
-  }
-  Eigen::Vector3d median = Eigen::Vector3d::Zero();
-  if (observations.empty()) return median;
-  for (int k = 0; k < 3; ++k) median[k] = Median(std::move(coordinates[k]));
-  return median;
+  if (observations.empty()) return Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(observations.size());
+  for (const Observation& o : observations)
+    points.push_back(reconstruction.points3D.at(o.point3D_id).xyz);
+  return MedianPoint(points);
 }
 
 // Ceres solves with the world's origin among the points, not at the first camera where averaging

@@ -12,4 +12,14 @@ double Median(std::vector<double> values) {
   return values[mid];
 }
 
+Eigen::Vector3d MedianPoint(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d median;
+  std::vector<double> values(points.size());
+  for (int axis = 0; axis < 3; ++axis) {
+    for (size_t k = 0; k < points.size(); ++k) values[k] = points[k](axis);
+    median(axis) = Median(values);
+  }
+  return median;
+}
+
 }  // namespace ramap

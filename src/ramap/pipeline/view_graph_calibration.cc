@@ -261,7 +261,10 @@ std::map<uint32_t, EstimateShape> EstimateLogScales(
     for (const uint32_t camera_id : ids) (*log_scales)[camera_id] = common;
   }
   std::map<uint32_t, EstimateShape> shapes;
-  for (int round = 0; round < options.num_rounds; ++round) {
+  // Rounds let each camera answer the others' new values: one camera alone (every image sharing
+  // one guess) has nothing to answer, and a second round would search the same cost again.
+  const int num_rounds = estimable.size() > 1 ? options.num_rounds : 1;
+  for (int round = 0; round < num_rounds; ++round) {
     for (const auto& [camera_id, terms] : estimable) {
       auto at = [&, id = camera_id, t = terms](double log_scale) {
         return cost->Evaluate(id, *t, log_scale);

@@ -39,7 +39,7 @@ struct ViewGraphCalibrationOptions {
   double loss_scale = 0.02;
   // Weight of the prior term (log(f / f_prior) / ln 2)^2, against pair costs of at most ~1 each.
   double prior_weight = 0.01;
-  // Rounds of camera-by-camera minimisation.
+  // Rounds of camera-by-camera minimisation (one where a single camera is estimated).
   int num_rounds = 3;
   // An estimate whose pairs' median cost stays above this is not trusted (F inconsistent with
   // any focal length: a wrong camera model, or matches of a moving scene).

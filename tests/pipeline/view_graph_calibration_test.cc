@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "ramap/eval/pose_metrics.h"
@@ -262,6 +263,19 @@ int CountBundleAdjustments(const std::string& log) {
   return count;
 }
 
+// The number `log` prints first between `before` and `after` (-1: none).
+int LoggedCount(const std::string& log, const std::string& before, const std::string& after) {
+  const size_t start = log.find(before);
+  if (start == std::string::npos) return -1;
+  const size_t end = log.find(after, start + before.size());
+  if (end == std::string::npos) return -1;
+  try {
+    return std::stoi(log.substr(start + before.size(), end - start - before.size()));
+  } catch (const std::exception&) {
+    return -1;
+  }
+}
+
 // Views fixating the origin from one distance: every pair's optical axes meet at equal distances,
 // where F leaves the focal length free. The elevations vary (not one orbit, a critical motion for
 // BA too), so the views together fix it.
@@ -299,8 +313,10 @@ TEST(ViewGraphCalibration, FocalLengthTheViewGraphCannotFixFoundByACalibrationPa
 
   MapperOptions mapper;
   mapper.refine = true;
-  // A subset of fewer than half the scene's 3400 tracks, so that the subset's calibration runs.
+  // A subset of fewer than half the scene's 3400 tracks, so that the subset's calibration runs;
+  // the calibration pass works on fewer still.
   mapper.calibration_num_points = 1000;
+  mapper.calibration_pass_num_tracks = 400;
   std::ostringstream progress;
   const MapperResult result = RunMapper(database, mapper, "synthetic", &progress);
   // The first pass ends with its calibration subset: the second averages again and keeps none of
@@ -310,6 +326,13 @@ TEST(ViewGraphCalibration, FocalLengthTheViewGraphCannotFixFoundByACalibrationPa
   ASSERT_NE(first_pass.size(), log.size()) << log;
   EXPECT_EQ(CountBundleAdjustments(first_pass), 1) << first_pass;
   EXPECT_EQ(CountBundleAdjustments(log), 3) << log;  // then the subset and the full BA
+  const std::string second_pass = log.substr(first_pass.size());
+  EXPECT_EQ(LoggedCount(first_pass, "and ", " tracks"), 400) << first_pass;
+  EXPECT_GT(LoggedCount(second_pass, "and ", " tracks"), 1000) << second_pass;
+  // Each image keeps at least 50 observations: more points than the budget, fewer than the second
+  // pass's subset.
+  EXPECT_LT(LoggedCount(first_pass, "on a subset: ", " points"), 1000) << first_pass;
+  EXPECT_GE(LoggedCount(second_pass, "on a subset: ", " points"), 1000) << second_pass;
   ASSERT_EQ(result.summary.cameras.size(), 1u);
   const CameraCalibration& view_graph = result.summary.cameras[0].view_graph;
   EXPECT_FALSE(view_graph.estimated) << view_graph.estimated_focal_px;

@@ -138,5 +138,27 @@ TEST(PoseConvergence, ARefinedFocalLengthStillMovingKeepsItGoing) {
   EXPECT_TRUE(still.stopped());
 }
 
+TEST(PoseConvergence, WithoutPosesSettledIntrinsicsEndTheSolveWhileCamerasStillTurn) {
+  std::map<uint32_t, PoseBlock> poses = TwoCameras();
+  std::vector<double> params = {1000.0, 320.0, 240.0, 0.0};
+  PoseConvergence watching_poses(&poses, {}, {{params.data(), 1}}, 1e-3, kRadius);
+  PoseConvergence intrinsics_only(nullptr, {}, {{params.data(), 1}}, 1e-3, kRadius);
+  for (int iteration = 1; iteration <= 2; ++iteration) {
+    Turn(&poses, 2, 0.01);
+    params[1] += 1e-3;
+    watching_poses(Step(iteration, true));
+    intrinsics_only(Step(iteration, true));
+  }
+  EXPECT_FALSE(watching_poses.stopped());
+  EXPECT_TRUE(intrinsics_only.stopped());
+  // A principal point still moving (0.02 px: 0.0011 deg at this focal length) keeps it going.
+  PoseConvergence moving_principal_point(nullptr, {}, {{params.data(), 1}}, 1e-3, kRadius);
+  for (int iteration = 1; iteration <= 3; ++iteration) {
+    params[2] += 0.02;
+    moving_principal_point(Step(iteration, true));
+  }
+  EXPECT_FALSE(moving_principal_point.stopped());
+}
+
 }  // namespace
 }  // namespace ramap

@@ -35,7 +35,13 @@ MapperOptions FirstPassOptions(const MapperOptions& options,
     return options;
   }
   MapperOptions pass = options;
-  pass.bundle_adjustment = SubsetAdjustmentOptions(options);
+  const int budget = options.calibration_pass_num_tracks;
+  if (budget > 0) {
+    pass.calibration_num_points = std::min(pass.calibration_num_points, budget);
+    pass.translation_averaging.max_num_tracks =
+        std::min(pass.translation_averaging.max_num_tracks, budget);
+  }
+  pass.bundle_adjustment = SubsetAdjustmentOptions(pass);
   summary->calibration_pass = true;
   return pass;
 }

@@ -509,6 +509,11 @@ void AddCalibration(Table& t) {
       AtLeast(0),
       "points of the first BA when a focal length is still unknown after the view "
       "graph (a second pass follows), and of Mapper.subset_adjustment (0: all)"));
+  t.push_back(Number(
+      "Mapper.calibration_pass_num_tracks",
+      [](auto& o) -> auto& { return o.calibration_pass_num_tracks; }, AtLeast(0),
+      "a calibration pass (kept for its intrinsics alone) adjusts at most this many points "
+      "and averages translations with at most this many tracks (0: as the second pass)"));
   t.push_back(Bool(
       "Mapper.calibration_subset_only", [](auto& o) -> auto& { return o.calibration_subset_only; },
       "1: the full BA holds the intrinsics the subset found (0: refines them again)"));

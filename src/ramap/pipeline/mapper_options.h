@@ -90,6 +90,14 @@ struct MapperOptions {
   // less time and at the same accuracy but on one set (BENCHMARKS.md, "Self-calibration on a
   // subset first").
   int calibration_num_points = 2000;
+  // A calibration pass keeps its intrinsics alone: the second pass averages again through them and
+  // calibrates again on its own subset, from a start this close. So the calibration pass adjusts
+  // at most this many points and averages translations with at most this many tracks
+  // (TranslationAveraging.max_num_tracks), and its BA stops once the intrinsics have settled. On
+  // templeRing without a calibration it took 0.55 s instead of 1.1 s; there and on twelve synthetic
+  // turntables and arcs from half and 1.6 times the focal length the second pass ended at the same
+  // accuracy (BENCHMARKS.md, "What a calibration pass needs"). 0: the second pass's budgets.
+  int calibration_pass_num_tracks = 1000;
   // After the subset found the intrinsics, the full bundle adjustment holds them (unless some
   // camera was given: its test needs the full adjustment's intrinsics freed), through bearings
   // undistorted with them: it then costs what a calibrated run's does, since the residuals no

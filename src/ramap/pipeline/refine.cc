@@ -103,7 +103,10 @@ bool CalibrateOnSubset(const MapperContext& context, const std::vector<Track>& t
       static_cast<int>(reconstruction->points3D.size()) <= 2 * num_points) {
     return false;
   }
-  const BundleAdjustmentOptions subset_options = SubsetAdjustmentOptions(options);
+  BundleAdjustmentOptions subset_options = SubsetAdjustmentOptions(options);
+  // Only its intrinsics are kept: its poses start the full BA, or none of them (a calibration
+  // pass), so it ends once they have settled.
+  subset_options.settle_intrinsics_only = true;
   Reconstruction subset = PointsForBundleAdjustment(*reconstruction, subset_options);
   const BundleAdjustmentSummary calibration =
       BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, &subset,

@@ -346,7 +346,8 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   solver_options.callbacks.push_back(&between);
   std::optional<PoseConvergence> still;
   if (options.pose_tolerance_deg > 0) {
-    still.emplace(&poses, MedianDepths(observations, *reconstruction),
+    const bool intrinsics_only = options.settle_intrinsics_only && refines_focal_length;
+    still.emplace(intrinsics_only ? nullptr : &poses, MedianDepths(observations, *reconstruction),
                   RefinedIntrinsicsIn(problem, options, *reconstruction),
                   options.pose_tolerance_deg, solver_options.initial_trust_region_radius);
     solver_options.update_state_every_iteration = true;

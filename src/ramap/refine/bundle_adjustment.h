@@ -41,6 +41,10 @@ struct BundleAdjustmentOptions {
   // mapper is up to 1.8x faster and AUC@3 moves by 0.03 at most (BENCHMARKS.md, "Where the seconds
   // of bundle adjustment go").
   double pose_tolerance_deg = 1e-3;
+  // Where the solve refines some focal length, that stop looks at the intrinsics alone: for a BA
+  // kept only for its intrinsics (the mapper's calibration on a subset of the points, before a
+  // full BA or a second pass that starts the poses afresh). Set by the mapper, not an option.
+  bool settle_intrinsics_only = false;
   // Robust loss scale in pixels (Cauchy); COLMAP's default loss is a plain squared error, a soft
   // robust loss protects against the wrong matches that averaging lets through. 1 px (GLOMAP's
   // Huber scale too) against 2 px: templeRing's AUC@1 rises 5.9 points with its calibration given;

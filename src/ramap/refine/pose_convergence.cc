@@ -62,6 +62,7 @@ ceres::CallbackReturnType PoseConvergence::operator()(const ceres::IterationSumm
 
 double PoseConvergence::LargestMotionDeg() const {
   double largest_rad = 0.0;
+  if (poses_ == nullptr) return IntrinsicsMotionRad() * kDegPerRad;
   for (const auto& [image_id, pose] : *poses_) {
     const PoseBlock& last = last_poses_.at(image_id);
     largest_rad = std::max(largest_rad, Rotation(pose).angularDistance(Rotation(last)));
@@ -70,6 +71,11 @@ double PoseConvergence::LargestMotionDeg() const {
       largest_rad = std::max(largest_rad, (Centre(pose) - Centre(last)).norm() / depth->second);
     }
   }
+  return std::max(largest_rad, IntrinsicsMotionRad()) * kDegPerRad;
+}
+
+double PoseConvergence::IntrinsicsMotionRad() const {
+  double largest_rad = 0.0;
   for (size_t k = 0; k < intrinsics_.size(); ++k) {
     const RefinedIntrinsics& camera = intrinsics_[k];
     const double focal = camera.params[0];
@@ -79,11 +85,11 @@ double PoseConvergence::LargestMotionDeg() const {
           std::max(largest_rad, std::abs(camera.params[i] - last_intrinsics_[k][i]) / focal);
     }
   }
-  return largest_rad * kDegPerRad;
+  return largest_rad;
 }
 
 void PoseConvergence::Remember() {
-  last_poses_ = *poses_;
+  if (poses_ != nullptr) last_poses_ = *poses_;
   last_intrinsics_.clear();
   for (const RefinedIntrinsics& camera : intrinsics_) {
     last_intrinsics_.emplace_back(camera.params, camera.params + camera.num_focal_lengths + 2);

@@ -11,7 +11,8 @@
 // that its model predicted well (ratio above 0.75) left the region as it was: Ceres then grows a
 // region the step reached to three times the step, so the step lay well inside it. A long chain
 // whose poses still drift, and a focal length crawling along its valley, keep iterating to Ceres's
-// own tolerance.
+// own tolerance. A solve kept only for its intrinsics (a calibration on a subset of the points)
+// can end once they alone have settled.
 #pragma once
 
 #include <ceres/iteration_callback.h>
@@ -35,7 +36,8 @@ struct RefinedIntrinsics {
 class PoseConvergence : public ceres::IterationCallback {
  public:
   // `poses` are Ceres's parameter blocks (kept up to date every iteration:
-  // Solver::Options::update_state_every_iteration); `median_depths` the median depth of each
+  // Solver::Options::update_state_every_iteration), or null where only the intrinsics count (a
+  // solve that is kept for its intrinsics alone); `median_depths` the median depth of each
   // image's observed points at the start, in the poses' units; `min_trust_region_radius` the
   // solve's initial trust region radius.
   PoseConvergence(const std::map<uint32_t, PoseBlock>* poses,
@@ -51,6 +53,8 @@ class PoseConvergence : public ceres::IterationCallback {
  private:
   // The largest angle any camera moved by since the last accepted step, in degrees.
   double LargestMotionDeg() const;
+  // The largest relative change of a refined focal length or principal point, in radians.
+  double IntrinsicsMotionRad() const;
   void Remember();
 
   const std::map<uint32_t, PoseBlock>* poses_;

@@ -40,6 +40,7 @@ MapperOptions FirstPassOptions(const MapperOptions& options,
     pass.calibration_num_points = std::min(pass.calibration_num_points, budget);
     pass.translation_averaging.max_num_tracks =
         std::min(pass.translation_averaging.max_num_tracks, budget);
+    pass.relative_pose.nister_five_point = true;
   }
   pass.bundle_adjustment = SubsetAdjustmentOptions(pass);
   summary->calibration_pass = true;

@@ -20,9 +20,10 @@ void LogViewGraphCalibration(const ViewGraphCalibrationSummary& calibration, Sta
 // (the longest tracks), each image keeping at least 50 of its observations.
 BundleAdjustmentOptions SubsetAdjustmentOptions(const MapperOptions& options);
 
-// The options of the first pass: a calibration pass's BA (summary->calibration_pass set) adjusts
-// at most calibration_num_points points when the view graph left some camera's focal length
-// unknown, since a second pass follows.
+// The options of the first pass. When the view graph left some camera's focal length unknown, it
+// is a calibration pass (summary->calibration_pass set), kept for its intrinsics alone since a
+// second pass follows: its BA adjusts a subset (calibration_num_points, at most
+// calibration_pass_num_tracks), and it works on calibration_pass_num_tracks's budgets.
 MapperOptions FirstPassOptions(const MapperOptions& options,
                                const ViewGraphCalibrationSummary& calibration,
                                MapperSummary* summary);

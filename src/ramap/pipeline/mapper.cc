@@ -162,8 +162,8 @@ MapperResult RunMapperPass(const FeatureDatabase& database, const MapperOptions&
 
   // 1. Relative rotations of every verified pair.
   ViewGraph graph;
-  const std::vector<ImagePair> pairs = EstimateViewGraph(database, bearings, options, source, &log,
-                                                         &summary, &image_reasons, &graph);
+  const std::vector<ImagePair> pairs = EstimateViewGraph(database, bearings, pass_options, source,
+                                                         &log, &summary, &image_reasons, &graph);
 
   // 2. The view graph, one reconstruction per connected component (stages 3-6).
   summary.sequential = IsSequentialInput(options.order, ImageNames(database));

@@ -512,8 +512,9 @@ void AddCalibration(Table& t) {
   t.push_back(Number(
       "Mapper.calibration_pass_num_tracks",
       [](auto& o) -> auto& { return o.calibration_pass_num_tracks; }, AtLeast(0),
-      "a calibration pass (kept for its intrinsics alone) adjusts at most this many points "
-      "and averages translations with at most this many tracks (0: as the second pass)"));
+      "a calibration pass (kept for its intrinsics alone) adjusts at most this many points, "
+      "averages translations with at most this many tracks and takes its relative poses "
+      "from the five-point solver (0: as the second pass)"));
   t.push_back(Bool(
       "Mapper.calibration_subset_only", [](auto& o) -> auto& { return o.calibration_subset_only; },
       "1: the full BA holds the intrinsics the subset found (0: refines them again)"));

@@ -93,10 +93,11 @@ struct MapperOptions {
   // A calibration pass keeps its intrinsics alone: the second pass averages again through them and
   // calibrates again on its own subset, from a start this close. So the calibration pass adjusts
   // at most this many points and averages translations with at most this many tracks
-  // (TranslationAveraging.max_num_tracks), and its BA stops once the intrinsics have settled. On
-  // templeRing without a calibration it took 0.55 s instead of 1.1 s; there and on twelve synthetic
+  // (TranslationAveraging.max_num_tracks), takes its relative poses from Nister's five-point
+  // solver (RelativePose.nister_five_point), and its BA stops once the intrinsics have settled. On
+  // templeRing without a calibration it took 0.5 s instead of 1.2 s; there and on 36 synthetic
   // turntables and arcs from half and 1.6 times the focal length the second pass ended at the same
-  // accuracy (BENCHMARKS.md, "What a calibration pass needs"). 0: the second pass's budgets.
+  // accuracy (BENCHMARKS.md, "What a calibration pass needs"). 0: as the second pass.
   int calibration_pass_num_tracks = 1000;
   // After the subset found the intrinsics, the full bundle adjustment holds them (unless some
   // camera was given: its test needs the full adjustment's intrinsics freed), through bearings

@@ -42,7 +42,9 @@ TEST(ViewGraphCalibration, EssentialMatrixCostVanishesAtTheTrueCalibration) {
   const Eigen::Matrix3d K_off = CalibrationMatrix(scene.database.cameras.at(1), 1.3);
   std::vector<double> off_costs;
   for (const auto& [pair_id, geometry] : scene.database.two_view_geometries) {
-    EXPECT_LT(EssentialMatrixCost(geometry.F, K, K), 1e-9);
+    // Zero but for rounding: closed-form eigenvalues of M^T M leave a few 1e-9, six orders of
+    // magnitude below the costs of a focal length 30% off.
+    EXPECT_LT(EssentialMatrixCost(geometry.F, K, K), 1e-8);
     off_costs.push_back(EssentialMatrixCost(geometry.F, K_off, K_off));
   }
   ASSERT_GT(off_costs.size(), 20u);

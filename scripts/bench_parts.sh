@@ -27,6 +27,7 @@ variants=(
   "no test of given intrinsics (k1)|--BundleAdjustment.given_intrinsics_test 0"
   "no second averaging pass|--Mapper.max_focal_change_in_bundle_adjustment 0"
   "no calibration subset|--Mapper.calibration_num_points 0"
+  "calibration pass on the full budgets|--Mapper.calibration_pass_num_tracks 0"
   "guessed principal point held|--BundleAdjustment.refine_guessed_principal_point 0"
 )
 header="| database |" separator="| --- |"

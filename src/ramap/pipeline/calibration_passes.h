@@ -22,8 +22,8 @@ BundleAdjustmentOptions SubsetAdjustmentOptions(const MapperOptions& options);
 
 // The options of the first pass. When the view graph left some camera's focal length unknown, it
 // is a calibration pass (summary->calibration_pass set), kept for its intrinsics alone since a
-// second pass follows: its BA adjusts a subset (calibration_num_points, at most
-// calibration_pass_num_tracks), and it works on calibration_pass_num_tracks's budgets.
+// second pass follows: its relative poses, translation averaging and BA on a subset work on the
+// smaller budgets of calibration_pass_num_tracks.
 MapperOptions FirstPassOptions(const MapperOptions& options,
                                const ViewGraphCalibrationSummary& calibration,
                                MapperSummary* summary);

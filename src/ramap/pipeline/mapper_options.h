@@ -95,7 +95,7 @@ struct MapperOptions {
   // at most this many points and averages translations with at most this many tracks
   // (TranslationAveraging.max_num_tracks), takes its relative poses from Nister's five-point
   // solver (RelativePose.nister_five_point), and its BA stops once the intrinsics have settled. On
-  // templeRing without a calibration it took 0.5 s instead of 1.2 s; there and on 36 synthetic
+  // templeRing without a calibration it took 0.45 s instead of 1.28 s; there and on 36 synthetic
   // turntables and arcs from half and 1.6 times the focal length the second pass ended at the same
   // accuracy (BENCHMARKS.md, "What a calibration pass needs"). 0: as the second pass.
   int calibration_pass_num_tracks = 1000;

@@ -61,8 +61,8 @@ ceres::CallbackReturnType PoseConvergence::operator()(const ceres::IterationSumm
 }
 
 double PoseConvergence::LargestMotionDeg() const {
-  double largest_rad = 0.0;
   if (poses_ == nullptr) return IntrinsicsMotionRad() * kDegPerRad;
+  double largest_rad = 0.0;
   for (const auto& [image_id, pose] : *poses_) {
     const PoseBlock& last = last_poses_.at(image_id);
     largest_rad = std::max(largest_rad, Rotation(pose).angularDistance(Rotation(last)));

@@ -346,8 +346,11 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   solver_options.callbacks.push_back(&between);
   std::optional<PoseConvergence> still;
   if (options.pose_tolerance_deg > 0) {
+    // With the intrinsics alone watched, the poses' depths are not needed.
     const bool intrinsics_only = options.settle_intrinsics_only && refines_focal_length;
-    still.emplace(intrinsics_only ? nullptr : &poses, MedianDepths(observations, *reconstruction),
+    still.emplace(intrinsics_only ? nullptr : &poses,
+                  intrinsics_only ? std::map<uint32_t, double>()
+                                  : MedianDepths(observations, *reconstruction),
                   RefinedIntrinsicsIn(problem, options, *reconstruction),
                   options.pose_tolerance_deg, solver_options.initial_trust_region_radius);
     solver_options.update_state_every_iteration = true;

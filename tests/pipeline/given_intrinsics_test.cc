@@ -87,6 +87,27 @@ TEST(GivenIntrinsics, FocalLengthTenPercentOffIsProvenWrong) {
   EXPECT_LT(Evaluate(model, scene).rotation_error_median_deg, 0.1);
 }
 
+// The test decides on a subset of the points; the full BA then refines the focal length it proved
+// wrong on all of them, and the pipeline does not average again through it.
+TEST(GivenIntrinsics, FocalLengthProvenWrongIsRefinedByTheFullAdjustmentInOnePass) {
+  const SyntheticScene scene = BuildSyntheticScene(Collection(7, Pinhole(500)));
+  const FeatureDatabase database = OneGivenCameraPerImage(scene.database, Pinhole(600));
+  MapperOptions options;
+  options.given_intrinsics_test.num_points = 300;  // of the scene's 3000
+  std::ostringstream progress;
+  const MapperResult result = RunMapper(database, options, "synthetic", &progress);
+  ASSERT_EQ(result.reconstructions.size(), 1u);
+  const Reconstruction& model = result.reconstructions[0];
+  const GivenIntrinsicsTest& test = OnlyTest(result);
+  ASSERT_TRUE(test.focal_accepted);
+  EXPECT_EQ(progress.str().find("averaging again"), std::string::npos) << progress.str();
+  for (const auto& [camera_id, camera] : model.cameras) {
+    EXPECT_NE(camera.params[0], test.freed_focal_px) << "camera " << camera_id << ": not refined";
+    EXPECT_NEAR(camera.params[0], 500.0, 2.5) << "camera " << camera_id;
+  }
+  EXPECT_LT(Evaluate(model, scene).rotation_error_median_deg, 0.1);
+}
+
 // A lens with k1 = -0.15, and the database that gives it as a plain PINHOLE camera.
 SyntheticScene RadialLensScene() {
   Camera lens;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <set>
 #include <sstream>
 
 namespace ramap {
@@ -56,9 +57,17 @@ BundleAdjustmentOptions SubsetAdjustmentOptions(const MapperOptions& options) {
 
 double FocalChangeInBundleAdjustment(const MapperResult& result,
                                      std::map<uint32_t, Camera>* refined) {
+  // A given focal length the test proved wrong was refined from a subset of the points before
+  // the full BA (refine/given_intrinsics_test.h); the second pass buys nothing after that.
+  std::set<uint32_t> disproved;
+  for (const MapperComponentSummary& component : result.summary.components) {
+    for (const GivenIntrinsicsTest& group : component.given_intrinsics_test.groups)
+      if (group.focal_accepted) disproved.insert(group.camera_ids.begin(), group.camera_ids.end());
+  }
   double change = 0.0;
   for (const CameraIntrinsicsSummary& camera : result.summary.cameras) {
     if (camera.final_params.empty() || camera.prior_params.empty()) continue;
+    if (disproved.count(camera.camera_id)) continue;
     // What averaging used: the view graph's estimate, else the database's value.
     const double used =
         camera.view_graph.estimated ? camera.view_graph.estimated_focal_px : camera.prior_params[0];

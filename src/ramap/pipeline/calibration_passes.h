@@ -29,7 +29,8 @@ MapperOptions FirstPassOptions(const MapperOptions& options,
                                MapperSummary* summary);
 
 // The largest relative change of a focal length between the intrinsics averaging used and those
-// bundle adjustment wrote, over the cameras of the models; `refined` receives those cameras.
+// bundle adjustment wrote, over the cameras of the models but those whose given focal length the
+// test proved wrong; `refined` receives those cameras.
 double FocalChangeInBundleAdjustment(const MapperResult& result,
                                      std::map<uint32_t, Camera>* refined);
 

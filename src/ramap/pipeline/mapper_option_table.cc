@@ -503,7 +503,7 @@ void AddCalibration(Table& t) {
       "Mapper.max_focal_change_in_bundle_adjustment",
       [](auto& o) -> auto& { return o.max_focal_change_in_bundle_adjustment; }, AtLeast(0),
       "average again through BA's intrinsics when it moved a focal length by more "
-      "(fraction; 0: never)"));
+      "(fraction; 0: never), but not one given and proved wrong by the test"));
   t.push_back(Number(
       "Mapper.calibration_num_points", [](auto& o) -> auto& { return o.calibration_num_points; },
       AtLeast(0),

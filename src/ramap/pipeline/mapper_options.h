@@ -78,7 +78,9 @@ struct MapperOptions {
   // averaging used (a guess the view graph could not correct: forward motion, a turntable), the
   // whole pipeline runs again through the refined intrinsics: averaging through a focal length 2x
   // off bends the model more than BA can straighten (kitti07_first160 from COLMAP's guess). 0:
-  // never.
+  // never. Not for a given focal length that refine/given_intrinsics_test.h proved wrong: the test
+  // crossed its valley from averaging's poses, and a second pass bought nothing there with given
+  // focal lengths 0.6-2 times the truth (BENCHMARKS.md, "A focal length proved wrong").
   double max_focal_change_in_bundle_adjustment = 0.05;
   // When some camera's focal length is unknown and the view graph could not estimate it, the first
   // bundle adjustment only finds the intrinsics for a second pass (averaging through them, then

@@ -122,19 +122,27 @@ bool CalibrateOnSubset(const MapperContext& context, const std::vector<Track>& t
 // the test kept, instead of a second time where the data proved the given ones wrong (lund_door
 // from its EXIF focal length), and it starts from the poses the test's subset was adjusted to,
 // every track triangulated again through them and the kept intrinsics. Where the test changed
-// some camera, `*bearings` become those through it (kept in `tested`).
+// some camera, `*bearings` become those through it (kept in `tested`), and the cameras whose focal
+// length it proved wrong are refined from there (BundleAdjustmentOptions::disproved_given_cameras).
 void TestGivenIntrinsicsFirst(const MapperContext& context, const std::vector<Track>& tracks,
-                              const BundleAdjustmentOptions& ba_options,
+                              BundleAdjustmentOptions* ba_options,
                               MapperComponentSummary* component, Reconstruction* reconstruction,
                               ImageBearings* tested, const ImageBearings** bearings) {
   GivenIntrinsicsTestSummary& test = component->given_intrinsics_test;
-  test = TestGivenIntrinsics((*bearings)->bearings, (*bearings)->focal_lengths_px, ba_options,
+  test = TestGivenIntrinsics((*bearings)->bearings, (*bearings)->focal_lengths_px, *ba_options,
                              context.options.given_intrinsics_test, reconstruction);
   LogGivenIntrinsicsTest(context, test);
   if (std::any_of(test.groups.begin(), test.groups.end(), ChangesIntrinsics)) {
     std::map<uint32_t, Camera> cameras;
     *tested = BearingsThrough(context, *reconstruction, &cameras);
     *bearings = tested;
+  }
+  for (const GivenIntrinsicsTest& group : test.groups) {
+    if (!group.focal_accepted) continue;
+    ba_options->disproved_given_cameras.insert(group.camera_ids.begin(), group.camera_ids.end());
+    // The test's freed step crossed the focal length's valley.
+    ba_options->intrinsics_function_tolerance =
+        std::max(ba_options->intrinsics_function_tolerance, ba_options->function_tolerance);
   }
   if (test.poses_adjusted) {
     *reconstruction =
@@ -188,8 +196,8 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
         std::max(ba_options.intrinsics_function_tolerance, ba_options.function_tolerance);
   }
   ImageBearings tested_bearings;
-  TestGivenIntrinsicsFirst(context, tracks, ba_options, component, reconstruction, &tested_bearings,
-                           &bearings);
+  TestGivenIntrinsicsFirst(context, tracks, &ba_options, component, reconstruction,
+                           &tested_bearings, &bearings);
   Reconstruction adjusted = PointsForBundleAdjustment(*reconstruction, ba_options);
   BundleAdjustmentSummary& ba = component->bundle_adjustment;
   ba = BundleAdjust(bearings->bearings, bearings->focal_lengths_px, &adjusted, ba_options, priors,

@@ -466,7 +466,8 @@ BundleAdjustmentOptions PointSubsetOptions(BundleAdjustmentOptions options, int 
 }
 
 bool HeldAsGiven(const BundleAdjustmentOptions& options, const Camera& camera) {
-  return options.keep_prior_intrinsics && camera.has_prior_focal_length;
+  return options.keep_prior_intrinsics && camera.has_prior_focal_length &&
+         options.disproved_given_cameras.count(camera.camera_id) == 0;
 }
 
 bool RefinesIntrinsics(const BundleAdjustmentOptions& options, const Camera& camera) {

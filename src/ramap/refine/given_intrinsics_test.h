@@ -6,7 +6,8 @@
 //      subset, adjusted alike;
 //   2. the focal length freed, and radial distortion added to a camera given without any
 //      (SIMPLE_PINHOLE, PINHOLE become SIMPLE_RADIAL, or OPENCV where fx != fy).
-// Unless step 2 lowers the group's reprojection RMSE by a clear margin, nothing changes: a true
+// Unless step 2 lowers the group's reprojection RMSE (each error capped at BA's
+// max_reprojection_error_px) by a clear margin, nothing changes: a true
 // calibration leaves nothing to gain beyond fitting the noise. When it does, and the freed focal
 // length stays near the given one, the gain was the lens's: the distortion is kept with the given
 // focal length. When the focal length moved further, the data prove it wrong, and

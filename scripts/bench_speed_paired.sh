@@ -5,7 +5,7 @@
 # ratios is printed per data set. The peers run on copies of the database made (and, for COLMAP
 # 4, upgraded by a warm-up run) before the clock starts.
 #
-#   scripts/bench_speed_paired.sh [NAME ...]   (default: the four collections)
+#   scripts/bench_speed_paired.sh [NAME ...]   (default: the five collections)
 #
 # Settings: RAMAP_INTRINSICS=unknown (default; the databases of build/bench-unknown-intrinsics) or
 # known (build/bench, the peers' and ramap's intrinsics fixed), RAMAP_RUNS (default 3),
@@ -18,7 +18,7 @@ runs=${RAMAP_RUNS:-3}
 bench=$root/build/bench
 [[ $intrinsics == unknown ]] && bench=$root/build/bench-unknown-intrinsics
 names=("$@")
-((${#names[@]})) || names=(fountain-P11 Herz-Jesus-P8 templeRing lund_door)
+((${#names[@]})) || names=(fountain-P11 Herz-Jesus-P8 templeRing lund_door sceaux_castle)
 ramap=${RAMAP_BINARY:-$root/build/ramap}
 peer=
 [[ ${RAMAP_PEERS:-1} != 0 ]] && peer=$(bash "$root/scripts/peers.sh")

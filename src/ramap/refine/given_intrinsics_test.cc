@@ -175,6 +175,27 @@ struct Trials {
   }
 };
 
+// One adjustment of the trials' subset: its options, each group's camera (as it starts, then as
+// adjusted), the subset adjusted and its errors.
+struct Trial {
+  BundleAdjustmentOptions options;
+  std::map<uint32_t, Camera> cameras;
+  Reconstruction adjusted;
+  std::map<uint32_t, GroupError> errors;
+};
+
+// `first` and `second`, each from the trials' start, side by side: on two threads where BA has
+// them, since a small BA's dense Schur solve uses one. Step 2 started from the model's poses took
+// as many iterations as from the control's (sceaux_castle, lund_door, templeRing given their
+// calibrations), and the test's decisions stayed the same (BENCHMARKS.md, "A focal length proved
+// wrong").
+void AdjustSideBySide(const Trials& trials, int num_threads, Trial* first, Trial* second) {
+  ParallelFor(2, num_threads, [&](size_t k) {
+    Trial& trial = k == 0 ? *first : *second;
+    trial.errors = trials.Adjust(trial.options, &trial.cameras, &trial.adjusted);
+  });
+}
+
 bool ClearlyLower(double rmse, double reference, const GivenIntrinsicsTestOptions& options) {
   return rmse <= (1.0 - options.min_rmse_decrease) * reference;
 }
@@ -266,40 +287,26 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
     given[group] = trials.start.cameras.at(group);
     for (const uint32_t camera_id : camera_ids) trials.group_of_camera[camera_id] = group;
   }
-  std::map<uint32_t, Camera> control = given;
+  Trial control{held, given, {}, {}};
   // 2. Distortion added and the focal length freed.
-  BundleAdjustmentOptions freed = held;
-  freed.keep_prior_intrinsics = false;
-  freed.refine_principal_point = false;
-  std::map<uint32_t, Camera> distorted = given;
-  for (auto& [group, camera] : distorted) {
+  Trial freed{held, given, {}, {}};
+  freed.options.keep_prior_intrinsics = false;
+  freed.options.refine_principal_point = false;
+  for (auto& [group, camera] : freed.cameras) {
     if (ba.refine_extra_params && HasNoDistortion(camera.model))
       camera = WithRadialDistortion(camera);
   }
-  // Both start from the model's poses, so they run side by side, on two threads where BA has
-  // them: a small BA's dense Schur solve uses one. Started from the control's poses instead, step
-  // 2 took as many iterations (sceaux_castle, lund_door, templeRing given their calibrations).
-  Reconstruction held_subset;
-  Reconstruction freed_subset;
-  std::map<uint32_t, GroupError> held_errors;
-  std::map<uint32_t, GroupError> freed_errors;
-  ParallelFor(2, ba.num_threads, [&](size_t step) {
-    if (step == 0) {
-      held_errors = trials.Adjust(held, &control, &held_subset);
-    } else {
-      freed_errors = trials.Adjust(freed, &distorted, &freed_subset);
-    }
-  });
+  AdjustSideBySide(trials, ba.num_threads, &control, &freed);
   // Step 3 from the control's poses and points.
-  trials.start.images = held_subset.images;
-  trials.start.points3D = held_subset.points3D;
+  trials.start.images = control.adjusted.images;
+  trials.start.points3D = control.adjusted.points3D;
   std::map<uint32_t, Camera> focal_only;  // 3: the groups whose focal length moved too far
   for (const auto& [group, camera_ids] : groups) {
-    const auto before = held_errors.find(group);
-    if (before == held_errors.end()) continue;
+    const auto before = control.errors.find(group);
+    if (before == control.errors.end()) continue;
     summary.groups.push_back(
-        JudgeFreedIntrinsics(camera_ids, before->second, given.at(group), distorted.at(group),
-                             RmseOf(freed_errors, group, before->second.Rmse()), ba, options));
+        JudgeFreedIntrinsics(camera_ids, before->second, given.at(group), freed.cameras.at(group),
+                             RmseOf(freed.errors, group, before->second.Rmse()), ba, options));
     const GivenIntrinsicsTest& test = summary.groups.back();
     if (test.focal_accepted && test.distortion_accepted) focal_only[group] = given.at(group);
   }
@@ -307,7 +314,8 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
   // 3. The focal length alone, where step 2 proved it wrong and added distortion too: the
   // distortion stays only if it adds a clear margin.
   const std::map<uint32_t, GroupError> focal_only_errors =
-      focal_only.empty() ? std::map<uint32_t, GroupError>() : trials.Adjust(freed, &focal_only);
+      focal_only.empty() ? std::map<uint32_t, GroupError>()
+                         : trials.Adjust(freed.options, &focal_only);
   for (GivenIntrinsicsTest& test : summary.groups) {
     const uint32_t group = test.camera_ids.front();
     const auto alone = focal_only.find(group);
@@ -315,13 +323,14 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
       test.focal_only_rmse_px = RmseOf(focal_only_errors, group, test.freed_rmse_px);
       test.distortion_accepted = ClearlyLower(test.freed_rmse_px, test.focal_only_rmse_px, options);
     }
-    const Camera kept = KeptCamera(test, given.at(group), distorted.at(group),
+    const Camera kept = KeptCamera(test, given.at(group), freed.cameras.at(group),
                                    alone != focal_only.end() ? &alone->second : nullptr);
     test.final_model = CameraModelName(kept.model);
     if (ChangesIntrinsics(test)) SetGroup(test.camera_ids, kept, reconstruction);
   }
   const bool changed = std::any_of(summary.groups.begin(), summary.groups.end(), ChangesIntrinsics);
-  summary.poses_adjusted = TakeSubsetPoses(changed ? freed_subset : held_subset, reconstruction);
+  summary.poses_adjusted =
+      TakeSubsetPoses(changed ? freed.adjusted : control.adjusted, reconstruction);
   summary.seconds = timer.ElapsedSeconds();
   return summary;
 }

@@ -57,8 +57,9 @@ BundleAdjustmentOptions SubsetAdjustmentOptions(const MapperOptions& options) {
 
 double FocalChangeInBundleAdjustment(const MapperResult& result,
                                      std::map<uint32_t, Camera>* refined) {
-  // A given focal length the test proved wrong was refined from a subset of the points before
-  // the full BA (refine/given_intrinsics_test.h); the second pass buys nothing after that.
+  // A given focal length the test proved wrong (refine/given_intrinsics_test.h) was refined from
+  // averaging's poses on a subset, then by the full BA: a second pass bought nothing after that
+  // (MapperOptions::max_focal_change_in_bundle_adjustment).
   std::set<uint32_t> disproved;
   for (const MapperComponentSummary& component : result.summary.components) {
     for (const GivenIntrinsicsTest& group : component.given_intrinsics_test.groups)

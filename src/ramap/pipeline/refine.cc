@@ -138,8 +138,10 @@ void TestGivenIntrinsicsFirst(const MapperContext& context, const std::vector<Tr
     *bearings = tested;
   }
   for (const GivenIntrinsicsTest& group : test.groups) {
-    if (!group.focal_accepted) continue;
-    ba_options->disproved_given_cameras.insert(group.camera_ids.begin(), group.camera_ids.end());
+    if (group.focal_accepted)
+      ba_options->disproved_given_cameras.insert(group.camera_ids.begin(), group.camera_ids.end());
+  }
+  if (!ba_options->disproved_given_cameras.empty()) {
     // The test's freed step crossed the focal length's valley.
     ba_options->intrinsics_function_tolerance =
         std::max(ba_options->intrinsics_function_tolerance, ba_options->function_tolerance);

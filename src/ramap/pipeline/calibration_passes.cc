@@ -61,10 +61,8 @@ double FocalChangeInBundleAdjustment(const MapperResult& result,
   // averaging's poses on a subset, then by the full BA: a second pass bought nothing after that
   // (MapperOptions::max_focal_change_in_bundle_adjustment).
   std::set<uint32_t> disproved;
-  for (const MapperComponentSummary& component : result.summary.components) {
-    for (const GivenIntrinsicsTest& group : component.given_intrinsics_test.groups)
-      if (group.focal_accepted) disproved.insert(group.camera_ids.begin(), group.camera_ids.end());
-  }
+  for (const MapperComponentSummary& component : result.summary.components)
+    disproved.merge(DisprovedCameras(component.given_intrinsics_test));
   double change = 0.0;
   for (const CameraIntrinsicsSummary& camera : result.summary.cameras) {
     if (camera.final_params.empty() || camera.prior_params.empty()) continue;

@@ -137,10 +137,7 @@ void TestGivenIntrinsicsFirst(const MapperContext& context, const std::vector<Tr
     *tested = BearingsThrough(context, *reconstruction, &cameras);
     *bearings = tested;
   }
-  for (const GivenIntrinsicsTest& group : test.groups) {
-    if (group.focal_accepted)
-      ba_options->disproved_given_cameras.insert(group.camera_ids.begin(), group.camera_ids.end());
-  }
+  ba_options->disproved_given_cameras.merge(DisprovedCameras(test));
   if (!ba_options->disproved_given_cameras.empty()) {
     // The test's freed step crossed the focal length's valley.
     ba_options->intrinsics_function_tolerance =

@@ -263,6 +263,13 @@ bool ChangesIntrinsics(const GivenIntrinsicsTest& test) {
   return test.distortion_accepted || test.focal_accepted;
 }
 
+std::set<uint32_t> DisprovedCameras(const GivenIntrinsicsTestSummary& test) {
+  std::set<uint32_t> cameras;
+  for (const GivenIntrinsicsTest& group : test.groups)
+    if (group.focal_accepted) cameras.insert(group.camera_ids.begin(), group.camera_ids.end());
+  return cameras;
+}
+
 GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
                                                const std::map<uint32_t, double>& focal_lengths_px,
                                                const BundleAdjustmentOptions& ba,

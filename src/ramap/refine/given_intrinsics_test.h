@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,8 @@ struct GivenIntrinsicsTestSummary {
 
 // Whether some test changed the intrinsics of its cameras.
 bool ChangesIntrinsics(const GivenIntrinsicsTest& test);
+// The cameras whose given focal length `test` proved wrong.
+std::set<uint32_t> DisprovedCameras(const GivenIntrinsicsTestSummary& test);
 
 // Tests each group of `reconstruction`'s cameras whose focal length `ba` held because it was
 // given. The cameras of the groups whose tests passed take the tested model and intrinsics, which

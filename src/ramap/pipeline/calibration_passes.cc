@@ -81,9 +81,7 @@ double FocalChangeInBundleAdjustment(const MapperResult& result,
 
 MapperOptions SecondPassOptions(const MapperOptions& options) {
   MapperOptions second = options;
-  BundleAdjustmentOptions& ba = second.bundle_adjustment;
-  ba.intrinsics_function_tolerance =
-      std::max(ba.intrinsics_function_tolerance, ba.function_tolerance);
+  second.bundle_adjustment = PastTheFocalValley(options.bundle_adjustment);
   return second;
 }
 

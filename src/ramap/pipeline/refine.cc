@@ -138,11 +138,8 @@ void TestGivenIntrinsicsFirst(const MapperContext& context, const std::vector<Tr
     *bearings = tested;
   }
   ba_options->disproved_given_cameras.merge(DisprovedCameras(test));
-  if (!ba_options->disproved_given_cameras.empty()) {
-    // The test's freed step crossed the focal length's valley.
-    ba_options->intrinsics_function_tolerance =
-        std::max(ba_options->intrinsics_function_tolerance, ba_options->function_tolerance);
-  }
+  // The test's freed step crossed the focal length's valley.
+  if (!ba_options->disproved_given_cameras.empty()) *ba_options = PastTheFocalValley(*ba_options);
   if (test.poses_adjusted) {
     *reconstruction =
         TriangulateThrough(context, tracks, *reconstruction, "with the tested poses", component);
@@ -190,9 +187,7 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
       ba_options.refine_principal_point = false;
       ba_options.refine_extra_params = false;
     }
-    // After the subset crossed the focal length's valley the ordinary tolerance suffices.
-    ba_options.intrinsics_function_tolerance =
-        std::max(ba_options.intrinsics_function_tolerance, ba_options.function_tolerance);
+    ba_options = PastTheFocalValley(ba_options);  // the subset crossed it
   }
   ImageBearings tested_bearings;
   TestGivenIntrinsicsFirst(context, tracks, &ba_options, component, reconstruction,

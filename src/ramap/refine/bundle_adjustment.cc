@@ -465,6 +465,12 @@ BundleAdjustmentOptions PointSubsetOptions(BundleAdjustmentOptions options, int 
   return options;
 }
 
+BundleAdjustmentOptions PastTheFocalValley(BundleAdjustmentOptions options) {
+  options.intrinsics_function_tolerance =
+      std::max(options.intrinsics_function_tolerance, options.function_tolerance);
+  return options;
+}
+
 bool HeldAsGiven(const BundleAdjustmentOptions& options, const Camera& camera) {
   return options.keep_prior_intrinsics && camera.has_prior_focal_length &&
          options.disproved_given_cameras.count(camera.camera_id) == 0;

@@ -161,6 +161,11 @@ struct BundleAdjustmentSummary {
 Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
                                          const BundleAdjustmentOptions& options);
 
+// `options` once the focal length's valley has been crossed (a subset adjusted it, a test freed it,
+// or a first pass found it): refined intrinsics then stop at the ordinary function_tolerance
+// instead of the tight intrinsics_function_tolerance.
+BundleAdjustmentOptions PastTheFocalValley(BundleAdjustmentOptions options);
+
 // `options` for a BA on a subset of at most `max_num_points` points (0: all), the longest tracks:
 // each image keeps at least 50 of its observations (or min_observations_per_image, if fewer), and
 // each point every observation, since the count already bounds the cost.

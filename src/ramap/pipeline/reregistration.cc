@@ -1,6 +1,7 @@
 #include "ramap/pipeline/reregistration.h"
 
 #include <cmath>
+#include <set>
 
 #include "ramap/geometry/absolute_pose.h"
 #include "ramap/pipeline/mapper_options.h"
@@ -19,22 +20,44 @@ struct Correspondences {
   std::vector<Eigen::Vector3d> bearings;
   std::vector<Eigen::Vector3d> points;
   int num_observed = 0;
+  int num_correspondences = 0;  // bearings.size() once gathered
 };
 
-// For each image, its keypoints whose track triangulated, whether or not the point kept them.
+// For each image, the track each of its keypoints is on (-1: none), indexed by keypoint: a flat
+// table rather than a map of (image, keypoint) pairs, which took most of this stage's time.
+std::map<uint32_t, std::vector<int>> TrackOfKeypoint(const std::vector<Track>& tracks,
+                                                     const KeypointBearings& bearings) {
+  std::map<uint32_t, std::vector<int>> track_of;
+  for (const auto& [image_id, image_bearings] : bearings)
+    track_of[image_id].assign(image_bearings.size(), -1);
+  for (size_t k = 0; k < tracks.size(); ++k) {
+    for (const TrackElement& e : tracks[k]) {
+      const auto image = track_of.find(e.image_id);
+      if (image != track_of.end() && e.point2D_idx < image->second.size())
+        image->second[e.point2D_idx] = static_cast<int>(k);
+    }
+  }
+  return track_of;
+}
+
+// For each image, its keypoints whose track triangulated, whether or not the point kept them: the
+// counts for every image, the bearings and points only for those `gather` accepts.
+template <typename Gather>
 std::map<uint32_t, Correspondences> CorrespondencesByImage(const std::vector<Track>& tracks,
                                                            const KeypointBearings& bearings,
-                                                           const Reconstruction& reconstruction) {
-  // A point's track holds some elements of the track it came from: any one finds it.
-  std::map<std::pair<uint32_t, uint32_t>, size_t> track_of;
-  for (size_t k = 0; k < tracks.size(); ++k)
-    for (const TrackElement& e : tracks[k]) track_of[{e.image_id, e.point2D_idx}] = k;
+                                                           const Reconstruction& reconstruction,
+                                                           const Gather& gather) {
+  const std::map<uint32_t, std::vector<int>> track_of = TrackOfKeypoint(tracks, bearings);
   std::map<uint32_t, Correspondences> by_image;
   for (const auto& [point3D_id, point] : reconstruction.points3D) {
-    const auto track =
-        track_of.find({point.track.front().image_id, point.track.front().point2D_idx});
-    if (track == track_of.end()) continue;
-    for (const TrackElement& e : tracks[track->second]) {
+    // A point's track holds some elements of the track it came from: any one finds it.
+    const TrackElement& first = point.track.front();
+    const auto image_tracks = track_of.find(first.image_id);
+    if (image_tracks == track_of.end() || first.point2D_idx >= image_tracks->second.size() ||
+        image_tracks->second[first.point2D_idx] < 0) {
+      continue;
+    }
+    for (const TrackElement& e : tracks[image_tracks->second[first.point2D_idx]]) {
       const auto image = reconstruction.images.find(e.image_id);
       const auto image_bearings = bearings.find(e.image_id);
       if (image == reconstruction.images.end() || image_bearings == bearings.end() ||
@@ -43,9 +66,11 @@ std::map<uint32_t, Correspondences> CorrespondencesByImage(const std::vector<Tra
         continue;
       }
       Correspondences& c = by_image[e.image_id];
+      ++c.num_correspondences;
+      c.num_observed += image->second.points2D[e.point2D_idx].point3D_id == point3D_id;
+      if (!gather(e.image_id)) continue;
       c.bearings.push_back(image_bearings->second[e.point2D_idx]);
       c.points.push_back(point.xyz);
-      c.num_observed += image->second.points2D[e.point2D_idx].point3D_id == point3D_id;
     }
   }
   return by_image;
@@ -56,8 +81,8 @@ std::map<uint32_t, Correspondences> CorrespondencesByImage(const std::vector<Tra
 double MedianObservedRatio(const std::map<uint32_t, Correspondences>& by_image) {
   std::vector<double> ratios;
   for (const auto& [image_id, c] : by_image) {
-    if (!c.bearings.empty())
-      ratios.push_back(static_cast<double>(c.num_observed) / c.bearings.size());
+    if (c.num_correspondences > 0)
+      ratios.push_back(static_cast<double>(c.num_observed) / c.num_correspondences);
   }
   return ratios.empty() ? 0.0 : Median(std::move(ratios));
 }
@@ -87,15 +112,24 @@ std::vector<ReregisteredImage> ReregisterImages(const std::vector<Track>& tracks
   options.Check();
   std::vector<ReregisteredImage> tried;
   if (!options.enable) return tried;
-  const std::map<uint32_t, Correspondences> by_image =
-      CorrespondencesByImage(tracks, bearings, reconstruction);
-  const double max_observed_ratio = options.max_inlier_ratio * MedianObservedRatio(by_image);
-  for (const auto& [image_id, c] : by_image) {
-    const int num_correspondences = static_cast<int>(c.bearings.size());
-    if (num_correspondences < options.min_num_correspondences ||
-        c.num_observed >= max_observed_ratio * num_correspondences) {
-      continue;
-    }
+  // Counted for every image first; the bearings and points gathered for the images tried alone
+  // (usually none).
+  const std::map<uint32_t, Correspondences> counts =
+      CorrespondencesByImage(tracks, bearings, reconstruction, [](uint32_t) { return false; });
+  const double max_observed_ratio = options.max_inlier_ratio * MedianObservedRatio(counts);
+  const auto left_out = [&](const Correspondences& c) {
+    return c.num_correspondences >= options.min_num_correspondences &&
+           c.num_observed < max_observed_ratio * c.num_correspondences;
+  };
+  std::set<uint32_t> candidates;
+  for (const auto& [image_id, c] : counts)
+    if (left_out(c)) candidates.insert(image_id);
+  if (candidates.empty()) return tried;
+  const std::map<uint32_t, Correspondences> by_image = CorrespondencesByImage(
+      tracks, bearings, reconstruction, [&](uint32_t id) { return candidates.count(id) > 0; });
+  for (const uint32_t image_id : candidates) {
+    const Correspondences& c = by_image.at(image_id);
+    const int num_correspondences = c.num_correspondences;
     const Image& image = reconstruction.images.at(image_id);
     ReregisteredImage result;
     result.image_id = image_id;

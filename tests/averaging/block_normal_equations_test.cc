@@ -129,5 +129,47 @@ TEST(BlockNormalEquations, AColumnInTwoBlocksCannotBeEliminated) {
   EXPECT_THROW(BlockNormalEquations(MakeMatrix(), {3}), std::invalid_argument);
 }
 
+// Enough blocks to be summed in shares on two threads: the same equations as on one, the
+// eliminated columns (one per block, as pair scales are) free and held alike.
+TEST(BlockNormalEquations, TwoThreadsAssembleWhatOneDoes) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> value(-1, 1);
+  std::uniform_int_distribution<int> column(0, 59);
+  const int num_blocks = 6000;
+  const int num_eliminated = 300;  // column 60 + k in block 20 k alone, across every share
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::VectorXd weights(num_blocks);
+  for (int b = 0; b < num_blocks; ++b) {
+    weights(b) = 0.5 + std::abs(value(rng));
+    for (int k = 0; k < 4; ++k) {
+      const int c = column(rng);
+      for (int r = 0; r < 3; ++r) triplets.emplace_back(3 * b + r, c, value(rng));
+    }
+    if (b % 20 == 0) {
+      for (int r = 0; r < 3; ++r) triplets.emplace_back(3 * b + r, 60 + b / 20, value(rng));
+    }
+  }
+  Eigen::SparseMatrix<double> B(3 * num_blocks, 60 + num_eliminated);
+  B.setFromTriplets(triplets.begin(), triplets.end());  // repeated entries add up
+  std::vector<int> eliminated(num_eliminated);
+  std::vector<bool> held(num_eliminated);
+  std::vector<double> held_values(num_eliminated);
+  for (int k = 0; k < num_eliminated; ++k) {
+    eliminated[k] = 60 + k;
+    held[k] = k % 2 == 0;
+    held_values[k] = 1.0 + 0.01 * k;
+  }
+  const BlockNormalEquations equations(B, eliminated);
+  Eigen::SparseMatrix<double> one, two;
+  Eigen::VectorXd rhs_one, rhs_two;
+  equations.Assemble(weights, held, held_values, &one, &rhs_one, 1);
+  equations.Assemble(weights, held, held_values, &two, &rhs_two, 2);
+  ASSERT_EQ(two.nonZeros(), one.nonZeros());
+  const Eigen::MatrixXd difference = Eigen::MatrixXd(two) - Eigen::MatrixXd(one);
+  EXPECT_LT(difference.norm(), 1e-9 * Eigen::MatrixXd(one).norm());
+  ASSERT_GT(rhs_one.norm(), 0);
+  EXPECT_LT((rhs_two - rhs_one).norm(), 1e-9 * rhs_one.norm());
+}
+
 }  // namespace
 }  // namespace ramap

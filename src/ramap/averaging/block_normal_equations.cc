@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "ramap/util/parallel.h"
+
 namespace ramap {
 namespace {
 
@@ -130,16 +132,11 @@ void BlockNormalEquations::BuildPattern(int num_columns) {
   std::fill(pattern_.valuePtr(), pattern_.valuePtr() + inner.size(), 0.0);
 }
 
-void BlockNormalEquations::Assemble(const Eigen::VectorXd& block_weights,
-                                    const std::vector<bool>& held,
-                                    const std::vector<double>& held_values,
-                                    Eigen::SparseMatrix<double>* normal,
-                                    Eigen::VectorXd* rhs) const {
-  *normal = pattern_;
-  double* values = normal->valuePtr();
-  rhs->setZero(pattern_.cols());
-  const int num_blocks = static_cast<int>(block_eliminated_.size());
-  for (int b = 0; b < num_blocks; ++b) {
+void BlockNormalEquations::AddBlocks(int begin, int end, const Eigen::VectorXd& block_weights,
+                                     const std::vector<bool>& held,
+                                     const std::vector<double>& held_values, double* values,
+                                     double* rhs) const {
+  for (int b = begin; b < end; ++b) {
     const double w = block_weights(b);
     const int k = block_eliminated_[b];
     const bool holds = k >= 0 && held[k];
@@ -151,7 +148,7 @@ void BlockNormalEquations::Assemble(const Eigen::VectorXd& block_weights,
     for (int i = first; i < column_begin_[b + 1]; ++i) {
       const double coupling_i = k >= 0 ? vectors_[i].dot(eliminated_vectors_[k]) : 0.0;
       // A held column's coupling moves to the right-hand side.
-      if (holds) (*rhs)(kept_[i]) -= w * coupling_i * held_values[k];
+      if (holds) rhs[kept_[i]] -= w * coupling_i * held_values[k];
       for (int j = first; j <= i; ++j) {
         double gram = vectors_[i].dot(vectors_[j]);
         // The Schur complement of the free column: its coupling removed.
@@ -159,6 +156,42 @@ void BlockNormalEquations::Assemble(const Eigen::VectorXd& block_weights,
         values[*index++] += w * gram;
       }
     }
+  }
+}
+
+void BlockNormalEquations::Assemble(const Eigen::VectorXd& block_weights,
+                                    const std::vector<bool>& held,
+                                    const std::vector<double>& held_values,
+                                    Eigen::SparseMatrix<double>* normal, Eigen::VectorXd* rhs,
+                                    int num_threads) const {
+  *normal = pattern_;
+  rhs->setZero(pattern_.cols());
+  const int num_blocks = static_cast<int>(block_eliminated_.size());
+  // A share smaller than this costs more in its own copy of the values than it saves.
+  constexpr int kMinBlocksPerShare = 2000;
+  const int num_shares = std::max(1, std::min(num_threads, num_blocks / kMinBlocksPerShare));
+  if (num_shares == 1) {
+    AddBlocks(0, num_blocks, block_weights, held, held_values, normal->valuePtr(), rhs->data());
+    return;
+  }
+  // Each share sums into values of its own, added to the first share's in order afterwards.
+  const Eigen::Index num_values = pattern_.nonZeros();
+  std::vector<Eigen::VectorXd> values(num_shares - 1, Eigen::VectorXd::Zero(num_values));
+  std::vector<Eigen::VectorXd> rhss(num_shares - 1, Eigen::VectorXd::Zero(pattern_.cols()));
+  ParallelFor(num_shares, num_shares, [&](size_t share) {
+    const int begin = static_cast<int>(share * num_blocks / num_shares);
+    const int end = static_cast<int>((share + 1) * num_blocks / num_shares);
+    if (share == 0) {
+      AddBlocks(begin, end, block_weights, held, held_values, normal->valuePtr(), rhs->data());
+    } else {
+      AddBlocks(begin, end, block_weights, held, held_values, values[share - 1].data(),
+                rhss[share - 1].data());
+    }
+  });
+  Eigen::Map<Eigen::VectorXd> first(normal->valuePtr(), num_values);
+  for (int share = 1; share < num_shares; ++share) {
+    first += values[share - 1];
+    *rhs += rhss[share - 1];
   }
 }
 

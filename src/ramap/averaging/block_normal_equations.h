@@ -26,10 +26,11 @@ class BlockNormalEquations {
   // The reduced normal equations: normal (lower triangle, the pattern fixed at construction) and
   // rhs, whose solution u minimises sum_b w_b |B_b v|^2 over the kept columns of v, with every
   // held eliminated column at its value and every free one at its block's minimiser. `held` and
-  // `held_values` are indexed like `eliminated_columns`.
+  // `held_values` are indexed like `eliminated_columns`. The blocks are summed on up to
+  // `num_threads` threads, each over a fixed share of them, so the sums do not depend on timing.
   void Assemble(const Eigen::VectorXd& block_weights, const std::vector<bool>& held,
                 const std::vector<double>& held_values, Eigen::SparseMatrix<double>* normal,
-                Eigen::VectorXd* rhs) const;
+                Eigen::VectorXd* rhs, int num_threads = 1) const;
 
   // The full vector v from the reduced solution u: kept columns from u, held eliminated columns
   // at their values, free ones at their block's minimiser given u.
@@ -42,6 +43,11 @@ class BlockNormalEquations {
  private:
   // The pattern of the reduced normal equations (lower triangle) and value_index_.
   void BuildPattern(int num_columns);
+
+  // Adds blocks [begin, end) to the pattern's values and to rhs (Assemble).
+  void AddBlocks(int begin, int end, const Eigen::VectorXd& block_weights,
+                 const std::vector<bool>& held, const std::vector<double>& held_values,
+                 double* values, double* rhs) const;
 
   // The Gram matrix of a block, sum_r B_rc B_rc' over its 3 rows, and its Schur complement are
   // computed at each assembly from the block's column vectors (3 entries each) rather than stored:

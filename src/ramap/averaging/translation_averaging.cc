@@ -445,6 +445,7 @@ class PositionSolver {
  public:
   PositionSolver(const StackedSystem& system, const TranslationAveragingOptions& options)
       : equations_(system.B, ExtraColumns(system)),
+        num_threads_(options.num_threads),
         pcg_{options.max_pcg_iterations, options.pcg_tolerance},
         factorization_(equations_.pattern()) {}
 
@@ -452,7 +453,7 @@ class PositionSolver {
   // their values and the free ones at their rows' minimisers.
   Eigen::VectorXd Solve(const Eigen::VectorXd& block_weights, const std::vector<bool>& held,
                         const std::vector<double>& held_values) {
-    equations_.Assemble(block_weights, held, held_values, &normal_, &rhs_);
+    equations_.Assemble(block_weights, held, held_values, &normal_, &rhs_, num_threads_);
     if (!SolveWithLastFactor()) {
       shift_ = factorization_.Factorize(normal_);
       last_solution_ = factorization_.Solve(rhs_);
@@ -492,6 +493,7 @@ class PositionSolver {
   }
 
   BlockNormalEquations equations_;
+  int num_threads_ = 1;
   Eigen::SparseMatrix<double> normal_;
   Eigen::VectorXd rhs_;
   Eigen::VectorXd last_solution_;  // of the reduced equations
@@ -600,6 +602,7 @@ void TranslationAveragingOptions::Check() const {
               "in [0, 1)", irls_cost_tolerance);
   CheckOption(irls_extrapolation >= 1 && irls_extrapolation <= 3, s + "irls_extrapolation",
               "in [1, 3]", irls_extrapolation);
+  CheckOption(num_threads >= 1, "TranslationAveragingOptions::num_threads", ">= 1", num_threads);
   CheckOption(max_pcg_iterations >= 0, s + "max_pcg_iterations", ">= 0", max_pcg_iterations);
   CheckOption(pcg_tolerance > 0 && pcg_tolerance < 1, "TranslationAveragingOptions::pcg_tolerance",
               "in (0, 1)", pcg_tolerance);

@@ -122,6 +122,10 @@ struct TranslationAveragingOptions {
   // settle. Extrapolated steps settle within it, at the same accuracy; 2.5 needed the fewest steps
   // of the factors tried (BENCHMARKS.md, "Scale").
   double irls_extrapolation = 2.5;
+  // Threads that assemble each IRLS step's equations (the mapper's --Mapper.num_threads; set by
+  // the mapper, not an option). A window of a sequence is solved on one: the windows run side by
+  // side.
+  int num_threads = 1;
   // Each IRLS step first solves its camera system by conjugate gradients preconditioned with the
   // last Cholesky factor and started at the last solution, and refactorises only when that does
   // not reach a residual of pcg_tolerance times the right-hand side's within max_pcg_iterations

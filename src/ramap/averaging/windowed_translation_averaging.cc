@@ -117,6 +117,7 @@ TranslationAveragingResult SolveWindow(size_t w, const WindowInputs& inputs,
     if (part.size() >= 2) parts.push_back(part);
   }
   TranslationAveragingOptions local = options;
+  local.num_threads = 1;
   local.max_num_tracks = std::max<int>(
       1, static_cast<int>(std::lround(static_cast<double>(options.max_num_tracks) *
                                       rotations.size() / std::max<size_t>(1, num_images))));

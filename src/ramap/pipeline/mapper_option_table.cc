@@ -634,6 +634,7 @@ OptionTable<MapperOptions> MapperOptionSections(const std::vector<std::string>& 
 void ResolveMapperOptions(MapperOptions* options) {
   CheckOptionValues(MapperOptionTable(), *options);
   options->bundle_adjustment.num_threads = options->num_threads;
+  options->translation_averaging.num_threads = options->num_threads;
   options->Check();
 }
 

@@ -79,7 +79,7 @@ MapperResult RunMapperJob(const MapperJob& job, std::ostream* progress, std::ost
       {"options", OptionValuesToJson(MapperOptionTable(), options)},
       {"pose_priors", PosePriorOptionsToJson(options.prior_source, options.prior_alignment)}};
   Timer write_timer;
-  WriteMapperOutput(result, job.output_path, job.output_format, run, warnings);
+  WriteMapperOutput(result, job.output_path, job.output_format, run, warnings, options.num_threads);
   if (progress != nullptr) {
     PrintStageLine(*progress, "writing the models", write_timer.ElapsedSeconds(), job.output_path);
   }

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <future>
 #include <system_error>
 
 #include "ramap/io/geo_export.h"
@@ -224,8 +225,24 @@ std::string PageTitle(const nlohmann::json& run_info) {
 }
 
 void WriteContents(const MapperResult& result, const std::string& folder, ModelFormat format,
-                   const nlohmann::json& run_info, std::ostream* warnings) {
+                   const nlohmann::json& run_info, std::ostream* warnings, int num_threads) {
   fs::create_directories(folder);
+  nlohmann::json summary = MapperSummaryToJson(result.summary);
+  summary["run"] = run_info;
+  // The page is for looking at the run; the models are the result. A page that cannot be made
+  // costs a warning, never the models. Its point cloud takes as long to build as the models take
+  // to write, so with a thread to spare the two go side by side (the future waits when it goes).
+  std::string page_problem;
+  std::future<void> page =
+      std::async(num_threads > 1 ? std::launch::async : std::launch::deferred, [&] {
+        try {
+          WriteHtmlReport(MapperPageData(result.reconstructions, summary,
+                                         StageSeconds(result.summary), PageTitle(run_info)),
+                          folder + "/report.html");
+        } catch (const std::exception& error) {
+          page_problem = error.what();
+        }
+      });
   for (size_t k = 0; k < result.reconstructions.size(); ++k) {
     const std::string model_path = folder + "/" + std::to_string(k);
     WriteColmapModel(result.reconstructions[k], model_path, format);
@@ -236,21 +253,11 @@ void WriteContents(const MapperResult& result, const std::string& folder, ModelF
       WriteGeoreference(result.reconstructions[k], *result.geodetic_origin, model_path);
     }
   }
-  nlohmann::json summary = MapperSummaryToJson(result.summary);
-  summary["run"] = run_info;
   WriteFileAtomically(folder + "/summary.json",
                       [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
-  // The page is for looking at the run; the models are the result. A page that cannot be made
-  // costs a warning, never the models.
-  try {
-    WriteHtmlReport(MapperPageData(result.reconstructions, summary, StageSeconds(result.summary),
-                                   PageTitle(run_info)),
-                    folder + "/report.html");
-  } catch (const std::exception& error) {
-    if (warnings != nullptr) {
-      *warnings << "ramap: warning: report.html not written: " << error.what() << "\n";
-    }
-  }
+  page.get();
+  if (!page_problem.empty() && warnings != nullptr)
+    *warnings << "ramap: warning: report.html not written: " << page_problem << "\n";
 }
 
 // Puts `from` at `to`: a plain rename when nothing is there, else an atomic exchange of the two
@@ -276,11 +283,12 @@ bool MoveIntoPlace(const fs::path& from, const fs::path& to, std::string* proble
 }  // namespace
 
 void WriteMapperOutput(const MapperResult& result, const std::string& output_path,
-                       ModelFormat format, const nlohmann::json& run_info, std::ostream* warnings) {
+                       ModelFormat format, const nlohmann::json& run_info, std::ostream* warnings,
+                       int num_threads) {
   if (!fs::exists(output_path)) {
     // A new folder appears whole, by one rename.
     StagedPath staged(output_path);
-    WriteContents(result, staged.path(), format, run_info, warnings);
+    WriteContents(result, staged.path(), format, run_info, warnings, num_threads);
     staged.Commit();
     return;
   }
@@ -323,7 +331,7 @@ void WriteMapperOutput(const MapperResult& result, const std::string& output_pat
                      "another --output_path)");
   }
   StagedPath staged(output_path + "/.ramap-output");
-  WriteContents(result, staged.path(), format, run_info, warnings);
+  WriteContents(result, staged.path(), format, run_info, warnings, num_threads);
   // Each new entry takes its old one's place in one atomic exchange, the old one going to the
   // staged folder that is removed after: an interrupt at any moment leaves every model whole,
   // either the earlier run's or this one's, never neither.

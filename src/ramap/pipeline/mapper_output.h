@@ -20,9 +20,10 @@ nlohmann::json MapperSummaryToJson(const MapperSummary& summary);
 // temporary folder first and moved into place only when complete, so a failure leaves no partial
 // model; model folders of an earlier run numbered beyond this run's components are removed.
 // `run_info` (options, input path, version) is stored in summary.json under "run". A report.html
-// that cannot be made is left out with a warning to `warnings`, when given.
+// that cannot be made is left out with a warning to `warnings`, when given. With more than one of
+// `num_threads`, the report is built while the models are written.
 void WriteMapperOutput(const MapperResult& result, const std::string& output_path,
                        ModelFormat format, const nlohmann::json& run_info,
-                       std::ostream* warnings = nullptr);
+                       std::ostream* warnings = nullptr, int num_threads = 1);
 
 }  // namespace ramap

@@ -154,7 +154,7 @@ ReconstructResult RunReconstructJob(const ReconstructJob& job, std::ostream* pro
       {"loop_closure",
        LoopClosureToJson(options.close_loops, options.loop_closure, closed.closure)}};
   WriteMapperOutput(result.mapping, job.output_path + "/sparse", ModelFormat::kBinary, run,
-                    warnings);
+                    warnings, options.mapper.num_threads);
   created_database.Keep();
   created_folder.Keep();
   return result;

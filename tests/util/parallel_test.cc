@@ -40,5 +40,29 @@ TEST(ParallelFor, CarriesAWorkersExceptionToTheCaller) {
   }
 }
 
+TEST(NumShares, OnePerThreadButNoneTooSmall) {
+  EXPECT_EQ(NumShares(10000, 2, 2000), 2u);
+  EXPECT_EQ(NumShares(3999, 2, 2000), 1u);  // two would hold under 2000 each
+  EXPECT_EQ(NumShares(10000, 8, 2000), 5u);
+  EXPECT_EQ(NumShares(0, 2, 1), 1u);
+  EXPECT_EQ(NumShares(100, 0, 1), 1u);
+}
+
+TEST(ForEachShare, CoversTheRangeOnceInContiguousSharesInOrder) {
+  for (const size_t num_shares : {1u, 2u, 3u, 7u}) {
+    std::vector<std::pair<size_t, size_t>> bounds(num_shares);
+    std::vector<std::atomic<int>> counts(1001);
+    ForEachShare(counts.size(), num_shares, [&](size_t share, size_t begin, size_t end) {
+      bounds[share] = {begin, end};
+      for (size_t k = begin; k < end; ++k) ++counts[k];
+    });
+    for (const auto& count : counts) EXPECT_EQ(count, 1);
+    EXPECT_EQ(bounds.front().first, 0u);
+    EXPECT_EQ(bounds.back().second, counts.size());
+    for (size_t share = 1; share < num_shares; ++share)
+      EXPECT_EQ(bounds[share].first, bounds[share - 1].second);
+  }
+}
+
 }  // namespace
 }  // namespace ramap

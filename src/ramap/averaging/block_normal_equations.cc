@@ -166,30 +166,22 @@ void BlockNormalEquations::Assemble(const Eigen::VectorXd& block_weights,
                                     int num_threads) const {
   *normal = pattern_;
   rhs->setZero(pattern_.cols());
-  const int num_blocks = static_cast<int>(block_eliminated_.size());
+  const size_t num_blocks = block_eliminated_.size();
   // A share smaller than this costs more in its own copy of the values than it saves.
-  constexpr int kMinBlocksPerShare = 2000;
-  const int num_shares = std::max(1, std::min(num_threads, num_blocks / kMinBlocksPerShare));
-  if (num_shares == 1) {
-    AddBlocks(0, num_blocks, block_weights, held, held_values, normal->valuePtr(), rhs->data());
-    return;
-  }
-  // Each share sums into values of its own, added to the first share's in order afterwards.
+  constexpr size_t kMinBlocksPerShare = 2000;
+  const size_t num_shares = NumShares(num_blocks, num_threads, kMinBlocksPerShare);
+  // Each share but the first sums into values of its own, added to the first's in order after.
   const Eigen::Index num_values = pattern_.nonZeros();
   std::vector<Eigen::VectorXd> values(num_shares - 1, Eigen::VectorXd::Zero(num_values));
   std::vector<Eigen::VectorXd> rhss(num_shares - 1, Eigen::VectorXd::Zero(pattern_.cols()));
-  ParallelFor(num_shares, num_shares, [&](size_t share) {
-    const int begin = static_cast<int>(share * num_blocks / num_shares);
-    const int end = static_cast<int>((share + 1) * num_blocks / num_shares);
-    if (share == 0) {
-      AddBlocks(begin, end, block_weights, held, held_values, normal->valuePtr(), rhs->data());
-    } else {
-      AddBlocks(begin, end, block_weights, held, held_values, values[share - 1].data(),
-                rhss[share - 1].data());
-    }
+  ForEachShare(num_blocks, num_shares, [&](size_t share, size_t begin, size_t end) {
+    double* share_values = share == 0 ? normal->valuePtr() : values[share - 1].data();
+    double* share_rhs = share == 0 ? rhs->data() : rhss[share - 1].data();
+    AddBlocks(static_cast<int>(begin), static_cast<int>(end), block_weights, held, held_values,
+              share_values, share_rhs);
   });
   Eigen::Map<Eigen::VectorXd> first(normal->valuePtr(), num_values);
-  for (int share = 1; share < num_shares; ++share) {
+  for (size_t share = 1; share < num_shares; ++share) {
     first += values[share - 1];
     *rhs += rhss[share - 1];
   }

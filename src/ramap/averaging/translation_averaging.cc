@@ -274,17 +274,16 @@ struct StackedSystem {
 // B x, its rows in fixed shares on system.num_threads threads. Each entry sums its row in column
 // order, as the product by the column-major B does: the same numbers on any number of threads.
 Eigen::VectorXd ResidualsOf(const StackedSystem& system, const Eigen::VectorXd& x) {
-  const Eigen::Index num_rows = system.rows.rows();
+  const size_t num_rows = static_cast<size_t>(system.rows.rows());
   // A share smaller than this gains less than its thread costs.
-  constexpr Eigen::Index kMinRowsPerShare = 6000;
-  const Eigen::Index num_shares = std::max<Eigen::Index>(
-      1, std::min<Eigen::Index>(system.num_threads, num_rows / kMinRowsPerShare));
+  constexpr size_t kMinRowsPerShare = 6000;
+  const size_t num_shares = NumShares(num_rows, system.num_threads, kMinRowsPerShare);
   if (num_shares == 1) return system.rows * x;
   Eigen::VectorXd residuals(num_rows);
-  ParallelFor(num_shares, static_cast<int>(num_shares), [&](size_t share) {
-    const Eigen::Index begin = static_cast<Eigen::Index>(share) * num_rows / num_shares;
-    const Eigen::Index end = static_cast<Eigen::Index>(share + 1) * num_rows / num_shares;
-    residuals.segment(begin, end - begin) = system.rows.middleRows(begin, end - begin) * x;
+  ForEachShare(num_rows, num_shares, [&](size_t, size_t begin, size_t end) {
+    const auto length = static_cast<Eigen::Index>(end - begin);
+    residuals.segment(static_cast<Eigen::Index>(begin), length) =
+        system.rows.middleRows(static_cast<Eigen::Index>(begin), length) * x;
   });
   return residuals;
 }

@@ -144,12 +144,11 @@ double SquaredErrorPx(const Observation& o, const Reconstruction& reconstruction
 std::vector<double> SquaredErrorsPx(const std::vector<Observation>& observations,
                                     const Reconstruction& reconstruction, int num_threads) {
   std::vector<double> errors(observations.size());
-  const size_t num_shares = std::max(1, num_threads);
-  ParallelFor(num_shares, num_threads, [&](size_t share) {
-    const size_t end = (share + 1) * observations.size() / num_shares;
-    for (size_t k = share * observations.size() / num_shares; k < end; ++k)
-      errors[k] = SquaredErrorPx(observations[k], reconstruction);
-  });
+  ForEachShare(observations.size(), NumShares(observations.size(), num_threads, 1),
+               [&](size_t, size_t begin, size_t end) {
+                 for (size_t k = begin; k < end; ++k)
+                   errors[k] = SquaredErrorPx(observations[k], reconstruction);
+               });
   return errors;
 }
 

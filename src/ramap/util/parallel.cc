@@ -1,5 +1,6 @@
 #include "ramap/util/parallel.h"
 
+#include <algorithm>
 #include <atomic>
 #include <exception>
 #include <mutex>
@@ -47,6 +48,19 @@ void ParallelFor(size_t count, int num_threads, const std::function<void(size_t)
   for (std::thread& thread : threads) thread.join();
   if (count > 0) line.Finish(done, done == count);
   if (first_error) std::rethrow_exception(first_error);
+}
+
+size_t NumShares(size_t count, int num_threads, size_t min_per_share) {
+  const size_t most = count / std::max<size_t>(1, min_per_share);
+  return std::max<size_t>(1, std::min<size_t>(std::max(1, num_threads), most));
+}
+
+void ForEachShare(size_t count, size_t num_shares,
+                  const std::function<void(size_t share, size_t begin, size_t end)>& work) {
+  num_shares = std::max<size_t>(1, num_shares);
+  ParallelFor(num_shares, static_cast<int>(num_shares), [&](size_t share) {
+    work(share, share * count / num_shares, (share + 1) * count / num_shares);
+  });
 }
 
 }  // namespace ramap

@@ -33,7 +33,7 @@ std::vector<std::pair<int, Eigen::Vector3d>> BlockColumns(
 
 }  // namespace
 
-BlockNormalEquations::BlockNormalEquations(const Eigen::SparseMatrix<double>& B,
+BlockNormalEquations::BlockNormalEquations(const Eigen::SparseMatrix<double, Eigen::RowMajor>& B,
                                            const std::vector<int>& eliminated_columns)
     : eliminated_columns_(eliminated_columns),
       eliminated_block_(eliminated_columns.size(), -1),
@@ -50,14 +50,13 @@ BlockNormalEquations::BlockNormalEquations(const Eigen::SparseMatrix<double>& B,
     reduced_index[c] = static_cast<int>(kept_columns_.size());
     kept_columns_.push_back(c);
   }
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> rows = B;
   const int num_blocks = static_cast<int>(B.rows() / 3);
   column_begin_.reserve(num_blocks + 1);
   block_eliminated_.assign(num_blocks, -1);
   eliminated_vectors_.assign(eliminated_columns.size(), Eigen::Vector3d::Zero());
   for (int b = 0; b < num_blocks; ++b) {
     column_begin_.push_back(static_cast<int>(kept_.size()));
-    for (const auto& [column, vector] : BlockColumns(rows, b)) {
+    for (const auto& [column, vector] : BlockColumns(B, b)) {
       const int k = eliminated_index[column];
       if (k >= 0) {
         if (eliminated_block_[k] >= 0) {

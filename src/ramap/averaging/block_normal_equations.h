@@ -19,8 +19,9 @@ namespace ramap {
 class BlockNormalEquations {
  public:
   // `B` has 3 rows per block. Each column of `eliminated_columns` must appear in one block only.
-  // The other columns are the reduced system's, in their order.
-  BlockNormalEquations(const Eigen::SparseMatrix<double>& B,
+  // The other columns are the reduced system's, in their order. `B` by rows, as its blocks are
+  // read (a column-major B converts on the way in).
+  BlockNormalEquations(const Eigen::SparseMatrix<double, Eigen::RowMajor>& B,
                        const std::vector<int>& eliminated_columns);
 
   // The reduced normal equations: normal (lower triangle, the pattern fixed at construction) and

@@ -259,7 +259,8 @@ std::vector<Constraint> BuildConstraints(const std::map<uint32_t, Eigen::Quatern
 // multiplies the prior's position, moving it to the right-hand side).
 struct StackedSystem {
   Eigen::SparseMatrix<double> B;
-  // B by rows, for products over row ranges on several threads (ResidualsOf).
+  // B by rows, for products over row ranges on several threads (ResidualsOf) and for the normal
+  // equations' blocks (BlockNormalEquations).
   Eigen::SparseMatrix<double, Eigen::RowMajor> rows;
   int num_threads = 1;
   int num_position_cols = 0;
@@ -465,8 +466,8 @@ int UpdateHeldScales(const StackedSystem& system, const IrlsLayout& layout, Eige
 class PositionSolver {
  public:
   PositionSolver(const StackedSystem& system, const TranslationAveragingOptions& options)
-      : equations_(system.B, ExtraColumns(system)),
-        num_threads_(options.num_threads),
+      : equations_(system.rows, ExtraColumns(system)),
+        num_threads_(system.num_threads),
         pcg_{options.max_pcg_iterations, options.pcg_tolerance},
         factorization_(equations_.pattern()) {}
 

@@ -41,13 +41,12 @@ std::map<uint32_t, std::vector<int>> TrackOfKeypoint(const std::vector<Track>& t
 }
 
 // For each image, its keypoints whose track triangulated, whether or not the point kept them: the
-// counts for every image, the bearings and points only for those `gather` accepts.
+// counts for every image, the bearings and points only for those `gather` accepts. `track_of` is
+// TrackOfKeypoint's table.
 template <typename Gather>
-std::map<uint32_t, Correspondences> CorrespondencesByImage(const std::vector<Track>& tracks,
-                                                           const KeypointBearings& bearings,
-                                                           const Reconstruction& reconstruction,
-                                                           const Gather& gather) {
-  const std::map<uint32_t, std::vector<int>> track_of = TrackOfKeypoint(tracks, bearings);
+std::map<uint32_t, Correspondences> CorrespondencesByImage(
+    const std::vector<Track>& tracks, const std::map<uint32_t, std::vector<int>>& track_of,
+    const KeypointBearings& bearings, const Reconstruction& reconstruction, const Gather& gather) {
   std::map<uint32_t, Correspondences> by_image;
   for (const auto& [point3D_id, point] : reconstruction.points3D) {
     // A point's track holds some elements of the track it came from: any one finds it.
@@ -114,8 +113,9 @@ std::vector<ReregisteredImage> ReregisterImages(const std::vector<Track>& tracks
   if (!options.enable) return tried;
   // Counted for every image first; the bearings and points gathered for the images tried alone
   // (usually none).
-  const std::map<uint32_t, Correspondences> counts =
-      CorrespondencesByImage(tracks, bearings, reconstruction, [](uint32_t) { return false; });
+  const std::map<uint32_t, std::vector<int>> track_of = TrackOfKeypoint(tracks, bearings);
+  const std::map<uint32_t, Correspondences> counts = CorrespondencesByImage(
+      tracks, track_of, bearings, reconstruction, [](uint32_t) { return false; });
   const double max_observed_ratio = options.max_inlier_ratio * MedianObservedRatio(counts);
   const auto left_out = [&](const Correspondences& c) {
     return c.num_correspondences >= options.min_num_correspondences &&
@@ -125,8 +125,9 @@ std::vector<ReregisteredImage> ReregisterImages(const std::vector<Track>& tracks
   for (const auto& [image_id, c] : counts)
     if (left_out(c)) candidates.insert(image_id);
   if (candidates.empty()) return tried;
-  const std::map<uint32_t, Correspondences> by_image = CorrespondencesByImage(
-      tracks, bearings, reconstruction, [&](uint32_t id) { return candidates.count(id) > 0; });
+  const std::map<uint32_t, Correspondences> by_image =
+      CorrespondencesByImage(tracks, track_of, bearings, reconstruction,
+                             [&](uint32_t id) { return candidates.count(id) > 0; });
   for (const uint32_t image_id : candidates) {
     const Correspondences& c = by_image.at(image_id);
     const int num_correspondences = c.num_correspondences;

@@ -11,6 +11,7 @@
 
 #include "colmap_compat.h"
 #include "commands.h"
+#include "ramap/util/allocator.h"
 #include "ramap/util/error.h"
 #include "ramap/util/staged_output.h"
 #include "ramap_version.h"
@@ -44,6 +45,7 @@ int main(int argc, char** argv) {
     PrintUsage(std::cout);
     return argc < 2 ? 1 : 0;
   }
+  ramap::KeepFreedMemoryForReuse();
   ramap::InstallInterruptCleanup();
   // Ceres reports a failed linear solve inside a step it then retries as a glog WARNING; the
   // solver recovers, so only errors reach the user.

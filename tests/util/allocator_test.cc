@@ -19,7 +19,8 @@ TEST(KeepFreedMemoryForReuse, AFreedBlockOfEightMebibytesStaysInTheHeap) {
   KeepFreedMemoryForReuse();
   constexpr size_t kBytes = size_t{8} << 20;
   const size_t mapped_before = mallinfo2().hblkhd;
-  void* block = std::malloc(kBytes);
+  // volatile: the compiler may not drop an allocation whose address it cannot follow.
+  void* volatile block = std::malloc(kBytes);
   ASSERT_NE(block, nullptr);
   std::memset(block, 1, kBytes);
   // Not a block of its own from mmap, which free would unmap.

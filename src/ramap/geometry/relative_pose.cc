@@ -19,6 +19,7 @@
 #include "ramap/geometry/triangulation.h"
 #include "ramap/util/error.h"
 #include "ramap/util/even_subset.h"
+#include "ramap/util/statistics.h"
 
 namespace ramap {
 namespace {
@@ -31,13 +32,6 @@ RelativePoseEstimate Reject(RelativePoseRejection rejection, const std::string& 
   estimate.rejection = rejection;
   estimate.reason = reason;
   return estimate;
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0;
-  const size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  return values[mid];
 }
 
 // The median (Median's element) of the angles between R a_k and b_k, unit vectors, over `indices`.
@@ -750,7 +744,7 @@ RelativePoseEstimate FinalEstimate(const Bearings& f1, const Bearings& f2,
   std::vector<double> residuals;
   for (int k : inliers) residuals.push_back(EpipolarError(R, t, f1[k], f2[k]));
   const double median_parallax = MedianAngle(f1, f2, R, inliers);
-  estimate.median_residual = Median(residuals);
+  estimate.median_residual = residuals.empty() ? 0.0 : Median(residuals);
   estimate.median_parallax_deg = median_parallax * kRadToDeg;
   estimate.cheirality_ratio = static_cast<double>(num_in_front) / inliers.size();
   if (median_parallax < thresholds.pure_rotation_parallax) {

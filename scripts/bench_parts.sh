@@ -22,6 +22,7 @@ variants=(
   "averaging alone|--Mapper.refine 0 --Mapper.subset_adjustment 0"
   "+1 BA round|--BundleAdjustment.num_rounds 2"
   "no filtering between BA's solves|--BundleAdjustment.max_reprojection_error_px 1e9"
+  "points seen twice adjusted too|--BundleAdjustment.min_track_length 2"
   "loss scale 2 px (before)|--BundleAdjustment.loss_scale_px 2"
   "no re-registration|--Reregistration.enable 0"
   "no test of given intrinsics (k1)|--BundleAdjustment.given_intrinsics_test 0"

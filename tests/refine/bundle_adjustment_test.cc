@@ -269,6 +269,7 @@ TEST(BundleAdjustment, PointSubsetPrefersLongTracksAndCoversEveryImage) {
     point.track = kept;
   }
   BundleAdjustmentOptions options;
+  options.min_track_length = 2;  // the points of images 1-4 alone: the next test
   options.max_num_points = 60;
   options.min_observations_per_image = 55;
   const Reconstruction subset = PointsForBundleAdjustment(scene.reconstruction, options);
@@ -296,6 +297,63 @@ TEST(BundleAdjustment, PointSubsetPrefersLongTracksAndCoversEveryImage) {
 }
 
 }  // namespace
+// Points 0-99 seen by every image, 100-199 by images 1 and 2 alone.
+Scene SceneWithTwoViewPoints() {
+  std::mt19937 rng(4);
+  Scene scene = MakeScene(rng);
+  for (auto& [id, point] : scene.reconstruction.points3D) {
+    if (id < 100) continue;
+    std::vector<TrackElement> kept;
+    for (const TrackElement& e : point.track) {
+      if (e.image_id <= 2) {
+        kept.push_back(e);
+      } else {
+        scene.reconstruction.images.at(e.image_id).points2D[e.point2D_idx].point3D_id =
+            kInvalidPoint3DId;
+      }
+    }
+    point.track = kept;
+  }
+  return scene;
+}
+
+TEST(BundleAdjustment, PointsSeenTwiceLeftOutWhereLongerTracksCoverTheirImages) {
+  const Scene scene = SceneWithTwoViewPoints();
+  BundleAdjustmentOptions options;
+  options.min_observations_per_image = 100;
+  ASSERT_EQ(options.min_track_length, 3);
+  Reconstruction subset = PointsForBundleAdjustment(scene.reconstruction, options);
+  EXPECT_EQ(subset.points3D.size(), 100u);
+  for (const auto& [id, point] : subset.points3D) EXPECT_LT(id, 100u);
+  for (const Point2D& point : subset.images.at(1).points2D) {
+    EXPECT_TRUE(point.point3D_id == kInvalidPoint3DId || point.point3D_id < 100);
+  }
+  // Images 1 and 2 short of observations: every point they see, the two-view ones included.
+  options.min_observations_per_image = 101;
+  EXPECT_EQ(PointsForBundleAdjustment(scene.reconstruction, options).points3D.size(), 200u);
+  options.min_observations_per_image = 100;
+  options.min_track_length = 2;
+  EXPECT_EQ(PointsForBundleAdjustment(scene.reconstruction, options).points3D.size(), 200u);
+  options.min_track_length = 1;
+  EXPECT_THROW(PointsForBundleAdjustment(scene.reconstruction, options), std::exception);
+}
+
+TEST(BundleAdjustment, ATwoImageModelKeepsEveryPoint) {
+  Scene scene = SceneWithTwoViewPoints();
+  for (auto it = scene.reconstruction.points3D.begin();
+       it != scene.reconstruction.points3D.end();) {
+    it = it->first < 100 ? scene.reconstruction.points3D.erase(it) : std::next(it);
+  }
+  for (uint32_t id = 3; id <= 10; ++id) scene.reconstruction.images.erase(id);
+  for (auto& [id, image] : scene.reconstruction.images) {
+    for (Point2D& point : image.points2D) {
+      if (point.point3D_id < 100) point.point3D_id = kInvalidPoint3DId;
+    }
+  }
+  const BundleAdjustmentOptions options;
+  EXPECT_EQ(PointsForBundleAdjustment(scene.reconstruction, options).points3D.size(), 100u);
+}
+
 TEST(BundleAdjustment, LongTracksThinnedEvenlyKeepingTheirEnds) {
   std::mt19937 rng(5);
   const Scene scene = MakeScene(rng);  // every point seen by images 1-10

@@ -421,6 +421,11 @@ void AddBundleAdjuster(Table& t) {
       "points adjusted at most (0: all); every track is triangulated again "
       "after"));
   t.push_back(Number(
+      "BundleAdjustment.min_track_length",
+      [](auto& o) -> auto& { return o.bundle_adjustment.min_track_length; }, AtLeast(2),
+      "points seen in fewer images are adjusted only for images the longer tracks leave with "
+      "too few observations (2: every point); every track is triangulated again after"));
+  t.push_back(Number(
       "BundleAdjustment.max_observations_per_point",
       [](auto& o) -> auto& { return o.bundle_adjustment.max_observations_per_point; }, AtLeast(0),
       "observations of one point adjusted at most, spread evenly along its track (0: all); "

@@ -458,6 +458,7 @@ void BundleAdjustmentOptions::Check() const {
   CheckOption(max_reprojection_error_px > 0, "BundleAdjustmentOptions::max_reprojection_error_px",
               "> 0", max_reprojection_error_px);
   CheckOption(max_num_points >= 0, s + "max_num_points", ">= 0", max_num_points);
+  CheckOption(min_track_length >= 2, s + "min_track_length", ">= 2", min_track_length);
   CheckOption(max_principal_point_shift >= 0, s + "max_principal_point_shift", ">= 0",
               max_principal_point_shift);
   CheckOption(max_observations_per_point == 0 || max_observations_per_point >= 2,
@@ -530,8 +531,11 @@ Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
                                          const BundleAdjustmentOptions& options) {
   options.Check();
   const bool all_points =
-      options.max_num_points == 0 ||
-      static_cast<int>(reconstruction.points3D.size()) <= options.max_num_points;
+      options.min_track_length <= 2 &&
+      (options.max_num_points == 0 ||
+       static_cast<int>(reconstruction.points3D.size()) <= options.max_num_points);
+  const size_t budget =
+      options.max_num_points == 0 ? reconstruction.points3D.size() : options.max_num_points;
   std::map<uint64_t, std::vector<TrackElement>> chosen;  // point id -> the observations adjusted
   // (track length, point id), longest first: the lengths read once rather than in every
   // comparison, which made the sort a large share of a subset's set-up.
@@ -549,14 +553,18 @@ Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
     std::vector<TrackElement> track =
         ThinnedTrack(reconstruction.points3D.at(id).track, options.max_observations_per_point);
     if (!all_points) {
-      // Past the budget, a point is taken only while one of its images has too few observations.
-      if (static_cast<int>(chosen.size()) >= options.max_num_points &&
+      // Past the budget, or seen in too few images, a point is taken only while one of its
+      // images has too few observations. Short tracks come last and do not count: an image
+      // the longer tracks leave short keeps all of its own.
+      const bool short_track = static_cast<int>(length) < options.min_track_length;
+      if ((chosen.size() >= budget || short_track) &&
           std::none_of(track.begin(), track.end(), [&](const TrackElement& e) {
             return per_image[e.image_id] < options.min_observations_per_image;
           })) {
         continue;
       }
-      for (const TrackElement& e : track) ++per_image[e.image_id];
+      if (!short_track)
+        for (const TrackElement& e : track) ++per_image[e.image_id];
     }
     chosen.emplace(id, std::move(track));
   }

@@ -31,6 +31,7 @@ BundleAdjustmentSummary BundleAdjustModel(Reconstruction* model,
   // Every point: a capped adjustment would drop the others from the model written back.
   BundleAdjustmentOptions all_points = options;
   all_points.max_num_points = 0;
+  all_points.min_track_length = 2;
   return BundleAdjust(bearings, focal_lengths_px, model, all_points);
 }
 

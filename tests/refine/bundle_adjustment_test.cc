@@ -250,24 +250,31 @@ TEST(BundleAdjustment, DriftingPrincipalPointHeldAndSolvedAgain) {
   EXPECT_GT(summary.num_iterations, held_summary.num_iterations);
 }
 
-TEST(BundleAdjustment, PointSubsetPrefersLongTracksAndCoversEveryImage) {
-  std::mt19937 rng(3);
-  Scene scene = MakeScene(rng);
-  // Points 0-49 seen by every image; 50-199 cut to images 1-2 only, except 150-199 seen by 3-4.
-  for (auto& [id, point] : scene.reconstruction.points3D) {
-    if (id < 50) continue;
+// Detaches every observation of point `id` in image `image_id` for which `keep` is false.
+template <typename Keep>
+void KeepObservationsWhere(Scene* scene, Keep keep) {
+  for (auto& [id, point] : scene->reconstruction.points3D) {
     std::vector<TrackElement> kept;
     for (const TrackElement& e : point.track) {
-      const bool keep = id < 150 ? e.image_id <= 2 : (e.image_id == 3 || e.image_id == 4);
-      if (keep) {
+      if (keep(id, e.image_id)) {
         kept.push_back(e);
       } else {
-        scene.reconstruction.images.at(e.image_id).points2D[e.point2D_idx].point3D_id =
+        scene->reconstruction.images.at(e.image_id).points2D[e.point2D_idx].point3D_id =
             kInvalidPoint3DId;
       }
     }
     point.track = kept;
   }
+}
+
+TEST(BundleAdjustment, PointSubsetPrefersLongTracksAndCoversEveryImage) {
+  std::mt19937 rng(3);
+  Scene scene = MakeScene(rng);
+  // Points 0-49 seen by every image; 50-199 cut to images 1-2 only, except 150-199 seen by 3-4.
+  KeepObservationsWhere(&scene, [](uint64_t id, uint32_t image_id) {
+    if (id < 50) return true;
+    return id < 150 ? image_id <= 2 : (image_id == 3 || image_id == 4);
+  });
   BundleAdjustmentOptions options;
   options.min_track_length = 2;  // the points of images 1-4 alone: the next test
   options.max_num_points = 60;
@@ -301,19 +308,8 @@ TEST(BundleAdjustment, PointSubsetPrefersLongTracksAndCoversEveryImage) {
 Scene SceneWithTwoViewPoints() {
   std::mt19937 rng(4);
   Scene scene = MakeScene(rng);
-  for (auto& [id, point] : scene.reconstruction.points3D) {
-    if (id < 100) continue;
-    std::vector<TrackElement> kept;
-    for (const TrackElement& e : point.track) {
-      if (e.image_id <= 2) {
-        kept.push_back(e);
-      } else {
-        scene.reconstruction.images.at(e.image_id).points2D[e.point2D_idx].point3D_id =
-            kInvalidPoint3DId;
-      }
-    }
-    point.track = kept;
-  }
+  KeepObservationsWhere(&scene,
+                        [](uint64_t id, uint32_t image_id) { return id < 100 || image_id <= 2; });
   return scene;
 }
 

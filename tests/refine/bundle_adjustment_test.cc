@@ -303,7 +303,6 @@ TEST(BundleAdjustment, PointSubsetPrefersLongTracksAndCoversEveryImage) {
   EXPECT_EQ(PointsForBundleAdjustment(scene.reconstruction, options).points3D.size(), 200u);
 }
 
-}  // namespace
 // Points 0-99 seen by every image, 100-199 by images 1 and 2 alone.
 Scene SceneWithTwoViewPoints() {
   std::mt19937 rng(4);
@@ -335,21 +334,18 @@ TEST(BundleAdjustment, PointsSeenTwiceLeftOutWhereLongerTracksCoverTheirImages) 
 }
 
 TEST(BundleAdjustment, ATwoImageModelKeepsEveryPoint) {
-  Scene scene = SceneWithTwoViewPoints();
-  for (auto it = scene.reconstruction.points3D.begin();
-       it != scene.reconstruction.points3D.end();) {
-    it = it->first < 100 ? scene.reconstruction.points3D.erase(it) : std::next(it);
-  }
+  std::mt19937 rng(6);
+  Scene scene = MakeScene(rng);
+  KeepObservationsWhere(&scene, [](uint64_t, uint32_t image_id) { return image_id <= 2; });
   for (uint32_t id = 3; id <= 10; ++id) scene.reconstruction.images.erase(id);
-  for (auto& [id, image] : scene.reconstruction.images) {
-    for (Point2D& point : image.points2D) {
-      if (point.point3D_id < 100) point.point3D_id = kInvalidPoint3DId;
-    }
-  }
-  const BundleAdjustmentOptions options;
-  EXPECT_EQ(PointsForBundleAdjustment(scene.reconstruction, options).points3D.size(), 100u);
+  BundleAdjustmentOptions options;
+  EXPECT_EQ(PointsForBundleAdjustment(scene.reconstruction, options).points3D.size(), 200u);
+  // The points seen twice do not count toward an image's floor: past it, still every point.
+  options.min_observations_per_image = 50;
+  EXPECT_EQ(PointsForBundleAdjustment(scene.reconstruction, options).points3D.size(), 200u);
 }
 
+}  // namespace
 TEST(BundleAdjustment, LongTracksThinnedEvenlyKeepingTheirEnds) {
   std::mt19937 rng(5);
   const Scene scene = MakeScene(rng);  // every point seen by images 1-10

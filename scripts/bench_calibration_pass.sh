@@ -10,12 +10,16 @@
 #
 #   scripts/bench_calibration_pass.sh [SEED ...]      (default: seeds 1 to 6)
 #
-# Settings: RAMAP_BINARY (default build/ramap).
+# Settings: RAMAP_BINARY (default build/ramap); RAMAP_MAPPER_ARGS: options added to the first
+# column's run; RAMAP_BASELINE_ARGS: the second column's options instead of
+# `--Mapper.calibration_pass_num_tracks 0`.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 ramap=${RAMAP_BINARY:-$root/build/ramap}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+read -r -a mapper_args <<< "${RAMAP_MAPPER_ARGS:-}"
+read -r -a baseline_args <<< "${RAMAP_BASELINE_ARGS:---Mapper.calibration_pass_num_tracks 0}"
 seeds=("$@")
 ((${#seeds[@]})) || seeds=(1 2 3 4 5 6)
 # name|views|arc (deg)|distance|elevation swing (deg)
@@ -45,7 +49,7 @@ print("%.2f, %.2f s%s" % (100 * auc, float(sys.argv[4]) - float(sys.argv[3]),
 PY
 }
 
-echo "| scene | seed | guess | defaults: AUC@3, s | calibration pass on the full budgets: AUC@3, s |"
+echo "| scene | seed | guess | defaults ${mapper_args[*]}: AUC@3, s | ${baseline_args[*]}: AUC@3, s |"
 echo "| --- | --- | --- | --- | --- |"
 declare -a default_aucs=() full_aucs=()
 for layout in "${layouts[@]}"; do
@@ -63,9 +67,8 @@ for layout in "${layouts[@]}"; do
       db=$scene/guess_$guess.db
       cp "$scene/database.db" "$db"
       python3 "$root/scripts/fixating_scene.py" unknown "$db" --guess_factor "$guess"
-      defaults=$(run "$db" "$scene/ground_truth" "$scene/defaults_$guess")
-      full=$(run "$db" "$scene/ground_truth" "$scene/full_$guess" \
-        --Mapper.calibration_pass_num_tracks 0)
+      defaults=$(run "$db" "$scene/ground_truth" "$scene/defaults_$guess" "${mapper_args[@]}")
+      full=$(run "$db" "$scene/ground_truth" "$scene/full_$guess" "${baseline_args[@]}")
       echo "| $name | $seed | $guess | $defaults | $full |"
       default_aucs+=("${defaults%%,*}")
       full_aucs+=("${full%%,*}")
@@ -77,7 +80,7 @@ import sys
 def mean(values):
     numbers = [float(v) for v in values.split() if v != "failed"]
     return sum(numbers) / len(numbers), len(numbers)
-for label, values in (("defaults", sys.argv[1]), ("on the full budgets", sys.argv[2])):
+for label, values in (("first column", sys.argv[1]), ("second column", sys.argv[2])):
     m, n = mean(values)
     print("\nmean AUC@3, %s: %.2f over %d scenes" % (label, m, n), end="")
 print()

@@ -51,7 +51,7 @@ PY
 
 echo "| scene | seed | guess | defaults ${mapper_args[*]}: AUC@3, s | ${baseline_args[*]}: AUC@3, s |"
 echo "| --- | --- | --- | --- | --- |"
-declare -a default_aucs=() full_aucs=()
+declare -a default_aucs=() baseline_aucs=()
 for layout in "${layouts[@]}"; do
   IFS='|' read -r name views arc distance elevation <<< "$layout"
   trajectory=$work/${name// /_}.txt
@@ -68,14 +68,14 @@ for layout in "${layouts[@]}"; do
       cp "$scene/database.db" "$db"
       python3 "$root/scripts/fixating_scene.py" unknown "$db" --guess_factor "$guess"
       defaults=$(run "$db" "$scene/ground_truth" "$scene/defaults_$guess" "${mapper_args[@]}")
-      full=$(run "$db" "$scene/ground_truth" "$scene/full_$guess" "${baseline_args[@]}")
-      echo "| $name | $seed | $guess | $defaults | $full |"
+      baseline=$(run "$db" "$scene/ground_truth" "$scene/baseline_$guess" "${baseline_args[@]}")
+      echo "| $name | $seed | $guess | $defaults | $baseline |"
       default_aucs+=("${defaults%%,*}")
-      full_aucs+=("${full%%,*}")
+      baseline_aucs+=("${baseline%%,*}")
     done
   done
 done
-python3 - "${default_aucs[*]}" "${full_aucs[*]}" << 'PY'
+python3 - "${default_aucs[*]}" "${baseline_aucs[*]}" << 'PY'
 import sys
 def mean(values):
     numbers = [float(v) for v in values.split() if v != "failed"]

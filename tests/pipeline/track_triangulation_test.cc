@@ -81,6 +81,27 @@ TEST(TrackTriangulation, WrongObservationLeavesTheTrackAndUnposedImagesAreSkippe
   EXPECT_EQ(model.images.at(3).points2D[0].point3D_id, kInvalidPoint3DId);
 }
 
+// Where BA starts, an observation 0.8 deg off its point (7 px at this focal length: beyond the 4 px
+// bound, within the start's 1 deg) stays in its track for BA to weigh; one 3 deg off does not.
+TEST(TrackTriangulation, ABundleAdjustmentStartKeepsObservationsWithinItsAngle) {
+  Fixture f;
+  const auto turn = [&](uint32_t image_id, uint32_t keypoint, double deg) {
+    Eigen::Vector3d& bearing = f.bearings[image_id][keypoint];
+    bearing = Eigen::AngleAxisd(deg * M_PI / 180.0, Eigen::Vector3d::UnitX()) * bearing;
+  };
+  turn(3, 0, 0.8);
+  turn(3, 1, 3.0);
+  const TrackTriangulationOptions options;
+  const Reconstruction strict =
+      BuildReconstruction(f.database, f.poses, f.tracks, f.bearings, {{1, kFocal}}, options);
+  const Reconstruction start = BuildReconstruction(
+      f.database, f.poses, f.tracks, f.bearings, {{1, kFocal}}, options.ForBundleAdjustmentStart());
+  EXPECT_EQ(strict.images.at(3).points2D[0].point3D_id, kInvalidPoint3DId);
+  EXPECT_NE(start.images.at(3).points2D[0].point3D_id, kInvalidPoint3DId);
+  EXPECT_EQ(start.images.at(3).points2D[1].point3D_id, kInvalidPoint3DId);
+  EXPECT_EQ(start.points3D.size(), strict.points3D.size());
+}
+
 TEST(TrackTriangulation, TheModelDoesNotDependOnTheThreads) {
   Fixture f;
   f.bearings[3][0] = (f.bearings[3][0] + Eigen::Vector3d(0, 0.05, 0)).normalized();

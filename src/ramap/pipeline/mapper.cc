@@ -67,12 +67,13 @@ std::optional<Reconstruction> ReconstructComponent(const MapperContext& context,
     prior_alignment = AlignComponentToPriors(context, rotations, &*translations);
   const bool aligned = prior_alignment.summary.aligned;
 
-  // 5. Triangulation: every track triangulated with the poses fixed; images its points leave out
-  // placed again from them.
+  // 5. Triangulation: every track triangulated with the poses fixed (under the looser bound of a
+  // BA's start when BA follows); images its points leave out placed again from them.
   std::map<uint32_t, Rigid3d> poses =
       AveragedPoses(rotations, translations->positions, prior_alignment);
-  Reconstruction reconstruction = TriangulateComponent(
-      context, poses, translations->tracks, context.bearings, context.cameras, "", &component);
+  Reconstruction reconstruction =
+      TriangulateComponent(context, poses, translations->tracks, context.bearings, context.cameras,
+                           "", &component, options.TriangulationOfAveragedPoses());
   ReregisterComponent(context, translations->tracks, &poses, &component, &reconstruction);
 
   // 6. Bundle adjustment (the final one, or the subset's) and triangulation again.

@@ -365,6 +365,11 @@ void AddTriangulation(Table& t) {
       "Triangulation.min_triangulation_angle_deg",
       [](auto& o) -> auto& { return o.triangulation.min_triangulation_angle_deg; }, AtLeast(0, 90),
       "points seen under a smaller angle are not kept"));
+  t.push_back(Number(
+      "Triangulation.start_max_error_deg",
+      [](auto& o) -> auto& { return o.triangulation.start_max_error_deg; }, AtLeast(0, 89),
+      "where the points start bundle adjustment, observations farther from their point than "
+      "this angle are not kept (0: Triangulation.max_reprojection_error_px)"));
   t.push_back(Bool(
       "Reregistration.enable", [](auto& o) -> auto& { return o.reregistration.enable; },
       "1: images the triangulated points leave out are placed again from them "

@@ -123,6 +123,10 @@ struct MapperOptions {
   void Check() const;
   // Whether some bundle adjustment follows averaging: the final one or the subset's.
   bool AdjustsAfterAveraging() const { return refine || subset_adjustment; }
+  // The bounds of triangulation through averaging's poses: those of a BA's start when BA follows.
+  TrackTriangulationOptions TriangulationOfAveragedPoses() const {
+    return AdjustsAfterAveraging() ? triangulation.ForBundleAdjustmentStart() : triangulation;
+  }
 };
 
 }  // namespace ramap

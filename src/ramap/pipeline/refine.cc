@@ -40,10 +40,11 @@ ImageBearings BearingsThrough(const MapperContext& context, const Reconstruction
 }
 
 // Every track triangulated with the poses and intrinsics of `model` (refined ones change every
-// bearing of their images); `what` opens the progress line.
+// bearing of their images) under `options`; `what` opens the progress line.
 Reconstruction TriangulateThrough(const MapperContext& context, const std::vector<Track>& tracks,
                                   const Reconstruction& model, const std::string& what,
-                                  MapperComponentSummary* component) {
+                                  MapperComponentSummary* component,
+                                  const TrackTriangulationOptions& options) {
   std::map<uint32_t, Rigid3d> poses;
   for (const auto& [image_id, image] : model.images) poses[image_id] = image.cam_from_world;
   const bool intrinsics_changed =
@@ -53,12 +54,12 @@ Reconstruction TriangulateThrough(const MapperContext& context, const std::vecto
       });
   if (!intrinsics_changed) {
     return TriangulateComponent(context, poses, tracks, context.bearings, context.cameras,
-                                what + ": ", component);
+                                what + ": ", component, options);
   }
   std::map<uint32_t, Camera> cameras;
   const ImageBearings bearings = BearingsThrough(context, model, &cameras);
   return TriangulateComponent(context, poses, tracks, bearings, cameras,
-                              what + " and intrinsics: ", component);
+                              what + " and intrinsics: ", component, options);
 }
 
 // One line per group of cameras with given intrinsics: what the data said of them.
@@ -112,8 +113,8 @@ bool CalibrateOnSubset(const MapperContext& context, const std::vector<Track>& t
       BundleAdjust(context.bearings.bearings, context.bearings.focal_lengths_px, &subset,
                    subset_options, priors);
   LogBundleAdjustment(context, calibration, "intrinsics on a subset: ");
-  *reconstruction =
-      TriangulateThrough(context, tracks, subset, "with the subset's poses", component);
+  *reconstruction = TriangulateThrough(context, tracks, subset, "with the subset's poses",
+                                       component, options.triangulation.ForBundleAdjustmentStart());
   return true;
 }
 
@@ -142,7 +143,8 @@ void TestGivenIntrinsicsFirst(const MapperContext& context, const std::vector<Tr
   if (!ba_options->disproved_given_cameras.empty()) *ba_options = PastTheFocalValley(*ba_options);
   if (test.poses_adjusted) {
     *reconstruction =
-        TriangulateThrough(context, tracks, *reconstruction, "with the tested poses", component);
+        TriangulateThrough(context, tracks, *reconstruction, "with the tested poses", component,
+                           context.options.triangulation.ForBundleAdjustmentStart());
   }
 }
 
@@ -201,7 +203,8 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
       MostFilteredImages(context.database, component->bundle_adjustment);
   *reconstruction = TriangulateThrough(
       context, tracks, adjusted,
-      options.refine ? "again with the refined poses" : "with the subset's poses", component);
+      options.refine ? "again with the refined poses" : "with the subset's poses", component,
+      options.triangulation);
   const int num_rounds = options.refine ? options.num_refinement_rounds : 1;
   for (int round = 1; round < num_rounds; ++round) {
     std::map<uint32_t, Camera> cameras;
@@ -210,8 +213,8 @@ void RefineComponent(const MapperContext& context, const std::vector<Track>& tra
     const BundleAdjustmentSummary summary =
         BundleAdjust(bearings.bearings, bearings.focal_lengths_px, &again, ba_options, priors);
     LogBundleAdjustment(context, summary, "round " + std::to_string(round + 1) + ": ");
-    *reconstruction =
-        TriangulateThrough(context, tracks, again, "again with the refined poses", component);
+    *reconstruction = TriangulateThrough(context, tracks, again, "again with the refined poses",
+                                         component, options.triangulation);
   }
 }
 

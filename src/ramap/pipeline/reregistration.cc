@@ -176,7 +176,8 @@ void ReregisterComponent(const MapperContext& context, const std::vector<Track>&
                          " images its points left out placed again");
   if (num_replaced == 0) return;
   *reconstruction = TriangulateComponent(context, *poses, tracks, context.bearings, context.cameras,
-                                         "again with the re-registered images: ", component);
+                                         "again with the re-registered images: ", component,
+                                         context.options.TriangulationOfAveragedPoses());
 }
 
 }  // namespace ramap

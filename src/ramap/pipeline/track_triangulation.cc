@@ -17,6 +17,16 @@ void TrackTriangulationOptions::Check() const {
               max_reprojection_error_px);
   CheckOption(min_triangulation_angle_deg >= 0, "--Triangulation.min_triangulation_angle_deg",
               ">= 0", min_triangulation_angle_deg);
+  CheckOption(max_error_deg >= 0 && max_error_deg < 90, "TrackTriangulationOptions::max_error_deg",
+              "in [0, 90)", max_error_deg);
+  CheckOption(start_max_error_deg >= 0 && start_max_error_deg <= 89,
+              "--Triangulation.start_max_error_deg", "in [0, 89]", start_max_error_deg);
+}
+
+TrackTriangulationOptions TrackTriangulationOptions::ForBundleAdjustmentStart() const {
+  TrackTriangulationOptions start = *this;
+  start.max_error_deg = start_max_error_deg;
+  return start;
 }
 
 namespace {
@@ -71,7 +81,9 @@ TriangulatedTrack TriangulateTrack(const Track& track, const FeatureDatabase& da
   if (rays.rays.size() < 2) return result;
   result.seen_twice = true;
   TriangulationOptions triangulation;
-  triangulation.max_angular_error_rad = options.max_reprojection_error_px / rays.focal_px;
+  triangulation.max_angular_error_rad = options.max_error_deg > 0
+                                            ? options.max_error_deg * M_PI / 180.0
+                                            : options.max_reprojection_error_px / rays.focal_px;
   triangulation.min_triangulation_angle_deg = options.min_triangulation_angle_deg;
   const std::optional<TriangulatedPoint> triangulated = TriangulatePoint(rays.rays, triangulation);
   if (!triangulated) return result;
@@ -154,12 +166,13 @@ Reconstruction TriangulateComponent(const MapperContext& context,
                                     const std::map<uint32_t, Rigid3d>& poses,
                                     const std::vector<Track>& tracks, const ImageBearings& bearings,
                                     const std::map<uint32_t, Camera>& cameras,
-                                    const std::string& what, MapperComponentSummary* component) {
+                                    const std::string& what, MapperComponentSummary* component,
+                                    const TrackTriangulationOptions& options) {
   Timer timer;
   TrackTriangulationSummary triangulated;
   Reconstruction reconstruction = BuildReconstruction(
-      context.database, poses, tracks, bearings.bearings, bearings.focal_lengths_px,
-      context.options.triangulation, &triangulated, context.options.num_threads);
+      context.database, poses, tracks, bearings.bearings, bearings.focal_lengths_px, options,
+      &triangulated, context.options.num_threads);
   for (auto& [camera_id, camera] : reconstruction.cameras) camera = cameras.at(camera_id);
   component->num_points = triangulated.num_points;
   component->num_observations = triangulated.num_observations;

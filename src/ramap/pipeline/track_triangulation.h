@@ -23,8 +23,21 @@ struct TrackTriangulationOptions {
   double max_reprojection_error_px = 4.0;
   // COLMAP's Mapper.filter_min_tri_angle.
   double min_triangulation_angle_deg = 1.5;
+  // Where the points start bundle adjustment, observations are kept up to this angle from their
+  // point instead (0: max_reprojection_error_px there too). Averaging's poses are a few tenths of a
+  // degree off, so 4 px judged against them detaches observations that BA would fit, and the
+  // start's points then decide BA's basin without them (sceaux_castle given as PINHOLE). BA's
+  // robust loss weighs the far ones and its max_reprojection_error_px detaches what still lies off
+  // after it. GLOMAP keeps its tracks up to 1 deg before its BA
+  // (GlobalMapper.max_angular_reproj_error_deg).
+  double start_max_error_deg = 1.0;
+  // The bound in use as an angle, 0: max_reprojection_error_px. Set by ForBundleAdjustmentStart,
+  // not an option.
+  double max_error_deg = 0.0;
 
   void Check() const;
+  // These options where the points start bundle adjustment (start_max_error_deg).
+  TrackTriangulationOptions ForBundleAdjustmentStart() const;
 };
 
 struct TrackTriangulationSummary {
@@ -50,11 +63,13 @@ Reconstruction BuildReconstruction(
 
 // The mapper's stage 5 on one component: every track triangulated with `poses` fixed, through
 // `bearings` and `cameras` (the refined ones after bundle adjustment), the cameras written into the
-// model; the component's triangulation figures and the progress line (`what` opens its message).
+// model, under `options` (the mapper's, or those of a BA's start); the component's triangulation
+// figures and the progress line (`what` opens its message).
 Reconstruction TriangulateComponent(const MapperContext& context,
                                     const std::map<uint32_t, Rigid3d>& poses,
                                     const std::vector<Track>& tracks, const ImageBearings& bearings,
                                     const std::map<uint32_t, Camera>& cameras,
-                                    const std::string& what, MapperComponentSummary* component);
+                                    const std::string& what, MapperComponentSummary* component,
+                                    const TrackTriangulationOptions& options);
 
 }  // namespace ramap

@@ -378,6 +378,7 @@ TEST(BundleAdjustment, SolvesAgainWhenManyObservationsAreDetached) {
   }
   BundleAdjustmentOptions options;
   options.refine_focal_length = options.refine_extra_params = false;
+  options.min_filtered_fraction_to_solve_again = 0.01;
   Scene once = scene;
   const BundleAdjustmentSummary twice =
       BundleAdjust(scene.bearings, {{1, 500.0}}, &scene.reconstruction, options);

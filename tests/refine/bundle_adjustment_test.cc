@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 namespace ramap {
@@ -72,6 +73,8 @@ TEST(BundleAdjustment, RecoversPerturbedPosesAndPoints) {
   options.max_num_iterations = 100;
   // The observations here are the bearings (one made wrong above); fixed intrinsics keep them.
   options.refine_focal_length = options.refine_extra_params = false;
+  // One solve at the loss scale, so that num_solves counts the second solve for the detached.
+  options.wide_start_loss_factor = 0;
   const BundleAdjustmentSummary summary =
       BundleAdjust(scene.bearings, {{1, 500.0}}, &scene.reconstruction, options);
   EXPECT_GT(summary.initial_rmse_px, 1.0);
@@ -392,4 +395,69 @@ TEST(BundleAdjustment, SolvesAgainWhenManyObservationsAreDetached) {
   EXPECT_EQ(single.num_solves, 1);
 }
 
+}  // namespace ramap
+
+namespace ramap {
+namespace {
+
+// Poses and points started far from the truth: a median reprojection error of several pixels, as
+// from averaging's poses on sceaux_castle.
+Scene FarStart(uint32_t seed) {
+  std::mt19937 rng(seed);
+  Scene scene = MakeScene(rng);
+  std::normal_distribution<double> noise(0, 0.05);
+  for (auto& [id, image] : scene.reconstruction.images) {
+    if (id == 1) continue;
+    image.cam_from_world.translation += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+  }
+  for (auto& [id, point] : scene.reconstruction.points3D)
+    point.xyz += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+  return scene;
+}
+
+// The median start error, in pixels at `focal_px`, of the scene's observations.
+double MedianStartErrorPx(const Scene& scene, double focal_px) {
+  std::vector<double> errors;
+  for (const auto& [id, image] : scene.reconstruction.images) {
+    for (size_t i = 0; i < image.points2D.size(); ++i) {
+      const Eigen::Vector3d seen =
+          image.cam_from_world * scene.reconstruction.points3D.at(image.points2D[i].point3D_id).xyz;
+      const Eigen::Vector3d& bearing = scene.bearings.at(id)[i];
+      errors.push_back(focal_px * (seen.hnormalized() - bearing.hnormalized()).norm());
+    }
+  }
+  std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+  return errors[errors.size() / 2];
+}
+
+// From a start whose median error exceeds the loss scale, BA first solves under a loss twice that
+// median and then again at the loss scale; from a start within it, once.
+TEST(BundleAdjustment, SolvesFirstUnderAWideLossFromAFarStart) {
+  BundleAdjustmentOptions options;
+  options.refine_focal_length = options.refine_extra_params = false;
+  Scene far = FarStart(3);
+  const double median_px = MedianStartErrorPx(far, 500.0);
+  ASSERT_GT(median_px, 2 * options.loss_scale_px);
+  Scene held = far;
+  const BundleAdjustmentSummary wide =
+      BundleAdjust(far.bearings, {{1, 500.0}}, &far.reconstruction, options);
+  EXPECT_NEAR(wide.wide_start_loss_px, 2 * median_px, 1e-6 * median_px);
+  EXPECT_EQ(wide.num_solves, 2);
+  EXPECT_LT(wide.final_rmse_px, 1e-3);
+  EXPECT_LT(LargestRotationErrorDeg(far), 1e-3);
+  // Off: one solve at the loss scale.
+  options.wide_start_loss_factor = 0;
+  const BundleAdjustmentSummary narrow =
+      BundleAdjust(held.bearings, {{1, 500.0}}, &held.reconstruction, options);
+  EXPECT_EQ(narrow.wide_start_loss_px, 0);
+  EXPECT_EQ(narrow.num_solves, 1);
+  // From the solution (median error 0): one solve at the loss scale.
+  options.wide_start_loss_factor = 2;
+  const BundleAdjustmentSummary again =
+      BundleAdjust(far.bearings, {{1, 500.0}}, &far.reconstruction, options);
+  EXPECT_EQ(again.wide_start_loss_px, 0);
+  EXPECT_EQ(again.num_solves, 1);
+}
+
+}  // namespace
 }  // namespace ramap

@@ -401,6 +401,11 @@ void AddBundleAdjuster(Table& t) {
       [](auto& o) -> auto& { return o.bundle_adjustment.loss_scale_px; }, Above(0),
       "the robust loss's scale, pixels"));
   t.push_back(Number(
+      "BundleAdjustment.wide_start_loss_factor",
+      [](auto& o) -> auto& { return o.bundle_adjustment.wide_start_loss_factor; }, AtLeast(0),
+      "where the median error at the start exceeds the loss scale, the first solve's loss is "
+      "this many times that median and a second solve follows at the loss scale (0: off)"));
+  t.push_back(Number(
       "BundleAdjustment.max_reprojection_error_px",
       [](auto& o) -> auto& { return o.bundle_adjustment.max_reprojection_error_px; }, Above(0),
       "observations farther from their point after BA are detached (a huge value: no "

@@ -80,6 +80,23 @@ nlohmann::json GivenIntrinsicsTestJson(const GivenIntrinsicsTestSummary& test) {
   return {{"groups", groups}, {"seconds", test.seconds}};
 }
 
+nlohmann::json BundleAdjustmentToJson(const MapperComponentSummary& c) {
+  const BundleAdjustmentSummary& ba = c.bundle_adjustment;
+  nlohmann::json filtered = nlohmann::json::array();
+  for (const auto& [name, count] : c.most_filtered_images)
+    filtered.push_back({{"name", name}, {"num_filtered_observations", count}});
+  return {{"initial_rmse_px", ba.initial_rmse_px},
+          {"final_rmse_px", ba.final_rmse_px},
+          {"num_iterations", ba.num_iterations},
+          {"num_filtered_observations", ba.num_filtered_observations},
+          {"num_solves", ba.num_solves},
+          {"wide_start_loss_px", ba.wide_start_loss_px},
+          {"converged", ba.converged},
+          {"poses_settled", ba.poses_settled},
+          {"seconds", ba.seconds},
+          {"most_filtered_images", filtered}};
+}
+
 nlohmann::json ComponentToJson(const MapperComponentSummary& c) {
   nlohmann::json component = {
       {"num_images", c.num_images},
@@ -105,21 +122,8 @@ nlohmann::json ComponentToJson(const MapperComponentSummary& c) {
         {"num_factorizations", c.num_factorizations},
         {"num_windows", c.num_translation_windows}}},
   };
-  if (c.bundle_adjustment.num_observations > 0) {
-    const BundleAdjustmentSummary& ba = c.bundle_adjustment;
-    component["bundle_adjustment"] = {{"initial_rmse_px", ba.initial_rmse_px},
-                                      {"final_rmse_px", ba.final_rmse_px},
-                                      {"num_iterations", ba.num_iterations},
-                                      {"num_filtered_observations", ba.num_filtered_observations},
-                                      {"num_solves", ba.num_solves},
-                                      {"converged", ba.converged},
-                                      {"poses_settled", ba.poses_settled},
-                                      {"seconds", ba.seconds}};
-    nlohmann::json filtered = nlohmann::json::array();
-    for (const auto& [name, count] : c.most_filtered_images)
-      filtered.push_back({{"name", name}, {"num_filtered_observations", count}});
-    component["bundle_adjustment"]["most_filtered_images"] = filtered;
-  }
+  if (c.bundle_adjustment.num_observations > 0)
+    component["bundle_adjustment"] = BundleAdjustmentToJson(c);
   if (!c.reregistered_images.empty()) {
     nlohmann::json images = nlohmann::json::array();
     for (const ReregisteredImage& image : c.reregistered_images) {

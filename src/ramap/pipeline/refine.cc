@@ -21,11 +21,15 @@ void LogBundleAdjustment(const MapperContext& context, const BundleAdjustmentSum
   for (const uint32_t camera_id : ba.principal_points_drifted)
     held += (held.empty() ? "; the principal point of camera " : ", ") + std::to_string(camera_id);
   if (!held.empty()) held += " drifted: every guessed one held where it started, solved again";
+  const std::string wide = ba.wide_start_loss_px > 0
+                               ? ", first under a " + std::to_string(ba.wide_start_loss_px) +
+                                     " px loss (median start error above the loss scale)"
+                               : "";
   context.log.Record(stage::kBundleAdjustment, ba.seconds,
                      what + std::to_string(ba.num_points) + " points, RMSE " +
                          std::to_string(ba.initial_rmse_px) + " -> " +
                          std::to_string(ba.final_rmse_px) + " px, " +
-                         std::to_string(ba.num_iterations) + " iterations" + held);
+                         std::to_string(ba.num_iterations) + " iterations" + wide + held);
 }
 
 // The context's cameras with those of `model` in their place (in `cameras`), and the bearings of

@@ -387,6 +387,19 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   return summary;
 }
 
+// The first solve's loss scale when the median start error exceeds loss_scale_px
+// (wide_start_loss_factor times that median), else 0.
+double WideStartLossPx(const std::vector<Observation>& observations,
+                       const Reconstruction& reconstruction,
+                       const BundleAdjustmentOptions& options) {
+  if (options.wide_start_loss_factor <= 0 || observations.empty()) return 0.0;
+  std::vector<double> errors = SquaredErrorsPx(observations, reconstruction, options.num_threads);
+  const auto middle = errors.begin() + errors.size() / 2;
+  std::nth_element(errors.begin(), middle, errors.end());
+  const double median_px = std::sqrt(*middle);
+  return median_px > options.loss_scale_px ? options.wide_start_loss_factor * median_px : 0.0;
+}
+
 // Detaches observations whose error exceeds the bound (counted per image in `per_image`), removes
 // points left with fewer than two observations, and returns the number of observations detached.
 int FilterObservations(const std::vector<Observation>& observations, double max_error_px,
@@ -452,6 +465,8 @@ void BundleAdjustmentOptions::Check() const {
   CheckOption(function_tolerance >= 0, s + "function_tolerance", ">= 0", function_tolerance);
   CheckOption(pose_tolerance_deg >= 0, s + "pose_tolerance_deg", ">= 0", pose_tolerance_deg);
   CheckOption(loss_scale_px > 0, s + "loss_scale_px", "> 0", loss_scale_px);
+  CheckOption(wide_start_loss_factor >= 0, s + "wide_start_loss_factor", ">= 0",
+              wide_start_loss_factor);
   CheckOption(min_bearing_z > 0 && min_bearing_z < 1, "BundleAdjustmentOptions::min_bearing_z",
               "in (0, 1)", min_bearing_z);
   CheckOption(num_threads >= 1, "BundleAdjustmentOptions::num_threads", ">= 1", num_threads);
@@ -611,10 +626,16 @@ BundleAdjustmentSummary Adjust(const KeypointBearings& bearings,
   const std::map<uint32_t, uint32_t> shared = SharedIntrinsics(options, *reconstruction);
   // Solve, detach what still disagrees, and solve once more without it when it is much of the
   // data (min_filtered_fraction_to_solve_again; COLMAP's global BA always does).
+  summary.wide_start_loss_px = WideStartLossPx(observations, *reconstruction, options);
   for (int round = 0; round < 2 && !observations.empty(); ++round) {
+    const bool wide = round == 0 && summary.wide_start_loss_px > 0;
+    BundleAdjustmentOptions solve_options = options;
+    if (wide) solve_options.loss_scale_px = summary.wide_start_loss_px;
     const ceres::Solver::Summary solve =
-        Solve(observations, priors, options, shared, reconstruction, progress,
-              round == 0 ? "bundle adjustment" : "bundle adjustment without the outliers");
+        Solve(observations, priors, solve_options, shared, reconstruction, progress,
+              wide         ? "bundle adjustment under a wide loss"
+              : round == 0 ? "bundle adjustment"
+                           : "bundle adjustment without the outliers");
     summary.num_iterations += static_cast<int>(solve.iterations.size());
     ++summary.num_solves;
     // USER_SUCCESS: PoseConvergence ended the solve (the progress callback only aborts).
@@ -626,7 +647,10 @@ BundleAdjustmentSummary Adjust(const KeypointBearings& bearings,
     summary.num_filtered_observations += filtered;
     const double filtered_fraction = static_cast<double>(filtered) / observations.size();
     observations = UsableObservations(bearings, focal_lengths_px, *reconstruction, options);
-    if (filtered == 0 || filtered_fraction < options.min_filtered_fraction_to_solve_again) break;
+    if (!wide &&
+        (filtered == 0 || filtered_fraction < options.min_filtered_fraction_to_solve_again)) {
+      break;
+    }
   }
   summary.final_rmse_px = RmsePx(observations, *reconstruction, options.num_threads);
   summary.num_points = static_cast<int>(reconstruction->points3D.size());

@@ -284,6 +284,10 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
   // observations.
   BundleAdjustmentOptions held = PointSubsetOptions(ba, options.num_points);
   held.max_reprojection_error_px = 1e9;
+  // One solve, the loss as the test's thresholds were measured with: a wide first loss
+  // (wide_start_loss_factor) left sceaux_castle's verdict and its errors (within 0.003 px) as they
+  // were, and took 0.47 s more.
+  held.wide_start_loss_factor = 0;
   Trials trials{
       bearings,
       focal_lengths_px,

@@ -24,6 +24,8 @@ variants=(
   "no filtering between BA's solves|--BundleAdjustment.max_reprojection_error_px 1e9"
   "points seen twice adjusted too|--BundleAdjustment.min_track_length 2"
   "loss scale 2 px (before)|--BundleAdjustment.loss_scale_px 2"
+  "start bound 4 px (before)|--Triangulation.start_max_error_deg 0"
+  "no wide start loss|--BundleAdjustment.wide_start_loss_factor 0"
   "no re-registration|--Reregistration.enable 0"
   "no test of given intrinsics (k1)|--BundleAdjustment.given_intrinsics_test 0"
   "no second averaging pass|--Mapper.max_focal_change_in_bundle_adjustment 0"

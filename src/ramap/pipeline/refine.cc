@@ -134,8 +134,27 @@ void TestGivenIntrinsicsFirst(const MapperContext& context, const std::vector<Tr
                               MapperComponentSummary* component, Reconstruction* reconstruction,
                               ImageBearings* tested, const ImageBearings** bearings) {
   GivenIntrinsicsTestSummary& test = component->given_intrinsics_test;
+  // Nothing to test: no given camera, or BA refines no intrinsics (TestGivenIntrinsics's groups).
+  if (!context.options.given_intrinsics_test.enable ||
+      !(ba_options->refine_focal_length || ba_options->refine_extra_params) ||
+      !AnyHeldAsGiven(*ba_options, *reconstruction)) {
+    return;
+  }
+  // The test compares errors, so it is judged on points triangulated within the bound the models
+  // are held to: the observations BA's start keeps beyond it (TrackTriangulationOptions::
+  // start_max_error_deg) carry averaging's pose errors, not the intrinsics'. Judged on those,
+  // kitti07_first160's given camera no longer showed its distortion (0.822 -> 0.787 px freed,
+  // under the 5% asked, against 0.705 -> 0.662 px) and scored 79.7 AUC@3 instead of 85.7.
+  Reconstruction judged =
+      TriangulateThrough(context, tracks, *reconstruction, "for the test of the given intrinsics",
+                         component, context.options.triangulation);
   test = TestGivenIntrinsics((*bearings)->bearings, (*bearings)->focal_lengths_px, *ba_options,
-                             context.options.given_intrinsics_test, reconstruction);
+                             context.options.given_intrinsics_test, &judged);
+  reconstruction->cameras = judged.cameras;
+  if (test.poses_adjusted) {
+    for (auto& [image_id, image] : reconstruction->images)
+      image.cam_from_world = judged.images.at(image_id).cam_from_world;
+  }
   LogGivenIntrinsicsTest(context, test);
   if (std::any_of(test.groups.begin(), test.groups.end(), ChangesIntrinsics)) {
     std::map<uint32_t, Camera> cameras;

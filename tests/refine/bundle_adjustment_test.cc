@@ -395,9 +395,6 @@ TEST(BundleAdjustment, SolvesAgainWhenManyObservationsAreDetached) {
   EXPECT_EQ(single.num_solves, 1);
 }
 
-}  // namespace ramap
-
-namespace ramap {
 namespace {
 
 // Poses and points started far from the truth: a median reprojection error of several pixels, as

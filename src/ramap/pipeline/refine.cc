@@ -134,12 +134,7 @@ void TestGivenIntrinsicsFirst(const MapperContext& context, const std::vector<Tr
                               MapperComponentSummary* component, Reconstruction* reconstruction,
                               ImageBearings* tested, const ImageBearings** bearings) {
   GivenIntrinsicsTestSummary& test = component->given_intrinsics_test;
-  // Nothing to test: no given camera, or BA refines no intrinsics (TestGivenIntrinsics's groups).
-  if (!context.options.given_intrinsics_test.enable ||
-      !(ba_options->refine_focal_length || ba_options->refine_extra_params) ||
-      !AnyHeldAsGiven(*ba_options, *reconstruction)) {
-    return;
-  }
+  if (!TestsSomeCamera(*ba_options, context.options.given_intrinsics_test, *reconstruction)) return;
   // The test compares errors, so it is judged on points triangulated within the bound the models
   // are held to: the observations BA's start keeps beyond it (TrackTriangulationOptions::
   // start_max_error_deg) carry averaging's pose errors, not the intrinsics'. Judged on those,

@@ -152,13 +152,16 @@ std::vector<double> SquaredErrorsPx(const std::vector<Observation>& observations
   return errors;
 }
 
+double RmsePx(const std::vector<double>& squared_errors_px) {
+  if (squared_errors_px.empty()) return 0.0;
+  double sum = 0.0;
+  for (const double error : squared_errors_px) sum += error;
+  return std::sqrt(sum / squared_errors_px.size());
+}
+
 double RmsePx(const std::vector<Observation>& observations, const Reconstruction& reconstruction,
               int num_threads) {
-  if (observations.empty()) return 0.0;
-  double sum = 0.0;
-  for (const double error : SquaredErrorsPx(observations, reconstruction, num_threads))
-    sum += error;
-  return std::sqrt(sum / observations.size());
+  return RmsePx(SquaredErrorsPx(observations, reconstruction, num_threads));
 }
 
 // Each camera in `problem`: the parameters the options keep fixed stay constant (the manifolds
@@ -387,13 +390,10 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
   return summary;
 }
 
-// The first solve's loss scale when the median start error exceeds loss_scale_px
-// (wide_start_loss_factor times that median), else 0.
-double WideStartLossPx(const std::vector<Observation>& observations,
-                       const Reconstruction& reconstruction,
-                       const BundleAdjustmentOptions& options) {
-  if (options.wide_start_loss_factor <= 0 || observations.empty()) return 0.0;
-  std::vector<double> errors = SquaredErrorsPx(observations, reconstruction, options.num_threads);
+// The first solve's loss scale when the median start error (of `errors`, squared, in pixels)
+// exceeds loss_scale_px (wide_start_loss_factor times that median), else 0.
+double WideStartLossPx(std::vector<double> errors, const BundleAdjustmentOptions& options) {
+  if (options.wide_start_loss_factor <= 0 || errors.empty()) return 0.0;
   const auto middle = errors.begin() + errors.size() / 2;
   std::nth_element(errors.begin(), middle, errors.end());
   const double median_px = std::sqrt(*middle);
@@ -622,11 +622,13 @@ BundleAdjustmentSummary Adjust(const KeypointBearings& bearings,
   std::vector<Observation> observations =
       UsableObservations(bearings, focal_lengths_px, *reconstruction, options);
   summary.num_observations = static_cast<int>(observations.size());
-  summary.initial_rmse_px = RmsePx(observations, *reconstruction, options.num_threads);
+  const std::vector<double> start_errors =
+      SquaredErrorsPx(observations, *reconstruction, options.num_threads);
+  summary.initial_rmse_px = RmsePx(start_errors);
   const std::map<uint32_t, uint32_t> shared = SharedIntrinsics(options, *reconstruction);
   // Solve, detach what still disagrees, and solve once more without it when it is much of the
   // data (min_filtered_fraction_to_solve_again; COLMAP's global BA always does).
-  summary.wide_start_loss_px = WideStartLossPx(observations, *reconstruction, options);
+  summary.wide_start_loss_px = WideStartLossPx(start_errors, options);
   for (int round = 0; round < 2 && !observations.empty(); ++round) {
     const bool wide = round == 0 && summary.wide_start_loss_px > 0;
     BundleAdjustmentOptions solve_options = options;

@@ -270,6 +270,11 @@ std::set<uint32_t> DisprovedCameras(const GivenIntrinsicsTestSummary& test) {
   return cameras;
 }
 
+bool TestsSomeCamera(const BundleAdjustmentOptions& ba, const GivenIntrinsicsTestOptions& options,
+                     const Reconstruction& reconstruction) {
+  return options.enable && !HeldGroups(ba, reconstruction).empty();
+}
+
 GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
                                                const std::map<uint32_t, double>& focal_lengths_px,
                                                const BundleAdjustmentOptions& ba,

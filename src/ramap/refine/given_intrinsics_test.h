@@ -87,6 +87,11 @@ std::set<uint32_t> DisprovedCameras(const GivenIntrinsicsTestSummary& test);
 // (or nearly: a distortion kept with the given focal length was adjusted with the freed one); the
 // points do not change, so they no longer fit those poses until triangulated again. `bearings` and
 // `focal_lengths_px` as for BundleAdjust.
+// Whether TestGivenIntrinsics has a camera of `reconstruction` to test: the test is enabled and
+// BA would hold some given camera whose focal length or distortion it could otherwise refine.
+bool TestsSomeCamera(const BundleAdjustmentOptions& ba, const GivenIntrinsicsTestOptions& options,
+                     const Reconstruction& reconstruction);
+
 GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
                                                const std::map<uint32_t, double>& focal_lengths_px,
                                                const BundleAdjustmentOptions& ba,

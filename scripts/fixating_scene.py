@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Views that fixate one point from one distance, as around a turntable: every pair's optical axes
 meet there, where a fundamental matrix leaves the focal length free, so the mapper's view-graph
-calibration cannot estimate it and a calibration pass runs (BENCHMARKS.md, "What a calibration
-pass needs"). The elevation swings as the views go round, so that the views together still fix
-the focal length for bundle adjustment (one level orbit is a critical motion for it too).
+calibration cannot estimate it and a calibration pass runs (docs/benchmark-history.md, "What a
+calibration pass needs"). The elevation swings as the views go round, so that the views together
+still fix the focal length for bundle adjustment (one level orbit is a critical motion for it too).
 
   fixating_scene.py trajectory OUT --num_views N --arc_deg A --distance D --elevation_deg E
       writes a KITTI-format pose file (camera-to-world 3x4 per line) for

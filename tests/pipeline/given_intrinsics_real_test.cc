@@ -2,7 +2,8 @@
 // its calibration given 1.6 times too long. Averaging through it leaves many observations far off;
 // the test must still see that freeing the focal length fits the views far better, and BA must
 // end at the true focal length. (On the benchmark's database at 1600 px, whose pairs ramap
-// verified, the plain RMSE kept the wrong value: BENCHMARKS.md, "A focal length proved wrong".
+// verified, the plain RMSE kept the wrong value: docs/benchmark-history.md, "A focal length proved
+// wrong".
 // COLMAP's own databases, at 640 and 1600 px, do not show it.)
 #include <gtest/gtest.h>
 

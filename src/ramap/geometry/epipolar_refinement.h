@@ -7,7 +7,7 @@
 // rotation, two of a direction), one residual per match: a hand-written Levenberg-Marquardt on
 // 5 x 5 normal equations, which does per pair what a general solver did with an allocation per
 // residual and automatic differentiation (that was a large share of the mapper's time on a long
-// drive; BENCHMARKS.md, "Relative poses").
+// drive; docs/benchmark-history.md, "Relative poses").
 #pragma once
 
 #include <Eigen/Core>

@@ -84,7 +84,7 @@ double GreatCircleSpread(const std::vector<Eigen::Vector3d>& f) {
 // the six-point eigensolver's (at most three) on kNumPreemptiveMatches. Against scoring every
 // candidate on 200 matches: the same per-pair errors on the real sets, the mapper's results within
 // the spread that moving the subset by one match gives, and a long drive's relative poses quicker
-// (BENCHMARKS.md, "Relative poses").
+// (docs/benchmark-history.md, "Relative poses").
 constexpr int kNumPreemptiveMatches = 200;
 constexpr int kNumFirstRoundMatches = 50;
 constexpr int kNumFirstRoundSurvivors = 3;
@@ -627,7 +627,7 @@ std::optional<RelativePoseEstimate> SixPointHypothesis(
   }
   // A confident five-point candidate makes the all-six eigensolver's starts (a good share of a
   // pair's time) redundant: every real set's pair errors and a synthetic drive's are the same
-  // without them (BENCHMARKS.md, "Relative poses").
+  // without them (docs/benchmark-history.md, "Relative poses").
   std::vector<RotationCandidate> candidates;
   if (!confident)
     candidates = RotationCandidatesFromSix(f1, f2, six, -1, options.nister_five_point);

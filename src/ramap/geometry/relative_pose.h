@@ -69,8 +69,8 @@ struct RelativePoseOptions {
   // Rank a pair's matches for the grid selection by their descriptor ratio when the database has
   // it (ramap's matcher stores it) instead of their Sampson error under F. Off: on ramap-matched
   // databases the ratio ties on KITTI 07 and loses on templeRing, as agreement with the pair's
-  // geometry picks better samples than descriptor distinctiveness (BENCHMARKS.md, "Which
-  // confidence ranks the grid's matches").
+  // geometry picks better samples than descriptor distinctiveness (docs/benchmark-history.md,
+  // "Which confidence ranks the grid's matches").
   bool use_descriptor_ratios = false;
   // Where the rotation candidates of each five of the six selected matches come from (they guard
   // against one bad match among the six). 0: Kneip's rotation-only five-point solver (ECCV 2012),
@@ -78,8 +78,8 @@ struct RelativePoseOptions {
   // to the Five-Point Relative Pose Problem", PAMI 2004, as shipped by OpenGV), one rotation per
   // essential matrix: much cheaper per call, and relative poses quicker with per-pair errors as
   // good or better on every real set, but KITTI 07's averaging alone is worse with it: a few weak
-  // far-apart pairs come out a little wrong instead of grossly wrong, and are kept (BENCHMARKS.md,
-  // "Relative poses").
+  // far-apart pairs come out a little wrong instead of grossly wrong, and are kept
+  // (docs/benchmark-history.md, "Relative poses").
   bool nister_five_point = false;
   // The five-point candidates guard against one bad match among the six; with Kneip's solver
   // they were most of a pair's time. They are solved one leave-one-out subset at a time, and
@@ -100,7 +100,8 @@ struct RelativePoseOptions {
   // whose first-round matches spread less than `confident_narrow_view_deg` (RMS angle to their
   // mean bearing, in image 1) must meet `confident_narrow_view_rms_error_px`. Wide views' bound:
   // a tighter one gives the same errors on the real sets but seldom stops on the synthetic drives,
-  // a looser one saves little more time; 0.8 px keeps a margin (BENCHMARKS.md, "Relative poses").
+  // a looser one saves little more time; 0.8 px keeps a margin (docs/benchmark-history.md,
+  // "Relative poses").
   // Weak pairs always get every candidate (with few matches a wrong root can still fit most of
   // them). The all-six eigensolver's candidates may not stop the search: with the same test they
   // made templeRing's pairs worse. Above 1: every candidate, always.

@@ -25,7 +25,7 @@ enum class EdgeWeighting {
   // On when every camera's focal length is known (prior_focal_length 1), off otherwise. With the
   // true intrinsics the weights make averaging alone more accurate on every benchmark set; through
   // focal lengths the view graph estimated, they make it less accurate on most. With BA they
-  // change little either way (BENCHMARKS.md, "Edges weighted by their inlier counts").
+  // change little either way (docs/benchmark-history.md, "Edges weighted by their inlier counts").
   kAuto,
   kOn,
   kOff,
@@ -60,17 +60,16 @@ struct MapperOptions {
   bool refine = true;
   // Without that final BA (refine false): bundle adjustment of the poses, and of the intrinsics BA
   // would refine, on the calibration_num_points longest tracks only, then every track triangulated
-  // again through them. It is the cheap multi-view step after averaging: on the benchmark sets
-  // its AUC@3 is within 0.4 of the full BA's, in 40-80% of the whole run's time, where averaging
-  // alone is up to 33 points behind without a calibration and cannot calibrate a turntable at all
-  // (BENCHMARKS.md, "What each part of the back end buys"). The full BA still places the cameras
-  // closer (lund_door's ATE is 0.55x the subset's). Given intrinsics are tested on the subset too.
+  // again through them. It is the cheap multi-view step after averaging: nearly the full BA's
+  // accuracy in less time, where averaging alone falls far behind without a calibration and cannot
+  // calibrate a turntable at all; the full BA still places the cameras closer (BENCHMARKS.md,
+  // "What each part of the back end buys"). Given intrinsics are tested on the subset too.
   // false: averaging alone.
   bool subset_adjustment = true;
   BundleAdjustmentOptions bundle_adjustment;
   // Rounds of bundle adjustment, each followed by every track triangulated again. A second round
   // costs much more time and gains nothing on the benchmark databases but sceaux_castle, whose
-  // lens the given PINHOLE camera ignores (BENCHMARKS.md, "BA in rounds").
+  // lens the given PINHOLE camera ignores (docs/benchmark-history.md, "BA in rounds").
   int num_refinement_rounds = 1;
   // Before it, whether the data prove given intrinsics wrong (refine/given_intrinsics_test.h).
   GivenIntrinsicsTestOptions given_intrinsics_test;
@@ -80,7 +79,8 @@ struct MapperOptions {
   // off bends the model more than BA can straighten (kitti07_first160 from COLMAP's guess). 0:
   // never. Not for a given focal length that refine/given_intrinsics_test.h proved wrong: the test
   // crossed its valley from averaging's poses, and a second pass bought nothing there with given
-  // focal lengths 0.6-2 times the truth (BENCHMARKS.md, "A focal length proved wrong").
+  // focal lengths far from the truth either way (docs/benchmark-history.md, "A focal length proved
+  // wrong").
   double max_focal_change_in_bundle_adjustment = 0.05;
   // When some camera's focal length is unknown and the view graph could not estimate it, the first
   // bundle adjustment only finds the intrinsics for a second pass (averaging through them, then
@@ -89,8 +89,8 @@ struct MapperOptions {
   // points each is cheaper, and the second pass ends at the same focal length. 0: the first BA is
   // a full one. The same subset calibrates, before the full BA, any run that refines a focal
   // length: the full BA then starts past the valley and stops at the ordinary tolerance, in much
-  // less time and at the same accuracy but on one set (BENCHMARKS.md, "Self-calibration on a
-  // subset first").
+  // less time and at the same accuracy but on one set (docs/benchmark-history.md, "Self-calibration
+  // on a subset first").
   int calibration_num_points = 2000;
   // A calibration pass keeps its intrinsics alone: the second pass averages again through them and
   // calibrates again on its own subset, from a start this close. So the calibration pass adjusts
@@ -98,18 +98,17 @@ struct MapperOptions {
   // (TranslationAveraging.max_num_tracks), takes its relative poses from Nister's five-point
   // solver (RelativePose.nister_five_point), and its BA stops once the intrinsics have settled.
   // The per-image quotas (TranslationAveraging.min_tracks_per_image, 50 observations an image in
-  // BA) still hold, so a large scene gets more. 300 instead of 1000 took 14% off templeRing without
-  // a calibration, and neither there nor on 36 synthetic turntables and arcs from half and 1.6
-  // times the focal length did the second pass end less accurate (BENCHMARKS.md, "What a
-  // calibration pass needs"). 0: as the second pass.
+  // BA) still hold, so a large scene gets more. A smaller budget makes the calibration pass
+  // cheaper, and the second pass, which calibrates again, ends as accurate
+  // (docs/benchmark-history.md, "What a calibration pass needs"). 0: as the second pass.
   int calibration_pass_num_tracks = 300;
   // After the subset found the intrinsics, the full bundle adjustment holds them (unless some
   // camera was given: its test needs the full adjustment's intrinsics freed), through bearings
   // undistorted with them: it then costs what a calibrated run's does, since the residuals no
   // longer pass through the camera model and no point's row couples with a shared intrinsics block.
   // The subset's thousands of points fix a focal length and k1 about as well as the full BA did:
-  // the poses' accuracy moves by a fraction of a point either way (BENCHMARKS.md, "Where the
-  // seconds of bundle adjustment go"). 0: the full BA refines them again.
+  // the poses' accuracy moves by a fraction of a point either way (docs/benchmark-history.md,
+  // "Where the seconds of bundle adjustment go"). 0: the full BA refines them again.
   bool calibration_subset_only = true;
   // Components with fewer images are not written (COLMAP's Mapper.min_model_size is 10; ramap
   // writes smaller ones too because small data sets are common among its users).

@@ -23,8 +23,8 @@ struct ReregistrationOptions {
   // observations of their points is below this times the median image's: the others' points
   // leave it out. Where they leave out most images, the intrinsics are far off (a focal length
   // the view graph could not estimate), not the poses, and absolute poses through them place
-  // none (a synthetic turntable from 1.6 times its focal length: against half of them, 47 of 47
-  // images tried in 3.3 s, none placed; against half the median, none tried)...
+  // none, so trying them only costs time (a synthetic turntable from 1.6 times its focal length;
+  // docs/benchmark-history.md, "Where the seconds of bundle adjustment go")...
   double max_inlier_ratio = 0.5;
   // ...and it has at least this many such keypoints; a new pose needs as many inliers.
   int min_num_correspondences = 30;

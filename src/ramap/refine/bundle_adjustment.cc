@@ -203,8 +203,8 @@ ceres::Solver::Options SolverOptions(const BundleAdjustmentOptions& options,
   }
   // Dense Schur is fastest while the reduced camera system is small. Its threads then eliminate
   // points that nearly all touch the same few camera blocks, each update under that block's
-  // lock: on two cores one thread solves such a problem faster than two (BENCHMARKS.md, "Where
-  // the seconds of bundle adjustment go").
+  // lock: on two cores one thread solves such a problem faster than two (docs/benchmark-history.md,
+  // "Where the seconds of bundle adjustment go").
   const bool dense = num_images <= 50;
   solver_options.linear_solver_type = dense ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
   solver_options.num_threads = dense ? 1 : options.num_threads;

@@ -38,9 +38,9 @@ struct BundleAdjustmentOptions {
   // (its rotation, its centre seen from its points, its refined focal length and principal
   // point; refine/pose_convergence.h), 0: off. The points left unsettled are triangulated again
   // after BA. A thousandth of a degree lies far below what AUC@1 resolves; a long chain still
-  // drifting by more per step iterates to function_tolerance as before. On the benchmark sets the
-  // mapper is up to 1.8x faster and AUC@3 moves by 0.03 at most (BENCHMARKS.md, "Where the seconds
-  // of bundle adjustment go").
+  // drifting by more per step iterates to function_tolerance as before. The steps it saves only
+  // settle points, so the mapper gets faster at the same accuracy (docs/benchmark-history.md,
+  // "Where the seconds of bundle adjustment go").
   double pose_tolerance_deg = 1e-3;
   // Where the solve refines some focal length, that stop looks at the intrinsics alone: for a BA
   // kept only for its intrinsics (the mapper's calibration on a subset of the points, before a
@@ -48,18 +48,16 @@ struct BundleAdjustmentOptions {
   bool settle_intrinsics_only = false;
   // Robust loss scale in pixels (Cauchy); COLMAP's default loss is a plain squared error, a soft
   // robust loss protects against the wrong matches that averaging lets through. 1 px (GLOMAP's
-  // Huber scale too) against 2 px: templeRing's AUC@1 rises 5.9 points with its calibration given;
-  // on the other benchmark sets AUC@1 moves by less than 0.4 and AUC@3 by less than 0.1
-  // (scripts/reproduce_mapper.sh before and after; BENCHMARKS.md, "What each part of the back end
+  // Huber scale too) rather than 2 px: it makes templeRing clearly more accurate and barely moves
+  // the other sets, for some more iterations (BENCHMARKS.md, "What each part of the back end
   // buys").
   double loss_scale_px = 1.0;
   // Where the median reprojection error at the start exceeds loss_scale_px, the first solve's loss
   // scale is this many times that median, and a second solve follows at loss_scale_px (0: off).
-  // A loss narrower than the typical error treats the inliers as outliers: from averaging's poses
-  // on sceaux_castle with its PINHOLE camera held (median 1.9 px) the 1 px loss settled where the
-  // cameras fit the lens' unmodelled distortion, AUC@3 88 against COLMAP 3.8's model, and 96
-  // through 2 or 4 px first. The full BA starts at a median of 0.17-0.49 px on the other
-  // benchmark sets, and is unchanged there (BENCHMARKS.md, "A wide loss where BA starts far").
+  // A loss narrower than the typical error treats the inliers as outliers, and BA follows the few
+  // observations that fit already into the wrong basin (sceaux_castle with its PINHOLE camera
+  // held); where the start lies below the loss scale, as on the other benchmark sets, nothing
+  // changes (docs/benchmark-history.md, "A wide loss where BA starts far").
   double wide_start_loss_factor = 2.0;
   // Observations whose bearing is within this angle of the image plane are skipped (fisheye edges).
   double min_bearing_z = 0.1;
@@ -70,13 +68,12 @@ struct BundleAdjustmentOptions {
   // BA solves again without the detached observations only when they are at least this fraction
   // of all (0: whenever any was detached, as COLMAP's global BA). Under the 1 px Cauchy loss an
   // observation 4 px off weighs at most 1/17 of an inlier, so a few of them barely pull the
-  // solution: on the benchmark sets (under 1% detached) solving again moved AUC@3 by at most 0.17
-  // either way and cost 12-21% of the mapper's time (BENCHMARKS.md, "Where the seconds of bundle
-  // adjustment go"). Many detached observations (an image placed wrong) still get the second solve.
-  // 5%, not 1%: the mapper's start keeps observations up to 1 deg off
-  // (TrackTriangulationOptions::start_max_error_deg), so between 1% and 5% are detached on sets
-  // whose images are all placed right (kitti07_first160), where solving again took 1.6 s of the
-  // mapper's 6.6 s for 0.1 AUC@3 (BENCHMARKS.md, "Observations kept where BA starts").
+  // solution, and solving again costs more time than it moves the result
+  // (docs/benchmark-history.md, "Where the seconds of bundle adjustment go"). Many detached
+  // observations (an image placed wrong) still get the second solve. 5%, not 1%: the mapper's start
+  // keeps observations up to 1 deg off (TrackTriangulationOptions::start_max_error_deg), so sets
+  // whose images are all placed right detach a few percent (docs/benchmark-history.md,
+  // "Observations kept where BA starts").
   double min_filtered_fraction_to_solve_again = 0.05;
   // Points adjusted at most (0: all): the longest tracks first, and every image keeps at least
   // min_observations_per_image of its observations; the mapper re-triangulates every track
@@ -89,17 +86,15 @@ struct BundleAdjustmentOptions {
   // min_observations_per_image observations of longer tracks (then all of its own); the mapper
   // triangulates them again after BA. A point seen twice is checked by no third view: a wrong
   // match near the epipolar line fits it as well as a right one (GLOMAP, too, builds its tracks
-  // from three views on). On the benchmark sets AUC@3 moved by 0.07 or less, the full BA took
-  // fewer steps over fewer points, and the mapper ran 5-13% faster (BENCHMARKS.md, "Points seen
-  // in two images"). 2: every point.
+  // from three views on). Leaving them out keeps the accuracy and shortens the full BA
+  // (docs/benchmark-history.md, "Points seen in two images"). 2: every point.
   int min_track_length = 3;
   // Observations of one point adjusted at most (0: all), spread evenly over its track's images;
   // the others rejoin when every track is triangulated again. Schur elimination's work grows with
   // the square of a track's length, its information about the poses only linearly. Only long
-  // videos have such tracks: on the 4541-frame drive (tracks of 74 frames on average) 60 cut BA's
-  // time by a fifth at a lower ATE; kitti07_first160 (tracks up to 102 frames) moved by less than
-  // 0.1 AUC@3 with or without a calibration, and by 0.15 at 40 (BENCHMARKS.md, "Where the seconds
-  // of bundle adjustment go").
+  // videos have such tracks; 60 speeds up the long drives' BA without costing kitti07_first160
+  // accuracy, which lower caps did (docs/benchmark-history.md, "Where the seconds of bundle
+  // adjustment go").
   int max_observations_per_point = 60;
   // Intrinsics refined with the poses (COLMAP's --BundleAdjustment.refine_* and their defaults).
   // "Extra" parameters are the distortion coefficients.
@@ -109,11 +104,9 @@ struct BundleAdjustmentOptions {
   // A camera without a prior focal length (COLMAP's "unknown": prior_focal_length 0) has a guessed
   // principal point too, the image's centre. Where its focal length is refined, so is its
   // principal point, as refine_principal_point would. A principal point off the centre by p px
-  // turns every camera by about p / f radians, which no pose can undo: from the centre, the
-  // benchmark sets' rotations erred by 0.5-1.0 deg (median), and by 0.06-0.45 deg with it refined.
-  // Each camera's principal point then ended within 2.5 px of the truth on fountain-P11,
-  // Herz-Jesus-P8 and templeRing, and halved its distance on kitti07_first160 (BENCHMARKS.md,
-  // "The principal point of an uncalibrated camera").
+  // turns every camera by about p / f radians, which no pose can undo; refined, the benchmark sets'
+  // rotations and principal points come much closer to the truth (BENCHMARKS.md, "The principal
+  // point of an uncalibrated camera").
   bool refine_guessed_principal_point = true;
   // A refined guessed principal point farther from where BA started than this fraction of the
   // image's width (x) or height (y) is put back and held, and BA solves again: views that cannot
@@ -131,8 +124,7 @@ struct BundleAdjustmentOptions {
   // Among those cameras, the ones whose given focal length the test proved wrong: BA refines it
   // from the test's value, as COLMAP refines every focal length, and still holds their principal
   // point. The test's subset of 2000 points leaves the focal length less certain than the full
-  // adjustment does: sceaux_castle's EXIF focal length held at the test's value scored 0.4 AUC@3
-  // less (BENCHMARKS.md, "A focal length proved wrong").
+  // adjustment does (docs/benchmark-history.md, "A focal length proved wrong").
   std::set<uint32_t> disproved_given_cameras;
   // Cameras with the same model, size, parameters and prior flag (one EXIF value, one user
   // calibration, or one guess: COLMAP's one camera per image) share one set of intrinsics. The

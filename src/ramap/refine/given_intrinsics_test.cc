@@ -110,8 +110,8 @@ struct GroupError {
 // detaches an observation): the robust loss lets a step leave such observations far off, and
 // without the cap they decided the test. From averaging's poses through a focal length 1.6 times
 // too long (fountain-P11), the freed step found the focal length within 1% and fit the rest better,
-// yet its plain RMSE rose from 1.92 px to 3.34 px and the wrong value was kept (BENCHMARKS.md, "A
-// focal length proved wrong").
+// yet its plain RMSE rose from 1.92 px to 3.34 px and the wrong value was kept
+// (docs/benchmark-history.md, "A focal length proved wrong").
 std::map<uint32_t, GroupError> GroupErrors(const Reconstruction& reconstruction,
                                            const std::map<uint32_t, uint32_t>& group_of_camera,
                                            double max_error_px) {
@@ -187,8 +187,8 @@ struct Trial {
 // `first` and `second`, each from the trials' start, side by side: on two threads where BA has
 // them, since a small BA's dense Schur solve uses one. Step 2 started from the model's poses took
 // as many iterations as from the control's (sceaux_castle, lund_door, templeRing given their
-// calibrations), and the test's decisions stayed the same (BENCHMARKS.md, "A focal length proved
-// wrong").
+// calibrations), and the test's decisions stayed the same (docs/benchmark-history.md, "A focal
+// length proved wrong").
 void AdjustSideBySide(const Trials& trials, int num_threads, Trial* first, Trial* second) {
   // Each gets half the threads: a large subset's sparse Schur solve would use them all.
   for (Trial* trial : {first, second}) trial->options.num_threads = std::max(1, num_threads / 2);

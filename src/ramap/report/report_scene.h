@@ -16,7 +16,7 @@ namespace ramap {
 
 struct ReportSceneOptions {
   // Points drawn at most, over all models of a report: a fixed budget keeps the page small and
-  // quick to open however large the models (BENCHMARKS.md, "report.html").
+  // quick to open however large the models (docs/benchmark-history.md, "report.html").
   size_t max_points = 120000;
   // Significant digits of coordinates in the page (millimetres on a kilometre-sized scene).
   int digits = 7;

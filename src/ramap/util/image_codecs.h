@@ -1,8 +1,9 @@
 // Image files decoded and encoded by OpenCV's imgcodecs, loaded on first use from a plug-in
 // (src/plugins/image_codecs.cc, libramap_image_codecs.so). Linked into ramap itself, imgcodecs
 // brings over a hundred shared libraries (GDAL, Poppler, OpenEXR, codecs) whose loading and
-// relocation cost every ramap command about 50 ms at start (49 ms against 9 ms for the other
-// libraries, measured with `perf stat`), though the mapper and most commands read no image.
+// relocation at start cost every ramap command more than all its other libraries together, though
+// the mapper and most commands read no image (docs/benchmark-history.md, "Where the seconds of
+// bundle adjustment go").
 #pragma once
 
 #include <opencv2/core.hpp>

@@ -9,19 +9,40 @@
 #include "ramap/util/output_policy.h"
 
 namespace ramap::cli {
+namespace {
+
+struct ConverterCommand {
+  std::string database_path, output_path;
+  DatabaseGeneration generation = DatabaseGeneration::kColmap38;
+};
+
+const OptionTable<ConverterCommand>& ConverterCommandTable() {
+  static const OptionTable<ConverterCommand> table = {
+      Required(PathOption<ConverterCommand>(
+          "database_path", [](auto& o) -> auto& { return o.database_path; },
+          "COLMAP database to read")),
+      Required(PathOption<ConverterCommand>("output_path",
+                                            [](auto& o) -> auto& { return o.output_path; },
+                                            "the new database (must not exist)")),
+      DatabaseGenerationOption<ConverterCommand>([](auto& o) -> auto& { return o.generation; })};
+  return table;
+}
+
+}  // namespace
+
+std::string DatabaseConverterOptionsMarkdown() {
+  return OptionTableMarkdown(ConverterCommandTable(), ConverterCommand());
+}
 
 int RunDatabaseConverter(int argc, char** argv) {
   CLI::App app("Rewrite a COLMAP database (3.8 to 4.x) as another generation",
                "ramap database_converter");
-  std::string database_path, output_path, generation_name = "3.8";
-  app.add_option("--database_path", database_path, "COLMAP database to read")->required();
-  app.add_option("--output_path", output_path, "the new database (must not exist)")->required();
-  app.add_option("--Database.generation", generation_name,
-                 "3.8 (read by every COLMAP) | 3.10 (3.10-3.11) | 4 (3.12-4.x)")
-      ->capture_default_str();
-  if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  const DatabaseGeneration generation =
-      DatabaseGenerationFromName(generation_name, "--Database.generation");
+  ConverterCommand command;
+  if (const auto code = ParseCommandLine(app, ConverterCommandTable(), &command, argc, argv))
+    return *code;
+  const std::string& database_path = command.database_path;
+  const std::string& output_path = command.output_path;
+  const DatabaseGeneration generation = command.generation;
   CheckNewDatabasePath("--output_path", output_path, {database_path});
   DatabaseReadOptions read_options;
   read_options.read_descriptors = true;

@@ -19,14 +19,31 @@ constexpr std::array<const char*, 10> kConfigNames = {
     "UNDEFINED", "DEGENERATE",          "CALIBRATED", "UNCALIBRATED", "PLANAR",
     "PANORAMIC", "PLANAR_OR_PANORAMIC", "WATERMARK",  "MULTIPLE",     "CALIBRATED_RIG"};
 
+struct DatabaseInfoCommand {
+  std::string database_path;
+};
+
+const OptionTable<DatabaseInfoCommand>& DatabaseInfoCommandTable() {
+  static const OptionTable<DatabaseInfoCommand> table = {
+      Required(PathOption<DatabaseInfoCommand>("database_path",
+                                               [](auto& o) -> auto& { return o.database_path; },
+                                               "COLMAP database (SQLite)"))};
+  return table;
+}
+
 }  // namespace
+
+std::string DatabaseInfoOptionsMarkdown() {
+  return OptionTableMarkdown(DatabaseInfoCommandTable(), DatabaseInfoCommand());
+}
 
 int RunDatabaseInfo(int argc, char** argv) {
   CLI::App app("Counts what a COLMAP database (3.8 to 4.x) holds, checking it on the way.",
                "ramap database_info");
-  std::string database_path;
-  app.add_option("--database_path", database_path, "COLMAP database (SQLite)")->required();
-  if (const auto exit_code = ParseOptions(app, argc, argv)) return *exit_code;
+  DatabaseInfoCommand command;
+  if (const auto code = ParseCommandLine(app, DatabaseInfoCommandTable(), &command, argc, argv))
+    return *code;
+  const std::string& database_path = command.database_path;
 
   DatabaseReadOptions options;
   options.read_descriptors = true;

@@ -3,25 +3,51 @@
 #include <iostream>
 
 #include "options.h"
-#include "ramap/pipeline/reconstruct_job.h"
+#include "ramap/jobs/reconstruct_job.h"
 
 namespace ramap::cli {
+namespace {
+
+struct ExtractorCommand {
+  std::string image_path, image_list, database_path;
+  FeatureOptions options;
+  int log_level = 1;
+};
+
+const OptionTable<ExtractorCommand>& ExtractorCommandTable() {
+  static const OptionTable<ExtractorCommand> table = [] {
+    OptionTable<ExtractorCommand> t;
+    t.push_back(Required(PathOption<ExtractorCommand>(
+        "image_path", [](auto& o) -> auto& { return o.image_path; }, "folder of the images")));
+    t.push_back(PathOption<ExtractorCommand>("image_list",
+                                             [](auto& o) -> auto& { return o.image_list; },
+                                             "only these images (names relative to image_path)"));
+    t.push_back(Required(PathOption<ExtractorCommand>(
+        "database_path", [](auto& o) -> auto& { return o.database_path; },
+        "the COLMAP database to write")));
+    t.push_back(LogLevelOption<ExtractorCommand>([](auto& o) -> auto& { return o.log_level; }));
+    AppendOptions(ExtractionOptionTable(), [](auto& o) -> auto& { return o.options; }, &t);
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
+std::string FeatureExtractorOptionsMarkdown() {
+  return OptionTableMarkdown(ExtractorCommandTable(), ExtractorCommand());
+}
 
 int RunFeatureExtractor(int argc, char** argv) {
   CLI::App app(
       "Features of a folder or list of images (OpenCV ORB or SIFT) into a COLMAP database.",
       "ramap feature_extractor");
-  std::string image_path, image_list, database_path;
-  app.add_option("--image_path", image_path, "folder of the images")->required();
-  app.add_option("--image_list", image_list, "only these images (names relative to image_path)");
-  app.add_option("--database_path", database_path, "the COLMAP database to write")->required();
-  FeatureOptions options;
-  AddOptionTable(app, ExtractionOptionTable(), &options);
-  const LogLevelOption log_level(app);
-  if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  ExtractFeaturesToDatabase(image_path, image_list, database_path, options, log_level.progress(),
-                            &std::cerr);
-  std::cout << "Wrote " << database_path << "\n";
+  ExtractorCommand c;
+  if (const auto code = ParseCommandLine(app, ExtractorCommandTable(), &c, argc, argv))
+    return *code;
+  ExtractFeaturesToDatabase(c.image_path, c.image_list, c.database_path, c.options,
+                            ProgressStream(c.log_level), &std::cerr);
+  std::cout << "Wrote " << c.database_path << "\n";
   return 0;
 }
 

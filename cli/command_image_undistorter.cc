@@ -6,37 +6,67 @@
 
 #include "options.h"
 #include "ramap/io/colmap_model.h"
-#include "ramap/pipeline/image_undistortion.h"
+#include "ramap/jobs/image_undistortion.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 
 namespace ramap::cli {
+namespace {
+
+struct UndistorterCommand {
+  std::string image_path, input_path, output_path, output_type = "COLMAP";
+  UndistortionOptions options;
+  int num_threads = 2;
+};
+
+const OptionTable<UndistorterCommand>& UndistorterCommandTable() {
+  static const OptionTable<UndistorterCommand> table = [] {
+    OptionTable<UndistorterCommand> t;
+    t.push_back(Required(PathOption<UndistorterCommand>(
+        "image_path", [](auto& o) -> auto& { return o.image_path; },
+        "folder of the model's images")));
+    t.push_back(Required(PathOption<UndistorterCommand>(
+        "input_path", [](auto& o) -> auto& { return o.input_path; },
+        "COLMAP model folder (.bin or .txt)")));
+    t.push_back(Required(PathOption<UndistorterCommand>(
+        "output_path", [](auto& o) -> auto& { return o.output_path; },
+        "folder for images/ and sparse/")));
+    t.push_back(AlsoChecked(
+        TextOption<UndistorterCommand>("output_type",
+                                       [](auto& o) -> auto& { return o.output_type; },
+                                       "COLMAP (the one layout ramap writes)"),
+        [](const std::string& text) -> std::string {
+          return text == "COLMAP" ? ""
+                                  : "'" + text +
+                                        "': ramap writes COLMAP's layout only (PMVS and CMP-MVS "
+                                        "are not supported)";
+        }));
+    AppendOptions(UndistortionOptionTable(), [](auto& o) -> auto& { return o.options; }, &t);
+    t.push_back(NumberOption<UndistorterCommand>(
+        "num_threads", [](auto& o) -> auto& { return o.num_threads; }, AtLeast(1, 256),
+        "images undistorted at once"));
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
+std::string ImageUndistorterOptionsMarkdown() {
+  return OptionTableMarkdown(UndistorterCommandTable(), UndistorterCommand());
+}
 
 int RunImageUndistorter(int argc, char** argv) {
   CLI::App app("Undistorted images and PINHOLE model in COLMAP's layout (images/, sparse/)",
                "ramap image_undistorter");
-  std::string image_path, input_path, output_path, output_type = "COLMAP";
-  UndistortionOptions options;
-  int num_threads = 2;
-  app.add_option("--image_path", image_path, "folder of the model's images")->required();
-  app.add_option("--input_path", input_path, "COLMAP model folder (.bin or .txt)")->required();
-  app.add_option("--output_path", output_path, "folder for images/ and sparse/")->required();
-  app.add_option("--output_type", output_type, "COLMAP (the one layout ramap writes)")
-      ->capture_default_str();
-  app.add_option("--blank_pixels", options.blank_pixels,
-                 "share of blank border pixels allowed, 0 (crop) to 1 (keep every pixel)")
-      ->capture_default_str();
-  app.add_option("--min_scale", options.min_scale)->capture_default_str();
-  app.add_option("--max_scale", options.max_scale)->capture_default_str();
-  app.add_option("--max_image_size", options.max_image_size, "longest side (-1: as the images)")
-      ->capture_default_str();
-  app.add_option("--num_threads", num_threads)->capture_default_str()->check(AtLeast(1, 256));
-  if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  if (output_type != "COLMAP") {
-    throw InputError("--output_type", "'" + output_type +
-                                          "': ramap writes COLMAP's layout only (PMVS and "
-                                          "CMP-MVS are not supported)");
-  }
+  UndistorterCommand command;
+  if (const auto code = ParseCommandLine(app, UndistorterCommandTable(), &command, argc, argv))
+    return *code;
+  const std::string& image_path = command.image_path;
+  const std::string& input_path = command.input_path;
+  const std::string& output_path = command.output_path;
+  const UndistortionOptions& options = command.options;
+  const int num_threads = command.num_threads;
   options.Check();
   CheckFolderOutput("--output_path", output_path, {input_path});
 

@@ -12,11 +12,12 @@
 #include "options.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/colmap_model.h"
+#include "ramap/io/trajectory.h"
 #include "ramap/io/geo_export.h"
-#include "ramap/pipeline/mapper_option_table.h"
-#include "ramap/pipeline/plane_alignment.h"
-#include "ramap/pipeline/pose_prior_loading.h"
-#include "ramap/pipeline/prior_alignment.h"
+#include "ramap/mapper/mapper_options.h"
+#include "ramap/estimators/plane_alignment.h"
+#include "ramap/jobs/pose_prior_loading.h"
+#include "ramap/estimators/prior_alignment.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
@@ -34,26 +35,11 @@ void WriteAligned(const Reconstruction& model, const std::optional<GeodeticPoint
 struct ColmapAlignerOptions {
   std::string alignment_type = "enu";  // plane | enu | custom (ecef is not written by ramap)
   std::string ref_images_path;         // NAME X Y Z per line: ramap's prior file
-  int ref_is_gps = 1;
+  bool ref_is_gps = true;
   double alignment_max_error = 0;  // m; 0: ramap's default
-  int robust_alignment = 1;        // ramap's alignment is always robust
+  bool robust_alignment = true;  // ramap's alignment is always robust
 };
 
-void AddColmapAlignerOptions(CLI::App& app, ColmapAlignerOptions* o) {
-  app.add_option("--alignment_type", o->alignment_type,
-                 "plane (upright on the points' principal plane) | enu | custom")
-      ->capture_default_str();
-  app.add_option("--ref_images_path", o->ref_images_path,
-                 "as COLMAP's: NAME X Y Z per line (read as --PosePrior.path)");
-  app.add_option("--ref_is_gps", o->ref_is_gps, "1: the reference is latitude, longitude, altitude")
-      ->capture_default_str();
-  app.add_option("--alignment_max_error", o->alignment_max_error,
-                 "as --PosePrior.max_alignment_error_m (ignored by plane)")
-      ->check(AtLeast(0));
-  app.add_option("--robust_alignment", o->robust_alignment, "accepted: ramap is always robust");
-  app.add_option("--robust_alignment_max_error", o->alignment_max_error, "as --alignment_max_error")
-      ->check(AtLeast(0));
-}
 
 // COLMAP's model_aligner --alignment_type plane.
 int AlignToPlane(Reconstruction model, const std::string& input_path,
@@ -68,46 +54,89 @@ int AlignToPlane(Reconstruction model, const std::string& input_path,
   return 0;
 }
 
-// The priors' source and the alignment's --PosePrior.* options, declared with the mapper's; the
-// mapper's uses of the priors (align, use_in_*) are not model_aligner's.
-void AddPriorSourceOptions(CLI::App& app, MapperOptions* options) {
-  OptionTable<MapperOptions> table = MapperOptionSections({"PosePrior"});
-  table.erase(std::remove_if(table.begin(), table.end(),
-                             [](const OptionDeclaration<MapperOptions>& d) {
-                               return d.Key() == "align" || d.Key().rfind("use_in_", 0) == 0;
-                             }),
-              table.end());
-  AddOptionTable(app, table, options);
+struct AlignerCommand {
+  std::string input_path, output_path, database_path;
+  ModelFormat output_format = ModelFormat::kBinary;
+  MapperOptions prior_options;
+  ColmapAlignerOptions colmap;
+};
+
+// COLMAP's own options of model_aligner, read into ramap's.
+void DeclareColmapAlignerOptions(OptionTable<AlignerCommand>& t) {
+  t.push_back(ChoiceOption<AlignerCommand>(
+      "alignment_type", [](auto& o) -> auto& { return o.colmap.alignment_type; },
+      std::vector<std::pair<std::string, std::string>>{
+          {"plane", "plane"}, {"enu", "enu"}, {"custom", "custom"}},
+      "plane (upright on the points' principal plane) | enu | custom (ECEF models are not "
+      "written; use enu)"));
+  t.push_back(PathOption<AlignerCommand>(
+      "ref_images_path", [](auto& o) -> auto& { return o.colmap.ref_images_path; },
+      "as COLMAP's: NAME X Y Z per line (read as --PosePrior.path)"));
+  t.push_back(BoolOption<AlignerCommand>(
+      "ref_is_gps", [](auto& o) -> auto& { return o.colmap.ref_is_gps; },
+      "1: the reference is latitude, longitude, altitude"));
+  t.push_back(NumberOption<AlignerCommand>(
+      "alignment_max_error", [](auto& o) -> auto& { return o.colmap.alignment_max_error; },
+      AtLeast(0), "as --PosePrior.max_alignment_error_m (ignored by plane)"));
+  t.push_back(BoolOption<AlignerCommand>(
+      "robust_alignment", [](auto& o) -> auto& { return o.colmap.robust_alignment; },
+      "accepted: ramap is always robust"));
+  t.push_back(NumberOption<AlignerCommand>(
+      "robust_alignment_max_error", [](auto& o) -> auto& { return o.colmap.alignment_max_error; },
+      AtLeast(0), "as --alignment_max_error"));
+}
+
+const OptionTable<AlignerCommand>& AlignerCommandTable() {
+  static const OptionTable<AlignerCommand> table = [] {
+    OptionTable<AlignerCommand> t;
+    t.push_back(Required(PathOption<AlignerCommand>(
+        "input_path", [](auto& o) -> auto& { return o.input_path; },
+        "COLMAP model folder (.bin or .txt)")));
+    t.push_back(Required(PathOption<AlignerCommand>(
+        "output_path", [](auto& o) -> auto& { return o.output_path; },
+        "folder for the aligned model (may be the input)")));
+    t.push_back(PathOption<AlignerCommand>(
+        "database_path", [](auto& o) -> auto& { return o.database_path; },
+        "COLMAP database whose pose priors are used (without --PosePrior.path)"));
+    t.push_back(
+        ModelFormatOption<AlignerCommand>([](auto& o) -> auto& { return o.output_format; }));
+    // The priors' source and the alignment's --PosePrior.* options, declared with the mapper's;
+    // the mapper's uses of the priors (align, use_in_*) are not model_aligner's.
+    OptionTable<MapperOptions> priors = MapperOptionSections({"PosePrior"});
+    priors.erase(std::remove_if(priors.begin(), priors.end(),
+                                [](const OptionDeclaration<MapperOptions>& d) {
+                                  return d.Key() == "align" || d.Key().rfind("use_in_", 0) == 0;
+                                }),
+                 priors.end());
+    AppendOptions(priors, [](auto& o) -> auto& { return o.prior_options; }, &t);
+    DeclareColmapAlignerOptions(t);
+    return t;
+  }();
+  return table;
 }
 
 }  // namespace
+
+std::string ModelAlignerOptionsMarkdown() {
+  return OptionTableMarkdown(AlignerCommandTable(), AlignerCommand());
+}
 
 int RunModelAligner(int argc, char** argv) {
   CLI::App app(
       "Align a COLMAP model to pose priors (GPS): robust similarity, ENU frame; or set "
       "it upright on its principal plane (--alignment_type plane)",
       "ramap model_aligner");
-  std::string input_path, output_path, database_path, output_type = "BIN";
-  app.add_option("--input_path", input_path, "COLMAP model folder (.bin or .txt)")->required();
-  app.add_option("--output_path", output_path, "folder for the aligned model (may be the input)")
-      ->required();
-  app.add_option("--database_path", database_path,
-                 "COLMAP database whose pose priors are used (without --PosePrior.path)");
-  app.add_option("--output_type", output_type, "BIN or TXT")->capture_default_str();
-  MapperOptions prior_options;
-  AddPriorSourceOptions(app, &prior_options);
-  ColmapAlignerOptions colmap;
-  AddColmapAlignerOptions(app, &colmap);
-  if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
+  AlignerCommand command;
+  if (const auto code = ParseCommandLine(app, AlignerCommandTable(), &command, argc, argv))
+    return *code;
+  const std::string& input_path = command.input_path;
+  const std::string& output_path = command.output_path;
+  const std::string& database_path = command.database_path;
+  MapperOptions& prior_options = command.prior_options;
+  const ColmapAlignerOptions& colmap = command.colmap;
   PosePriorSource& prior_text = prior_options.prior_source;
   PriorAlignmentOptions& prior_alignment = prior_options.prior_alignment;
-  const ModelFormat format = ModelFormatFromName(output_type, "--output_type");
-  if (colmap.alignment_type != "plane" && colmap.alignment_type != "enu" &&
-      colmap.alignment_type != "custom") {
-    throw InputError("--alignment_type", "'" + colmap.alignment_type +
-                                             "': ramap aligns to plane, enu or custom (ECEF "
-                                             "models are not written; use enu)");
-  }
+  const ModelFormat format = command.output_format;
   if (!colmap.ref_images_path.empty()) {
     prior_text.path = colmap.ref_images_path;
     if (!app.count("--PosePrior.type")) prior_text.type = colmap.ref_is_gps ? "wgs84" : "xyz";

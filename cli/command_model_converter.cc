@@ -50,27 +50,59 @@ void Export(const Reconstruction& model, ExportFormat format, const std::string&
   }
 }
 
+struct ModelConverterCommand {
+  std::string input_path, output_path, output_type;
+  bool export_cameras = false;
+};
+
+const OptionTable<ModelConverterCommand>& ModelConverterCommandTable() {
+  static const OptionTable<ModelConverterCommand> table = {
+      Required(PathOption<ModelConverterCommand>(
+          "input_path", [](auto& o) -> auto& { return o.input_path; },
+          "folder of the model to read (.bin or .txt)")),
+      Required(PathOption<ModelConverterCommand>(
+          "output_path", [](auto& o) -> auto& { return o.output_path; },
+          "BIN, TXT, NERFSTUDIO: folder to write (created); PLY, TUM: file to write")),
+      Required(AlsoChecked(
+          TextOption<ModelConverterCommand>(
+              "output_type", [](auto& o) -> auto& { return o.output_type; },
+              "BIN or TXT (COLMAP model), PLY (points), NERFSTUDIO (transforms.json and "
+              "sparse_pc.ply), TUM (trajectory)"),
+          [](const std::string& text) -> std::string {
+            try {
+              ModelFormatFromName(text, "--output_type");
+            } catch (const InputError&) {
+              try {
+                ExportFormatFromName(text, "--output_type");
+              } catch (const InputError&) {
+                return "'" + text + "' is not BIN, TXT, PLY, NERFSTUDIO or TUM";
+              }
+            }
+            return "";
+          })),
+      BoolOption<ModelConverterCommand>("export_cameras",
+                                        [](auto& o) -> auto& { return o.export_cameras; },
+                                        "PLY: add each camera centre, in red")};
+  return table;
+}
+
 }  // namespace
+
+std::string ModelConverterOptionsMarkdown() {
+  return OptionTableMarkdown(ModelConverterCommandTable(), ModelConverterCommand());
+}
 
 int RunModelConverter(int argc, char** argv) {
   CLI::App app("Convert a COLMAP sparse model between .bin and .txt, or export it",
                "ramap model_converter");
-  std::string input_path;
-  std::string output_path;
-  std::string output_type;
-  bool export_cameras = false;
-  app.add_option("--input_path", input_path, "Folder of the model to read (.bin or .txt)")
-      ->required();
-  app.add_option("--output_path", output_path,
-                 "BIN, TXT, NERFSTUDIO: folder to write (created); PLY, TUM: file to write")
-      ->required();
-  app.add_option("--output_type", output_type,
-                 "BIN or TXT (COLMAP model), PLY (points), NERFSTUDIO (transforms.json and "
-                 "sparse_pc.ply), TUM (trajectory)")
-      ->required();
-  app.add_option("--export_cameras", export_cameras, "PLY: add each camera centre, in red")
-      ->capture_default_str();
-  if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
+  ModelConverterCommand command;
+  if (const auto code =
+          ParseCommandLine(app, ModelConverterCommandTable(), &command, argc, argv))
+    return *code;
+  const std::string& input_path = command.input_path;
+  const std::string& output_path = command.output_path;
+  const std::string& output_type = command.output_type;
+  const bool export_cameras = command.export_cameras;
 
   std::string upper = output_type;
   for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));

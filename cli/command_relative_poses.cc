@@ -6,30 +6,55 @@
 #include <iostream>
 #include <map>
 
-#include "mapper_options.h"
 #include "options.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/relative_pose_file.h"
-#include "ramap/pipeline/mapper_option_table.h"
-#include "ramap/pipeline/relative_poses.h"
+#include "ramap/mapper/mapper_options.h"
+#include "ramap/estimators/relative_poses.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/timer.h"
 
 namespace ramap::cli {
+namespace {
+
+struct RelativePosesCommand {
+  std::string database_path, output_path;
+  MapperOptions options;
+};
+
+const OptionTable<RelativePosesCommand>& RelativePosesCommandTable() {
+  static const OptionTable<RelativePosesCommand> table = [] {
+    OptionTable<RelativePosesCommand> t;
+    t.push_back(Required(PathOption<RelativePosesCommand>(
+        "database_path", [](auto& o) -> auto& { return o.database_path; },
+        "COLMAP database with verified matches")));
+    t.push_back(Required(PathOption<RelativePosesCommand>(
+        "output_path", [](auto& o) -> auto& { return o.output_path; },
+        "text file: NAME1 NAME2 qw qx qy qz tx ty tz num_inliers flags")));
+    AppendOptions(MapperOptionSections({"RelativePose"}, {"Mapper.num_threads"}),
+                  [](auto& o) -> auto& { return o.options; }, &t);
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
+std::string RelativePosesOptionsMarkdown() {
+  return OptionTableMarkdown(RelativePosesCommandTable(), RelativePosesCommand());
+}
+
 int RunRelativePoses(int argc, char** argv) {
   CLI::App app("Relative pose of every verified image pair of a COLMAP database.",
                "ramap relative_poses");
-  std::string database_path, output_path;
-  app.add_option("--database_path", database_path, "COLMAP database with verified matches")
-      ->required();
-  app.add_option("--output_path", output_path,
-                 "text file: NAME1 NAME2 qw qx qy qz tx ty tz num_inliers flags")
-      ->required();
-  MapperOptions options;
-  AddOptionTable(app, MapperOptionSections({"RelativePose"}, {"Mapper.num_threads"}), &options);
-  if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  ResolveMapperOptions(&options);
+  RelativePosesCommand command;
+  if (const auto code = ParseCommandLine(app, RelativePosesCommandTable(), &command, argc, argv))
+    return *code;
+  const std::string& database_path = command.database_path;
+  const std::string& output_path = command.output_path;
+  MapperOptions& options = command.options;
+  options.Check();
   CheckFileOutput("--output_path", output_path, {database_path});
 
   const FeatureDatabase database = ReadColmapDatabase(database_path, MapperDatabaseReadOptions());

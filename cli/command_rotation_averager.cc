@@ -8,13 +8,12 @@
 #include <map>
 #include <utility>
 
-#include "mapper_options.h"
 #include "options.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/relative_pose_file.h"
-#include "ramap/pipeline/mapper_option_table.h"
-#include "ramap/pipeline/relative_poses.h"
-#include "ramap/pipeline/rotations.h"
+#include "ramap/mapper/mapper_options.h"
+#include "ramap/estimators/relative_poses.h"
+#include "ramap/estimators/rotations.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 
@@ -86,26 +85,52 @@ void PrintRotationSummary(const RecordRotations& averaged, const std::string& ou
   }
 }
 
+struct RotationAveragerCommand {
+  std::string database_path, relative_poses_path, output_path;
+  MapperOptions options;
+};
+
+const OptionTable<RotationAveragerCommand>& RotationAveragerCommandTable() {
+  static const OptionTable<RotationAveragerCommand> table = [] {
+    OptionTable<RotationAveragerCommand> t;
+    t.push_back(PathOption<RotationAveragerCommand>(
+        "database_path", [](auto& o) -> auto& { return o.database_path; },
+        "COLMAP database (relative poses first); or --relative_poses"));
+    t.push_back(PathOption<RotationAveragerCommand>(
+        "relative_poses", [](auto& o) -> auto& { return o.relative_poses_path; },
+        "relative pose file written by ramap relative_poses; or --database_path"));
+    t.push_back(Required(PathOption<RotationAveragerCommand>(
+        "output_path", [](auto& o) -> auto& { return o.output_path; },
+        "text file: NAME qw qx qy qz (cam_from_world)")));
+    AppendOptions(MapperOptionSections({"RelativePose", "ViewGraph", "RotationAveraging"},
+                                       {"Mapper.num_threads"}),
+                  [](auto& o) -> auto& { return o.options; }, &t);
+    return t;
+  }();
+  return table;
+}
+
 }  // namespace
+
+std::string RotationAveragerOptionsMarkdown() {
+  return OptionTableMarkdown(RotationAveragerCommandTable(), RotationAveragerCommand());
+}
 
 int RunRotationAverager(int argc, char** argv) {
   CLI::App app("Absolute rotations by robust rotation averaging (L1 + IRLS, pruning, certificate).",
                "ramap rotation_averager");
-  std::string database_path, relative_poses_path, output_path;
-  auto* database_option =
-      app.add_option("--database_path", database_path, "COLMAP database (relative poses first)");
-  auto* edges_option = app.add_option("--relative_poses", relative_poses_path,
-                                      "relative pose file written by ramap relative_poses");
-  database_option->excludes(edges_option);
-  app.add_option("--output_path", output_path, "text file: NAME qw qx qy qz (cam_from_world)")
-      ->required();
-  MapperOptions options;
-  AddOptionTable(app,
-                 MapperOptionSections({"RelativePose", "ViewGraph", "RotationAveraging"},
-                                      {"Mapper.num_threads"}),
-                 &options);
-  if (const std::optional<int> code = ParseOptions(app, argc, argv)) return *code;
-  ResolveMapperOptions(&options);
+  RotationAveragerCommand command;
+  if (const auto code =
+          ParseCommandLine(app, RotationAveragerCommandTable(), &command, argc, argv))
+    return *code;
+  const std::string& database_path = command.database_path;
+  const std::string& relative_poses_path = command.relative_poses_path;
+  const std::string& output_path = command.output_path;
+  MapperOptions& options = command.options;
+  if (!database_path.empty() && !relative_poses_path.empty()) {
+    throw InputError("--relative_poses", "give --database_path or --relative_poses, not both");
+  }
+  options.Check();
   if (database_path.empty() && relative_poses_path.empty()) {
     throw InputError("rotation_averager", "give --database_path or --relative_poses");
   }

@@ -17,7 +17,6 @@
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
-#include "synthetic_options.h"
 
 namespace ramap::cli {
 
@@ -44,55 +43,88 @@ void PrintScene(const SyntheticScene& scene, const std::string& output_path, std
       << " inliers\n";
 }
 
+struct SynthesizeCommand {
+  std::string output_path;
+  ModelFormat output_format = ModelFormat::kBinary;
+  DatabaseGeneration generation = DatabaseGeneration::kColmap38;
+  std::string trajectory_path;
+  SyntheticSceneOptions scene;
+  bool descriptors = false;
+  SyntheticDescriptorOptions descriptor;
+};
+
+const OptionTable<SynthesizeCommand>& SynthesizeCommandTable() {
+  static const OptionTable<SynthesizeCommand> table = [] {
+    OptionTable<SynthesizeCommand> t;
+    t.push_back(Required(PathOption<SynthesizeCommand>(
+        "output_path", [](auto& o) -> auto& { return o.output_path; },
+        "folder for database.db, ground_truth/ and ground_truth.txt (created)")));
+    t.push_back(ModelFormatOption<SynthesizeCommand>(
+        [](auto& o) -> auto& { return o.output_format; }));
+    t.push_back(
+        DatabaseGenerationOption<SynthesizeCommand>([](auto& o) -> auto& { return o.generation; }));
+    AppendOptions(SyntheticSceneOptionTable(), [](auto& o) -> auto& { return o.scene; }, &t);
+    t.push_back(PathOption<SynthesizeCommand>(
+        "Synthetic.trajectory_path", [](auto& o) -> auto& { return o.trajectory_path; },
+        "KITTI odometry pose file whose poses the sequential cameras take (instead of "
+        "--Synthetic.path); --Synthetic.num_images 0 takes all"));
+    t.push_back(BoolOption<SynthesizeCommand>(
+        "Synthetic.descriptors", [](auto& o) -> auto& { return o.descriptors; },
+        "1: SIFT-like descriptors for every keypoint (one per 3D point, noisy per view), so that "
+        "ramap matcher can match the database again"));
+    AppendOptions(SyntheticDescriptorOptionTable(), [](auto& o) -> auto& { return o.descriptor; },
+                  &t);
+    return t;
+  }();
+  return table;
+}
+
+// A trajectory file replaces the generated path; without --Synthetic.num_images
+// (`num_images_given`) all its poses are taken.
+void TakeTrajectory(const std::string& path, bool num_images_given,
+                    SyntheticSceneOptions* options) {
+  if (path.empty()) return;
+  if (options->layout != SyntheticLayout::kSequential) {
+    throw InputError("--Synthetic.trajectory_path", "needs --Synthetic.layout sequential");
+  }
+  const GroundTruth trajectory = ReadGroundTruth(path, GroundTruthFormat::kKitti);
+  options->path = SyntheticPath::kGiven;
+  for (const GroundTruthPose& pose : trajectory.poses) {
+    options->given_poses.push_back(pose.cam_from_world);
+  }
+  if (!num_images_given) options->num_images = 0;
+}
+
 }  // namespace
+
+std::string SynthesizeOptionsMarkdown() {
+  return OptionTableMarkdown(SynthesizeCommandTable(), SynthesizeCommand());
+}
 
 int RunSynthesize(int argc, char** argv) {
   CLI::App app(
       "Builds a synthetic scene with exact ground truth: a COLMAP database (keypoints, matches "
       "with outliers, verified two-view geometries), the true COLMAP model and a TUM trajectory.",
       "ramap synthesize");
-  SyntheticSceneOptions options;
-  SceneOptionText text;
-  std::string output_path;
-  std::string output_type = "BIN";
-  app.add_option("--output_path", output_path,
-                 "folder for database.db, ground_truth/ and ground_truth.txt (created)")
-      ->required();
-  AddSceneOptions(app, &options, &text);
-  app.add_option("--output_type", output_type, "ground-truth model format")
-      ->check(CLI::IsMember({"BIN", "TXT"}))
-      ->capture_default_str();
-  std::string generation_name = "3.8";
-  app.add_option("--Database.generation", generation_name,
-                 "schema of the database: 3.8 (every COLMAP reads it) | 3.10 | 4 (3.12-4.x)")
-      ->capture_default_str();
-  bool with_descriptors = false;
-  SyntheticDescriptorOptions descriptor_options;
-  app.add_option("--Synthetic.descriptors", with_descriptors,
-                 "1: SIFT-like descriptors for every keypoint (one per 3D point, noisy per view), "
-                 "so that ramap matcher can match the database again")
-      ->capture_default_str();
-  app.add_option("--Synthetic.descriptor_noise", descriptor_options.noise_sigma,
-                 "noise of a view's descriptor values (SIFT's scale: norm 512)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  if (const auto exit_code = ParseOptions(app, argc, argv)) return *exit_code;
-  const DatabaseGeneration generation =
-      DatabaseGenerationFromName(generation_name, "--Database.generation");
-  FinishSceneOptions(text, app.count("--Synthetic.num_images") > 0, &options);
-  CheckFolderOutput("--output_path", output_path, {text.trajectory_path});
-  CheckNewDatabasePath("--output_path", output_path + "/database.db", {text.trajectory_path});
+  SynthesizeCommand command;
+  if (const auto code = ParseCommandLine(app, SynthesizeCommandTable(), &command, argc, argv))
+    return *code;
+  SyntheticSceneOptions& options = command.scene;
+  const std::string& output_path = command.output_path;
+  TakeTrajectory(command.trajectory_path, app.count("--Synthetic.num_images") > 0, &options);
+  options.Check();
+  CheckFolderOutput("--output_path", output_path, {command.trajectory_path});
+  CheckNewDatabasePath("--output_path", output_path + "/database.db", {command.trajectory_path});
 
   SyntheticScene scene = BuildSyntheticScene(options);
-  if (with_descriptors) {
-    descriptor_options.seed = options.seed;
-    AddSyntheticDescriptors(descriptor_options, &scene);
+  if (command.descriptors) {
+    command.descriptor.seed = options.seed;
+    AddSyntheticDescriptors(command.descriptor, &scene);
   }
   // Removed again if writing fails or is interrupted.
   CreatedOutput created(output_path);
   CreatedOutput created_database(output_path + "/database.db");
-  WriteScene(scene, output_path, output_type == "TXT" ? ModelFormat::kText : ModelFormat::kBinary,
-             generation);
+  WriteScene(scene, output_path, command.output_format, command.generation);
   created_database.Keep();
   created.Keep();
   PrintScene(scene, output_path, std::cout);

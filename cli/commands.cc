@@ -22,6 +22,23 @@ int RunRelativePoses(int argc, char** argv);
 int RunRotationAverager(int argc, char** argv);
 int RunSynthesize(int argc, char** argv);
 
+// Their options, each from the command's own table.
+std::string BundleAdjusterOptionsMarkdown();
+std::string CompareOptionsMarkdown();
+std::string DatabaseConverterOptionsMarkdown();
+std::string DatabaseInfoOptionsMarkdown();
+std::string EvaluateOptionsMarkdown();
+std::string FeatureExtractorOptionsMarkdown();
+std::string ImageUndistorterOptionsMarkdown();
+std::string MapperOptionsMarkdown();
+std::string MatcherOptionsMarkdown();
+std::string ModelAlignerOptionsMarkdown();
+std::string ModelConverterOptionsMarkdown();
+std::string ReconstructOptionsMarkdown();
+std::string RelativePosesOptionsMarkdown();
+std::string RotationAveragerOptionsMarkdown();
+std::string SynthesizeOptionsMarkdown();
+
 // COLMAP's exhaustive_matcher and sequential_matcher: ramap's matcher in that mode.
 int RunMatcherInMode(const char* mode, int argc, char** argv) {
   std::vector<char*> args(argv, argv + argc);
@@ -34,11 +51,11 @@ int RunMatcherInMode(const char* mode, int argc, char** argv) {
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {
-      {"reconstruct", "images to a COLMAP model: features, matching, mapper", RunReconstruct},
+      {"reconstruct", "images to a COLMAP model: features, matching, mapper", RunReconstruct, ReconstructOptionsMarkdown},
       {"feature_extractor", "ORB or SIFT features of images into a COLMAP database",
-       RunFeatureExtractor},
+       RunFeatureExtractor, FeatureExtractorOptionsMarkdown},
       {"matcher", "matches and verified geometries (sequential, retrieval or exhaustive)",
-       RunMatcher},
+       RunMatcher, MatcherOptionsMarkdown},
       {"exhaustive_matcher", "as COLMAP's: matcher --Matching.mode exhaustive",
        [](int argc, char** argv) { return RunMatcherInMode("exhaustive", argc, argv); }},
       {"sequential_matcher", "as COLMAP's: matcher --Matching.mode sequential",
@@ -47,27 +64,31 @@ const std::vector<Command>& AllCommands() {
       // instead of a downloaded tree.
       {"vocab_tree_matcher", "as COLMAP's: matcher --Matching.mode retrieval",
        [](int argc, char** argv) { return RunMatcherInMode("retrieval", argc, argv); }},
-      {"mapper", "camera poses and points from a COLMAP database by motion averaging", RunMapper},
+      {"mapper", "camera poses and points from a COLMAP database by motion averaging", RunMapper,
+       MapperOptionsMarkdown},
       {"relative_poses", "relative pose of every verified pair (grid 6-point, Kneip)",
-       RunRelativePoses},
+       RunRelativePoses, RelativePosesOptionsMarkdown},
       {"rotation_averager", "absolute rotations by robust rotation averaging, certified",
-       RunRotationAverager},
-      {"evaluate", "score a model's camera poses against ground truth (ATE, AUC)", RunEvaluate},
+       RunRotationAverager, RotationAveragerOptionsMarkdown},
+      {"evaluate", "score a model's camera poses against ground truth (ATE, AUC)", RunEvaluate,
+       EvaluateOptionsMarkdown},
       {"compare", "COLMAP's BA mapper vs ramap on one database: accuracy, time, figures",
-       RunCompare},
-      {"database_info", "counts and checks what a COLMAP database holds", RunDatabaseInfo},
+       RunCompare, CompareOptionsMarkdown},
+      {"database_info", "counts and checks what a COLMAP database holds", RunDatabaseInfo,
+       DatabaseInfoOptionsMarkdown},
       {"options", "every option, its default and meaning (Markdown)", RunOptions},
       {"database_converter", "a COLMAP database rewritten as another generation (3.8, 3.10, 4)",
-       RunDatabaseConverter},
+       RunDatabaseConverter, DatabaseConverterOptionsMarkdown},
       {"model_aligner", "align a COLMAP model to GPS / pose priors (ENU, GeoJSON)",
-       RunModelAligner},
-      {"model_converter", "convert a COLMAP sparse model between BIN and TXT", RunModelConverter},
+       RunModelAligner, ModelAlignerOptionsMarkdown},
+      {"model_converter", "convert a COLMAP sparse model between BIN and TXT", RunModelConverter,
+       ModelConverterOptionsMarkdown},
       {"bundle_adjuster", "bundle adjustment of a COLMAP model (poses, points, intrinsics)",
-       RunBundleAdjuster},
+       RunBundleAdjuster, BundleAdjusterOptionsMarkdown},
       {"image_undistorter", "undistorted images and PINHOLE model (COLMAP's layout, for 3DGS)",
-       RunImageUndistorter},
+       RunImageUndistorter, ImageUndistorterOptionsMarkdown},
       {"synthesize", "a synthetic scene with exact ground truth (database, model, TUM)",
-       RunSynthesize},
+       RunSynthesize, SynthesizeOptionsMarkdown},
   };
   return commands;
 }

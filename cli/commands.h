@@ -12,6 +12,9 @@ struct Command {
   std::string name;
   std::string summary;
   std::function<int(int argc, char** argv)> run;
+  // Its options as a Markdown table, from the one table the command parses (empty: none of its
+  // own, as COLMAP's matcher names that run `matcher`).
+  std::function<std::string()> options_markdown;
 };
 
 // Every command, in the order `ramap help` lists them.

@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "colmap_compat.h"
 #include "commands.h"
 #include "ramap/util/allocator.h"
 #include "ramap/util/error.h"
@@ -55,14 +54,9 @@ int main(int argc, char** argv) {
   for (const ramap::cli::Command& command : ramap::cli::AllCommands()) {
     if (command.name != name) continue;
     try {
-      // The command sees itself as argv[0], and ramap's names for COLMAP's renamed options.
-      std::vector<std::string> args = ramap::cli::TranslateColmapOptions(
-          std::vector<std::string>(argv + 2, argv + argc), std::cerr);
-      args.insert(args.begin(), argv[1]);
-      std::vector<char*> command_argv;
-      for (std::string& arg : args) command_argv.push_back(arg.data());
-      command_argv.push_back(nullptr);
-      return command.run(static_cast<int>(args.size()), command_argv.data());
+      // The command sees itself as argv[0]; COLMAP's names of its options are among its
+      // declarations' aliases (cli/options.h).
+      return command.run(argc - 1, argv + 1);
     } catch (const ramap::InputError& error) {
       std::cerr << "ramap " << name << ": error: " << error.what() << "\n";
       return 2;

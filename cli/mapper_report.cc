@@ -3,7 +3,7 @@
 #include <cmath>
 #include <iomanip>
 
-#include "ramap/pipeline/stage_log.h"
+#include "ramap/mapper/stage_log.h"
 
 namespace ramap::cli {
 

@@ -5,7 +5,7 @@
 #include <ostream>
 #include <string>
 
-#include "ramap/pipeline/mapper_summary.h"
+#include "ramap/mapper/mapper_summary.h"
 
 namespace ramap::cli {
 

@@ -8,11 +8,11 @@
 
 #include "model_bindings.h"
 #include "ramap/io/trajectory.h"
-#include "ramap/pipeline/mapper_job.h"
-#include "ramap/pipeline/mapper_option_table.h"
-#include "ramap/pipeline/mapper_output.h"
-#include "ramap/pipeline/model_evaluation.h"
-#include "ramap/pipeline/reconstruct_job.h"
+#include "ramap/jobs/mapper_job.h"
+#include "ramap/mapper/mapper_options.h"
+#include "ramap/jobs/mapper_output.h"
+#include "ramap/jobs/model_evaluation.h"
+#include "ramap/jobs/reconstruct_job.h"
 #include "ramap/util/error.h"
 #include "ramap/util/run_observer.h"
 
@@ -190,13 +190,16 @@ py::object MatchDatabaseFeatures(const std::string& database_path,
 
 py::dict EvaluateModelPoses(const std::string& model_path, const std::string& ground_truth,
                             const std::string& format, const std::string& image_list,
-                            const std::string& database_path) {
+                            const std::string& database_path,
+                            const std::map<std::string, std::string>& options) {
   ModelEvaluationInput input{model_path, ground_truth, GroundTruthFormatFromName(format),
                              image_list, database_path};
+  const PoseEvaluationOptions settings = SettingsFromText(PoseEvaluationOptionTable(), options);
+  settings.Check();
   PoseEvaluation evaluation;
   {
     py::gil_scoped_release release;
-    evaluation = EvaluateModel(input, PoseEvaluationOptions());
+    evaluation = EvaluateModel(input, settings);
   }
   return py::module_::import("json").attr("loads")(PoseEvaluationToJson(evaluation).dump());
 }
@@ -213,7 +216,9 @@ void BindOptions(py::module_& m) {
       []() {
         const MapperOptions defaults;
         std::map<std::string, std::string> values;
-        for (const auto& d : MapperOptionTable()) values[d.name] = d.text(defaults);
+        for (const auto& d : MapperOptionTable()) {
+          if (d.ignored_because.empty()) values[d.name] = d.text(defaults);
+        }
         return values;
       },
       "every mapper option's default, as text");
@@ -221,7 +226,7 @@ void BindOptions(py::module_& m) {
       "check_mapper_options",
       [](const std::map<std::string, std::string>& values) {
         MapperOptions options = MapperOptionsFromText(values);
-        ResolveMapperOptions(&options);
+        options.Check();
       },
       "raises ValueError with the command line's message for a wrong name or value");
 }
@@ -245,5 +250,6 @@ PYBIND11_MODULE(_core, m) {
   m.def("match", &MatchDatabaseFeatures, py::arg("database_path"), py::arg("options"),
         py::arg("log"));
   m.def("evaluate", &EvaluateModelPoses, py::arg("model_path"), py::arg("ground_truth"),
-        py::arg("format"), py::arg("image_list") = "", py::arg("database_path") = "");
+        py::arg("format"), py::arg("image_list") = "", py::arg("database_path") = "",
+        py::arg("options") = std::map<std::string, std::string>());
 }

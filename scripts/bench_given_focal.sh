@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A focal length given wrong: `ramap mapper` with its defaults on databases whose camera is marked
 # known (prior_focal_length 1) with a wrong focal length, where the given-intrinsics test proves it
-# wrong (refine/given_intrinsics_test.h). Herz-Jesus-P8 and fountain-P11 with their true
+# wrong (refine/given_intrinsics_check.h). Herz-Jesus-P8 and fountain-P11 with their true
 # calibration scaled by each factor, and lund_door's and sceaux_castle's EXIF focal lengths (the
 # databases of build/bench-unknown-intrinsics). One thread, one run each; each row gives AUC@1 and
 # AUC@3 against the ground truth (sceaux_castle: COLMAP 3.8's model of the unknown-intrinsics

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "ramap/pipeline/mapper.h"
+#include "ramap/mapper/mapper.h"
 #include "ramap/scene/camera.h"
 #include "ramap/synthetic/synthetic_scene.h"
 

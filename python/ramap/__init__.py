@@ -60,7 +60,9 @@ def _option_text(name, value):
         return repr(float(value))
     if isinstance(value, (str, os.PathLike)):
         return os.fspath(value)
-    raise ValueError(f"--{name}: {value!r} is not a number, a bool or a string")
+    if isinstance(value, (list, tuple)):  # a list option: auc_thresholds=[1, 3, 5]
+        return ",".join(_option_text(name, item) for item in value)
+    raise ValueError(f"--{name}: {value!r} is not a number, a bool, a string or a list of them")
 
 
 def _flat_options(options):
@@ -140,12 +142,15 @@ def match(database_path, options=None, log=False):
     return _core.match(os.fspath(database_path), _flat_options(options), bool(log))
 
 
-def evaluate(model, ground_truth, format, image_list="", database_path=""):
+def evaluate(model, ground_truth, format, image_list="", database_path="", options=None):
     """Scores a model's poses against a ground truth, as `ramap evaluate` does.
 
-    model: a model folder; format: tum, kitti, strecha, middlebury or colmap. Returns the
-    evaluation as `ramap evaluate --output_path` writes it (registered images, ATE after Sim(3)
-    alignment, rotation errors, relative pose AUC).
+    model: a model folder; format: tum, kitti, strecha, middlebury or colmap. options: the
+    command's own names (estimate_scale, robust_alignment, robust_alignment_max_error,
+    auc_thresholds, min_baseline, ordered_pairs). Returns the evaluation as `ramap evaluate
+    --output_path` writes it (registered images, ATE after Sim(3) alignment, rotation errors,
+    relative pose AUC).
     """
     return _core.evaluate(os.fspath(model), os.fspath(ground_truth), format,
-                          os.fspath(image_list or ""), os.fspath(database_path or ""))
+                          os.fspath(image_list or ""), os.fspath(database_path or ""),
+                          _flat_options(options))

@@ -9,7 +9,7 @@
 
 #include "ramap/graph/fiedler.h"
 #include "ramap/graph/keyframes.h"
-#include "ramap/graph/synthetic_view_graph.h"
+#include "ramap/synthetic/synthetic_view_graph.h"
 #include "ramap/util/error.h"
 
 namespace ramap {

@@ -1,5 +1,5 @@
 // The pinhole camera of a distorted one and the undistorted images (geometry/undistortion.h,
-// pipeline/image_undistortion.h): a 3D point lands on the same pixel through the distorted image
+// jobs/image_undistortion.h): a 3D point lands on the same pixel through the distorted image
 // undistorted as through the PINHOLE camera directly.
 #include "ramap/geometry/undistortion.h"
 
@@ -12,7 +12,7 @@
 
 #include "ramap/geometry/camera_projection.h"
 #include "ramap/io/colmap_model.h"
-#include "ramap/pipeline/image_undistortion.h"
+#include "ramap/jobs/image_undistortion.h"
 #include "ramap/util/error.h"
 #include "test_support.h"
 

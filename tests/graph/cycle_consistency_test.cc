@@ -9,7 +9,7 @@
 
 #include "ramap/averaging/rotation_averaging.h"
 #include "ramap/geometry/rotation.h"
-#include "ramap/graph/synthetic_view_graph.h"
+#include "ramap/synthetic/synthetic_view_graph.h"
 
 namespace ramap {
 namespace {

@@ -12,7 +12,7 @@
 #include "ramap/io/colmap_database_schema.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/sqlite.h"
-#include "ramap/pipeline/mapper.h"
+#include "ramap/mapper/mapper.h"
 #include "test_support.h"
 
 namespace ramap {

@@ -7,7 +7,7 @@
 #include <iostream>
 
 #include "ramap/averaging/rotation_averaging.h"
-#include "ramap/graph/synthetic_view_graph.h"
+#include "ramap/synthetic/synthetic_view_graph.h"
 #include "ramap/util/error.h"
 #include "test_support.h"
 

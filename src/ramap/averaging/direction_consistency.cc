@@ -13,14 +13,10 @@
 namespace ramap {
 
 void DirectionConsistencyOptions::Check() const {
-  const std::string s = "--TranslationAveraging.direction_";
-  CheckOption(threshold_multiplier > 0, s + "threshold_multiplier", "> 0", threshold_multiplier);
-  CheckOption(min_threshold_deg >= 0, s + "min_threshold_deg", ">= 0", min_threshold_deg);
-  CheckOption(max_residual_deg > 0 && max_residual_deg <= 180, s + "max_residual_deg",
-              "in (0, 180]", max_residual_deg);
-  CheckOption(min_num_cycles >= 1, s + "min_num_cycles", ">= 1", min_num_cycles);
+  CheckOptionValues(DirectionConsistencyOptionTable(), *this);
+  // The settings no command line option reaches.
   CheckOption(max_num_cycles >= min_num_cycles, "DirectionConsistencyOptions::max_num_cycles",
-              ">= direction_min_num_cycles", max_num_cycles);
+              ">= --TranslationAveraging.direction_min_num_cycles", max_num_cycles);
   CheckOption(num_rounds >= 1, "DirectionConsistencyOptions::num_rounds", ">= 1", num_rounds);
 }
 

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "ramap/averaging/translation_averaging.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -54,6 +55,10 @@ struct DirectionConsistencyOptions {
   void Check() const;
 };
 
+// Its options (--TranslationAveraging.*), each declared once with its range and help
+// (util/option_table.h): the command line, Check(), summary.json and Python read them.
+const OptionTable<DirectionConsistencyOptions>& DirectionConsistencyOptionTable();
+
 struct RejectedDirection {
   uint32_t image_id1 = 0;
   uint32_t image_id2 = 0;
@@ -77,6 +82,6 @@ double AngleToCone(const Eigen::Vector3d& direction, const Eigen::Vector3d& u,
 
 // Splits `directions` (world-frame unit directions of c2 - c1) into the kept and the rejected.
 DirectionConsistencyResult CheckDirectionCycles(const std::vector<PairDirection>& directions,
-                                                   const DirectionConsistencyOptions& options);
+                                                const DirectionConsistencyOptions& options);
 
 }  // namespace ramap

@@ -12,18 +12,7 @@
 namespace ramap {
 
 void PairDirectionOptions::Check() const {
-  const std::string s = "--PairDirection.";
-  CheckOption(min_ray_angle_deg >= 0, s + "min_ray_angle_deg", ">= 0", min_ray_angle_deg);
-  CheckOption(num_reweighting_rounds >= 0, s + "num_reweighting_rounds", ">= 0",
-              num_reweighting_rounds);
-  CheckOption(residual_scale_deg > 0, s + "residual_scale_deg", "> 0", residual_scale_deg);
-  CheckOption(min_num_matches >= 2, s + "min_num_matches", ">= 2", min_num_matches);
-  CheckOption(max_num_matches >= 0, s + "max_num_matches", ">= 0", max_num_matches);
-  CheckOption(min_cheirality_ratio > 0.5 && min_cheirality_ratio <= 1.0, s + "min_cheirality_ratio",
-              "in (0.5, 1]", min_cheirality_ratio);
-  CheckOption(min_agreeing_share >= 0.0 && min_agreeing_share <= 1.0, s + "min_agreeing_share",
-              "in [0, 1]", min_agreeing_share);
-  CheckOption(num_sampled_starts >= 1, s + "num_sampled_starts", ">= 1", num_sampled_starts);
+  CheckOptionValues(PairDirectionOptionTable(), *this);
 }
 
 namespace {

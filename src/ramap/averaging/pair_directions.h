@@ -12,6 +12,8 @@
 #include <optional>
 #include <vector>
 
+#include "ramap/util/option_table.h"
+
 namespace ramap {
 
 struct PairDirectionOptions {
@@ -48,6 +50,10 @@ struct PairDirectionOptions {
 
   void Check() const;
 };
+
+// Its options (--PairDirection.*), each declared once with its range and help
+// (util/option_table.h): the command line, Check(), summary.json and Python read them.
+const OptionTable<PairDirectionOptions>& PairDirectionOptionTable();
 
 // World-frame unit direction of c2 - c1 from the pair's matched bearings (camera frames) and the
 // cam_from_world rotations; empty when the pair has too few informative matches or an ambiguous

@@ -366,33 +366,20 @@ double KeptGraphBound(const ViewGraph& graph, const std::vector<bool>& keep,
 }  // namespace
 
 void RotationAveragingOptions::Check() const {
-  const std::string prefix = "--RotationAveraging.";
-  CheckOption(max_l1_iterations >= 0, prefix + "max_l1_iterations", ">= 0", max_l1_iterations);
-  CheckOption(l1_inner_iterations >= 1, "RotationAveragingOptions::l1_inner_iterations", ">= 1",
-              l1_inner_iterations);
-  CheckOption(l1_step_tolerance_deg >= 0.0, "RotationAveragingOptions::l1_step_tolerance_deg",
-              ">= 0", l1_step_tolerance_deg);
-  CheckOption(l1_min_residual_deg > 0.0, "RotationAveragingOptions::l1_min_residual_deg", "> 0",
-              l1_min_residual_deg);
-  CheckOption(max_irls_iterations >= 0, prefix + "max_irls_iterations", ">= 0",
-              max_irls_iterations);
-  CheckOption(irls_step_tolerance_deg >= 0.0, "RotationAveragingOptions::irls_step_tolerance_deg",
-              ">= 0", irls_step_tolerance_deg);
-  CheckOption(max_pcg_iterations >= 0, prefix + "max_pcg_iterations", ">= 0", max_pcg_iterations);
-  CheckOption(pcg_tolerance > 0 && pcg_tolerance < 1, "RotationAveragingOptions::pcg_tolerance",
-              "in (0, 1)", pcg_tolerance);
-  CheckOption(sigma_deg > 0.0 && std::isfinite(sigma_deg), prefix + "sigma_deg", "finite and > 0",
-              sigma_deg);
-  CheckOption(alpha_max_deg > 0.0 && alpha_max_deg <= 180.0, prefix + "alpha_max_deg",
-              "in (0, 180]", alpha_max_deg);
-  CheckOption(max_pruning_rounds >= 0, prefix + "max_pruning_rounds", ">= 0", max_pruning_rounds);
-  CheckOption(adaptive_multiplier > 0, prefix + "adaptive_multiplier", "> 0", adaptive_multiplier);
-  CheckOption(adaptive_min_deg >= 0, prefix + "adaptive_min_deg", ">= 0", adaptive_min_deg);
-  CheckOption(max_certificate_iterations >= 0,
-              "RotationAveragingOptions::max_certificate_iterations", ">= 0",
+  CheckOptionValues(RotationAveragingOptionTable(), *this);
+  // The settings no command line option reaches.
+  const std::string s = "RotationAveragingOptions::";
+  CheckOption(l1_inner_iterations >= 1, s + "l1_inner_iterations", ">= 1", l1_inner_iterations);
+  CheckOption(l1_step_tolerance_deg >= 0.0, s + "l1_step_tolerance_deg", ">= 0",
+              l1_step_tolerance_deg);
+  CheckOption(l1_min_residual_deg > 0.0, s + "l1_min_residual_deg", "> 0", l1_min_residual_deg);
+  CheckOption(irls_step_tolerance_deg >= 0.0, s + "irls_step_tolerance_deg", ">= 0",
+              irls_step_tolerance_deg);
+  CheckOption(pcg_tolerance > 0 && pcg_tolerance < 1, s + "pcg_tolerance", "in (0, 1)",
+              pcg_tolerance);
+  CheckOption(max_certificate_iterations >= 0, s + "max_certificate_iterations", ">= 0",
               max_certificate_iterations);
-  CheckOption(certificate_step_tolerance_deg >= 0.0,
-              "RotationAveragingOptions::certificate_step_tolerance_deg", ">= 0",
+  CheckOption(certificate_step_tolerance_deg >= 0.0, s + "certificate_step_tolerance_deg", ">= 0",
               certificate_step_tolerance_deg);
 }
 

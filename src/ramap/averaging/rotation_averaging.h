@@ -36,6 +36,7 @@
 #include "ramap/averaging/preconditioned_cg.h"
 #include "ramap/graph/keyframes.h"
 #include "ramap/graph/view_graph_algorithms.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -114,6 +115,10 @@ struct RotationAveragingOptions {
   // out of range (named RotationAveragingOptions::<field> when no command line sets it).
   void Check() const;
 };
+
+// Its options (--RotationAveraging.*), each declared once with its range and help
+// (util/option_table.h): the command line, Check(), summary.json and Python read them.
+const OptionTable<RotationAveragingOptions>& RotationAveragingOptionTable();
 
 enum class EdgeStatus {
   kKept,

@@ -601,46 +601,24 @@ Eigen::VectorXd SolveByIrls(const StackedSystem& system, Eigen::VectorXd x,
 }  // namespace
 
 void TranslationAveragingOptions::Check() const {
-  const std::string s = "--TranslationAveraging.";
-  CheckOption(min_triangulation_angle_deg > 0 && min_triangulation_angle_deg < 90,
-              s + "min_triangulation_angle_deg", "in (0, 90)", min_triangulation_angle_deg);
-  CheckOption(max_observations_per_track >= 2,
-              "TranslationAveragingOptions::max_observations_per_track", ">= 2",
+  CheckOptionValues(TranslationAveragingOptionTable(), *this);
+  // The settings no command line option reaches.
+  const std::string s = "TranslationAveragingOptions::";
+  CheckOption(max_observations_per_track >= 2, s + "max_observations_per_track", ">= 2",
               max_observations_per_track);
-  CheckOption(max_num_tracks >= 1, s + "max_num_tracks", ">= 1", max_num_tracks);
-  CheckOption(min_tracks_per_image >= 0, s + "min_tracks_per_image", ">= 0", min_tracks_per_image);
-  CheckOption(admm_rho > 0, s + "admm_rho", "> 0", admm_rho);
-  CheckOption(prior_weight > 0, "TranslationAveragingOptions::prior_weight", "> 0", prior_weight);
-  CheckOption(prior_huber_sigmas > 0, "TranslationAveragingOptions::prior_huber_sigmas", "> 0",
-              prior_huber_sigmas);
-  CheckOption(pair_constraint_weight > 0, s + "pair_constraint_weight", "> 0",
-              pair_constraint_weight);
-  CheckOption(admm_relaxation > 0 && admm_relaxation < 2,
-              "TranslationAveragingOptions::admm_relaxation", "in (0, 2)", admm_relaxation);
-  CheckOption(max_irls_iterations >= 0, s + "max_irls_iterations", ">= 0", max_irls_iterations);
-  CheckOption(irls_tolerance > 0, "TranslationAveragingOptions::irls_tolerance", "> 0",
-              irls_tolerance);
-  CheckOption(irls_cost_tolerance >= 0 && irls_cost_tolerance < 1, s + "irls_cost_tolerance",
-              "in [0, 1)", irls_cost_tolerance);
-  CheckOption(irls_extrapolation >= 1 && irls_extrapolation <= 3, s + "irls_extrapolation",
-              "in [1, 3]", irls_extrapolation);
-  CheckOption(num_threads >= 1, "TranslationAveragingOptions::num_threads", ">= 1", num_threads);
-  CheckOption(max_pcg_iterations >= 0, s + "max_pcg_iterations", ">= 0", max_pcg_iterations);
-  CheckOption(pcg_tolerance > 0 && pcg_tolerance < 1, "TranslationAveragingOptions::pcg_tolerance",
-              "in (0, 1)", pcg_tolerance);
-  CheckOption(irls_min_residual > 0, "TranslationAveragingOptions::irls_min_residual", "> 0",
-              irls_min_residual);
-  CheckOption(max_admm_iterations >= 0, s + "max_admm_iterations", ">= 0", max_admm_iterations);
-  CheckOption(admm_tolerance > 0, "TranslationAveragingOptions::admm_tolerance", "> 0",
-              admm_tolerance);
-  CheckOption(admm_cost_tolerance >= 0, "TranslationAveragingOptions::admm_cost_tolerance", ">= 0",
-              admm_cost_tolerance);
-  CheckOption(max_rejection_rounds >= 0, s + "max_rejection_rounds", ">= 0", max_rejection_rounds);
-  CheckOption(rejection_multiplier > 1, s + "rejection_multiplier", "> 1", rejection_multiplier);
-  CheckOption(rejection_min_angle_deg >= 0, s + "rejection_min_angle_deg", ">= 0",
-              rejection_min_angle_deg);
-  CheckOption(admm_relative_tolerance >= 0, "TranslationAveragingOptions::admm_relative_tolerance",
-              ">= 0", admm_relative_tolerance);
+  CheckOption(prior_weight > 0, s + "prior_weight", "> 0", prior_weight);
+  CheckOption(prior_huber_sigmas > 0, s + "prior_huber_sigmas", "> 0", prior_huber_sigmas);
+  CheckOption(admm_relaxation > 0 && admm_relaxation < 2, s + "admm_relaxation", "in (0, 2)",
+              admm_relaxation);
+  CheckOption(irls_tolerance > 0, s + "irls_tolerance", "> 0", irls_tolerance);
+  CheckOption(num_threads >= 1, s + "num_threads", ">= 1", num_threads);
+  CheckOption(pcg_tolerance > 0 && pcg_tolerance < 1, s + "pcg_tolerance", "in (0, 1)",
+              pcg_tolerance);
+  CheckOption(irls_min_residual > 0, s + "irls_min_residual", "> 0", irls_min_residual);
+  CheckOption(admm_tolerance > 0, s + "admm_tolerance", "> 0", admm_tolerance);
+  CheckOption(admm_cost_tolerance >= 0, s + "admm_cost_tolerance", ">= 0", admm_cost_tolerance);
+  CheckOption(admm_relative_tolerance >= 0, s + "admm_relative_tolerance", ">= 0",
+              admm_relative_tolerance);
 }
 
 namespace {

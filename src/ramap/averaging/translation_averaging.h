@@ -37,6 +37,7 @@
 
 #include "ramap/graph/tracks.h"
 #include "ramap/scene/features.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -155,6 +156,10 @@ struct TranslationAveragingOptions {
 
   void Check() const;
 };
+
+// Its options (--TranslationAveraging.*), each declared once with its range and help
+// (util/option_table.h): the command line, Check(), summary.json and Python read them.
+const OptionTable<TranslationAveragingOptions>& TranslationAveragingOptionTable();
 
 // A pair row that translation averaging dropped as an outlier (TranslationAveragingOptions::
 // max_rejection_rounds): the angle by which its solution missed the pair's direction.

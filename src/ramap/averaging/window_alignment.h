@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "ramap/averaging/translation_averaging.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -47,6 +48,10 @@ struct WindowAlignmentOptions {
   int max_directions_per_window_pair = 20;
   int num_threads = 1;  // Ceres's
 };
+
+// Its options (--TranslationAveraging.*), each declared once with its range and help (util/option_table.h):
+// the command line, Check(), summary.json and Python read them.
+const OptionTable<WindowAlignmentOptions>& WindowAlignmentOptionTable();
 
 // c = scale * c_local + translation.
 struct WindowPlacement {

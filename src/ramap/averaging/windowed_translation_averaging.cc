@@ -237,21 +237,9 @@ void MoveToGauge(const std::vector<uint32_t>& ordered,
 }  // namespace
 
 void WindowedTranslationOptions::Check() const {
-  const std::string s = "--TranslationAveraging.";
-  CheckOption(min_num_images >= 0, s + "window_min_num_images", ">= 0", min_num_images);
-  CheckOption(window_frames >= 3, s + "window_frames", ">= 3", window_frames);
-  CheckOption(overlap_frames >= 2 && overlap_frames < window_frames, s + "window_overlap_frames",
-              ">= 2 and below --TranslationAveraging.window_frames", overlap_frames);
-  CheckOption(alignment.max_num_iterations >= 0, s + "window_max_num_iterations", ">= 0",
-              alignment.max_num_iterations);
-  CheckOption(alignment.direction_sigma_rad > 0, s + "window_direction_sigma_rad", "> 0",
-              alignment.direction_sigma_rad);
-  CheckOption(alignment.huber_overlap_residuals > 0, s + "window_huber_overlap_residuals", "> 0",
-              alignment.huber_overlap_residuals);
-  CheckOption(irls_cost_tolerance >= 0 && irls_cost_tolerance < 1, s + "window_irls_cost_tolerance",
-              "in [0, 1)", irls_cost_tolerance);
-  CheckOption(alignment.max_directions_per_window_pair >= 0, s + "window_max_directions_per_pair",
-              ">= 0", alignment.max_directions_per_window_pair);
+  CheckOptionValues(WindowedTranslationOptionTable(), *this);
+  CheckOption(overlap_frames < window_frames, "--TranslationAveraging.window_overlap_frames",
+              "below --TranslationAveraging.window_frames", overlap_frames);
 }
 
 TranslationAveragingResult AverageTranslationsInWindows(

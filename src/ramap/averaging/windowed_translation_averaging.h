@@ -16,6 +16,7 @@
 
 #include "ramap/averaging/translation_averaging.h"
 #include "ramap/averaging/window_alignment.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -44,6 +45,10 @@ struct WindowedTranslationOptions {
   // Throws InputError naming the --TranslationAveraging.window_* option when out of range.
   void Check() const;
 };
+
+// Its options (--TranslationAveraging.*), each declared once with its range and help
+// (util/option_table.h): the command line, Check(), summary.json and Python read them.
+const OptionTable<WindowedTranslationOptions>& WindowedTranslationOptionTable();
 
 // Positions of the cameras of `rotations` as AverageTranslations gives them (the same gauge:
 // the first positioned image of `order` at the origin, mean projected pair baseline 1), solved in

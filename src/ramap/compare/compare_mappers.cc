@@ -26,7 +26,7 @@ void CheckOptions(const CompareOptions& options) {
   if (options.ground_truth_path.empty() != options.ground_truth_format.empty()) {
     throw InputError("--ground_truth", "give both --ground_truth and --ground_truth_format");
   }
-  CheckOption(options.num_threads >= 1, "--Compare.num_threads", ">= 1", options.num_threads);
+  CheckOptionValues(CompareOptionTable(), options);
   CheckFolderOutput("--output_path", options.output_path,
                     {options.database_path, options.image_path, options.ground_truth_path});
 }

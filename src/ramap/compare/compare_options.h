@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "ramap/util/option_table.h"
+
 namespace ramap {
 
 struct CompareOptions {
@@ -33,5 +35,9 @@ struct CompareOptions {
   // pages that want a static picture (BENCHMARKS.md); report.html has them all, interactive.
   bool png_figures = false;
 };
+
+// `ramap compare`'s options, each declared once with its range and help (util/option_table.h);
+// the binaries are checked to exist before anything runs.
+const OptionTable<CompareOptions>& CompareOptionTable();
 
 }  // namespace ramap

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "ramap/eval/plots.h"
+#include "ramap/compare/plots.h"
 #include "ramap/geometry/alignment.h"
 #include "ramap/scene/image_order.h"
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "ramap/compare/comparison.h"
-#include "ramap/eval/plots.h"
+#include "ramap/compare/plots.h"
 #include "ramap/scene/rigid3.h"
 
 namespace ramap {

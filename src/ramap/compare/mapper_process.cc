@@ -14,7 +14,7 @@
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/colmap_model.h"
 #include "ramap/io/trajectory.h"
-#include "ramap/pipeline/stage_log.h"
+#include "ramap/mapper/stage_log.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 

@@ -11,6 +11,7 @@
 #include "ramap/geometry/rotation.h"
 #include "ramap/util/error.h"
 #include "ramap/util/staged_output.h"
+#include "ramap/util/option_check.h"
 
 namespace ramap {
 namespace {
@@ -58,18 +59,10 @@ const char* AucDefinitionName(AucDefinition definition) {
 }  // namespace
 
 void PoseEvaluationOptions::Check() const {
+  CheckOptionValues(PoseEvaluationOptionTable(), *this);
+  CheckOption(!alignment.robust || alignment.robust_max_error > 0, "--robust_alignment_max_error",
+              "> 0 with --robust_alignment 1 (in ground-truth units)", alignment.robust_max_error);
   alignment.Check();
-  if (auc_thresholds_deg.empty()) {
-    throw InputError("PoseEvaluationOptions", "at least one AUC threshold is needed");
-  }
-  for (double t : auc_thresholds_deg) {
-    if (!(t > 0.0 && t <= 180.0)) {
-      throw InputError("PoseEvaluationOptions", "AUC thresholds must be in (0, 180] degrees");
-    }
-  }
-  if (!(min_baseline >= 0.0)) {
-    throw InputError("PoseEvaluationOptions", "min_baseline must be >= 0");
-  }
 }
 
 PairPoseError RelativePoseError(const Rigid3d& est_i, const Rigid3d& est_j, const Rigid3d& gt_i,

@@ -19,6 +19,7 @@
 #include "ramap/geometry/rotation.h"
 #include "ramap/scene/reconstruction.h"
 #include "ramap/scene/rigid3.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -36,8 +37,13 @@ struct PoseEvaluationOptions {
   // default each unordered pair counts once, i before j in input order.
   bool ordered_pairs = false;
 
-  void Check() const;  // throws InputError("PoseEvaluationOptions", ...)
+  // Throws InputError naming the option (`ramap evaluate`'s names) for a value out of range.
+  void Check() const;
 };
+
+// Its options, as `ramap evaluate` and Python's ramap.evaluate take them (--auc_thresholds, ...),
+// each declared once with its range and help (util/option_table.h).
+const OptionTable<PoseEvaluationOptions>& PoseEvaluationOptionTable();
 
 // One input image.
 struct ImageEvaluation {

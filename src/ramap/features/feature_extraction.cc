@@ -20,9 +20,7 @@ FeatureType FeatureTypeFromName(const std::string& name) {
 std::string FeatureTypeName(FeatureType type) { return type == FeatureType::kOrb ? "orb" : "sift"; }
 
 void FeatureExtractionOptions::Check() const {
-  CheckOption(max_image_size >= 32, "--FeatureExtraction.max_image_size", ">= 32", max_image_size);
-  CheckOption(max_num_features >= 16, "--FeatureExtraction.max_num_features", ">= 16",
-              max_num_features);
+  CheckOptionValues(FeatureExtractionOptionTable(), *this);
 }
 
 ImageFeatures ExtractFeatures(const cv::Mat& grey, const FeatureExtractionOptions& options) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "ramap/scene/features.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -28,6 +29,10 @@ struct FeatureExtractionOptions {
 
   void Check() const;  // throws InputError naming the option
 };
+
+// Its options (--FeatureExtraction.*), each declared once with its range and help (util/option_table.h):
+// the command line, Check(), summary.json and Python read them.
+const OptionTable<FeatureExtractionOptions>& FeatureExtractionOptionTable();
 
 struct ImageFeatures {
   Keypoints

@@ -42,23 +42,7 @@ std::string MatchingModeName(MatchingMode mode) {
 }
 
 void FeatureMatchingOptions::Check() const {
-  CheckOption(overlap >= 1, "--Matching.overlap", ">= 1", overlap);
-  CheckOption(max_ratio > 0 && max_ratio <= 1, "--Matching.max_ratio", "in (0, 1]", max_ratio);
-  CheckOption(max_error_px > 0, "--Matching.max_error_px", "> 0", max_error_px);
-  CheckOption(confidence > 0 && confidence < 1, "--Matching.confidence", "in (0, 1)", confidence);
-  CheckOption(min_num_inliers >= 5, "--Matching.min_num_inliers", ">= 5", min_num_inliers);
-  CheckOption(auto_exhaustive_max_images >= 0, "--Matching.auto_exhaustive_max_images", ">= 0",
-              auto_exhaustive_max_images);
-  CheckOption(preemptive_num_features >= 0, "--Matching.preemptive_num_features", ">= 0",
-              preemptive_num_features);
-  CheckOption(preemptive_min_matches >= 1, "--Matching.preemptive_min_matches", ">= 1",
-              preemptive_min_matches);
-  CheckOption(num_threads >= 1, "--Matching.num_threads", ">= 1", num_threads);
-  CheckOption(loop_num_neighbors >= 0, "--Matching.loop_num_neighbors", ">= 0", loop_num_neighbors);
-  CheckOption(loop_min_frame_gap >= 0, "--Matching.loop_min_frame_gap", ">= 0", loop_min_frame_gap);
-  CheckOption(retrieval_num_neighbors >= 1, "--Matching.retrieval_num_neighbors", ">= 1",
-              retrieval_num_neighbors);
-  retrieval.Check();
+  CheckOptionValues(FeatureMatchingOptionTable(), *this);
 }
 
 std::vector<FeatureMatch> MatchDescriptors(const Descriptors& descriptors1,

@@ -12,6 +12,7 @@
 #include "ramap/features/descriptor_matching.h"
 #include "ramap/features/image_retrieval.h"
 #include "ramap/scene/features.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -66,6 +67,10 @@ struct FeatureMatchingOptions {
   DescriptorMatchingOptions descriptor_matching() const { return {max_ratio, cross_check}; }
   void Check() const;  // throws InputError naming the option
 };
+
+// Its options (--Matching.*), each declared once with its range and help (util/option_table.h):
+// the command line, Check(), summary.json and Python read them.
+const OptionTable<FeatureMatchingOptions>& FeatureMatchingOptionTable();
 
 // Putative matches of two descriptor sets (Hamming distance for 32-byte binary descriptors, L2
 // otherwise), after the ratio test and, if asked, the cross check. With `ratios`, also each

@@ -64,22 +64,15 @@ Camera MakeCamera(const ImageReaderOptions& options, int width, int height,
 }  // namespace
 
 void ImageReaderOptions::Check() const {
-  const std::optional<CameraModel> model = CameraModelFromName(camera_model);
-  if (!model) {
-    throw InputError("--ImageReader.camera_model", "unknown camera model '" + camera_model + "'");
+  CheckOptionValues(ImageReaderOptionTable(), *this);
+  if (camera_params.empty()) return;
+  const CameraModel model = *CameraModelFromName(camera_model);
+  const std::vector<double> params = ParseNumberList(camera_params, "--ImageReader.camera_params");
+  if (static_cast<int>(params.size()) != NumCameraParams(model)) {
+    throw InputError("--ImageReader.camera_params",
+                     camera_model + " takes " + std::to_string(NumCameraParams(model)) +
+                         " parameters, " + std::to_string(params.size()) + " given");
   }
-  if (!camera_params.empty()) {
-    const std::vector<double> params =
-        ParseNumberList(camera_params, "--ImageReader.camera_params");
-    if (static_cast<int>(params.size()) != NumCameraParams(*model)) {
-      throw InputError("--ImageReader.camera_params",
-                       camera_model + " takes " + std::to_string(NumCameraParams(*model)) +
-                           " parameters, " + std::to_string(params.size()) + " given");
-    }
-  }
-  CheckOption(default_focal_length_factor > 0, "--ImageReader.default_focal_length_factor", "> 0",
-              default_focal_length_factor);
-  CheckOption(num_threads >= 1, "--FeatureExtraction.num_threads", ">= 1", num_threads);
 }
 
 std::vector<std::string> ListImages(const std::string& image_path,

@@ -9,6 +9,7 @@
 
 #include "ramap/features/feature_extraction.h"
 #include "ramap/scene/features.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -26,6 +27,10 @@ struct ImageReaderOptions {
 
   void Check() const;  // throws InputError naming the option
 };
+
+// Its options (--FeatureExtraction.*, --ImageReader.*), each declared once with its range and help (util/option_table.h):
+// the command line, Check(), summary.json and Python read them.
+const OptionTable<ImageReaderOptions>& ImageReaderOptionTable();
 
 // Image file names in `image_path` (its files with an image extension, sorted), or the names in
 // `image_list_path` (one per line, relative to image_path) when that is given. Throws InputError

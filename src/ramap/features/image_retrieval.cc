@@ -132,15 +132,7 @@ Descriptors VotingDescriptors(const FeatureDatabase& database, uint32_t image_id
 
 }  // namespace
 
-void ImageRetrievalOptions::Check() const {
-  CheckOption(num_words >= 1, "--Matching.retrieval_num_words", ">= 1", num_words);
-  CheckOption(max_features_per_image >= 1, "--Matching.retrieval_max_features_per_image", ">= 1",
-              max_features_per_image);
-  CheckOption(max_training_descriptors >= 1, "--Matching.retrieval_max_training_descriptors",
-              ">= 1", max_training_descriptors);
-  CheckOption(num_kmeans_iterations >= 0, "--Matching.retrieval_num_kmeans_iterations", ">= 0",
-              num_kmeans_iterations);
-}
+void ImageRetrievalOptions::Check() const { CheckOptionValues(ImageRetrievalOptionTable(), *this); }
 
 GlobalDescriptors ComputeGlobalDescriptors(const FeatureDatabase& database,
                                            const std::vector<uint32_t>& image_ids,

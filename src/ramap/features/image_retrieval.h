@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ramap/scene/features.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -26,6 +27,10 @@ struct ImageRetrievalOptions {
 
   void Check() const;  // throws InputError naming the option
 };
+
+// Its options (--Matching.*), each declared once with its range and help (util/option_table.h):
+// the command line, Check(), summary.json and Python read them.
+const OptionTable<ImageRetrievalOptions>& ImageRetrievalOptionTable();
 
 // One row per image, in the order of `image_ids`: unit-length VLAD descriptors, so that a dot
 // product is the cosine similarity of two images.

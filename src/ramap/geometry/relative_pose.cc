@@ -20,6 +20,7 @@
 #include "ramap/util/error.h"
 #include "ramap/util/even_subset.h"
 #include "ramap/util/statistics.h"
+#include "ramap/util/option_check.h"
 
 namespace ramap {
 namespace {
@@ -379,40 +380,20 @@ std::string Percent(double ratio) {
 }  // namespace
 
 void RelativePoseOptions::Check() const {
-  const std::string source = "RelativePose options";
-  if (min_num_inliers < kNumSamples) {
-    throw InputError(source, "min_num_inliers must be at least 6");
-  }
-  if (grid_cols < 1 || grid_rows < 1) throw InputError(source, "grid_cols/grid_rows must be >= 1");
-  if (min_cell_distance < 1) throw InputError(source, "min_cell_distance must be >= 1");
-  if (!(max_epipolar_error_px > 0)) throw InputError(source, "max_epipolar_error_px must be > 0");
-  if (!(min_inlier_ratio >= 0 && min_inlier_ratio <= 1)) {
-    throw InputError(source, "min_inlier_ratio must be in [0, 1]");
-  }
-  if (!(pure_rotation_parallax_px >= 0)) {
-    throw InputError(source, "pure_rotation_parallax_px must be >= 0");
-  }
-  if (!(min_motion_deg >= 0)) throw InputError(source, "min_motion_deg must be >= 0");
-  if (!(min_bearing_spread >= 0)) throw InputError(source, "min_bearing_spread must be >= 0");
-  if (!(confident_inlier_ratio >= 0)) {
-    throw InputError(source, "confident_inlier_ratio must be >= 0");
-  }
-  if (confident_min_matches < 0) throw InputError(source, "confident_min_matches must be >= 0");
-  if (confident_noise_sample < 0) throw InputError(source, "confident_noise_sample must be >= 0");
-  if (!(confident_max_rms_error_px >= 0) || !(confident_narrow_view_rms_error_px >= 0)) {
-    throw InputError(
-        source, "confident_max_rms_error_px and confident_narrow_view_rms_error_px must be >= 0");
-  }
-  if (!(confident_narrow_view_deg >= 0)) {
-    throw InputError(source, "confident_narrow_view_deg must be >= 0");
-  }
-  if (max_refinement_matches < kNumSamples) {
-    throw InputError(source, "max_refinement_matches must be at least 6");
-  }
-  if (ransac_max_iterations < 1) throw InputError(source, "ransac_max_iterations must be >= 1");
-  if (!(ransac_probability > 0 && ransac_probability < 1)) {
-    throw InputError(source, "ransac_probability must be in (0, 1)");
-  }
+  CheckOptionValues(RelativePoseOptionTable(), *this);
+  // The settings no command line option reaches.
+  const std::string s = "RelativePoseOptions::";
+  CheckOption(min_cell_distance >= 1, s + "min_cell_distance", ">= 1", min_cell_distance);
+  CheckOption(min_inlier_ratio >= 0 && min_inlier_ratio <= 1, s + "min_inlier_ratio", "in [0, 1]",
+              min_inlier_ratio);
+  CheckOption(min_motion_deg >= 0, s + "min_motion_deg", ">= 0", min_motion_deg);
+  CheckOption(min_bearing_spread >= 0, s + "min_bearing_spread", ">= 0", min_bearing_spread);
+  CheckOption(max_refinement_matches >= kNumSamples, s + "max_refinement_matches", ">= 6",
+              max_refinement_matches);
+  CheckOption(ransac_max_iterations >= 1, s + "ransac_max_iterations", ">= 1",
+              ransac_max_iterations);
+  CheckOption(ransac_probability > 0 && ransac_probability < 1, s + "ransac_probability",
+              "in (0, 1)", ransac_probability);
 }
 
 namespace {

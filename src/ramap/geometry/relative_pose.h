@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "ramap/geometry/correspondence_sampling.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -112,7 +113,7 @@ struct RelativePoseOptions {
   int confident_min_matches = 100;
   // The mapper first estimates this many evenly spaced strong pairs with every candidate and
   // raises confident_max_rms_error_px to what their epipolar errors say the keypoints' noise gives
-  // (pipeline/relative_poses.cc; never lowers it); 0: the bound as given.
+  // (estimators/relative_poses.cc; never lowers it); 0: the bound as given.
   int confident_noise_sample = 32;
   // RANSAC (sampler = ransac5): iterations cap and success probability.
   int ransac_max_iterations = 1000;
@@ -121,6 +122,10 @@ struct RelativePoseOptions {
   // Throws InputError naming the offending option.
   void Check() const;
 };
+
+// Its options (--RelativePose.*), each declared once with its range and help (util/option_table.h):
+// the command line, Check(), summary.json and Python read them.
+const OptionTable<RelativePoseOptions>& RelativePoseOptionTable();
 
 // Estimates cam2_from_cam1 from the matches of one pair. Never throws on degenerate data: bad
 // input (fewer than six / min_num_inliers matches, non-finite values, no focal length, all

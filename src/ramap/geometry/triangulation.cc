@@ -37,11 +37,11 @@ double AngularError(const RayObservation& o, const Eigen::Vector3d& X) {
 }  // namespace
 
 void TriangulationOptions::Check() const {
-  CheckOption(max_angular_error_rad > 0, "TriangulationOptions.max_angular_error_rad", "> 0",
+  CheckOption(max_angular_error_rad > 0, "TriangulationOptions::max_angular_error_rad", "> 0",
               max_angular_error_rad);
-  CheckOption(min_triangulation_angle_deg >= 0, "--Triangulation.min_triangulation_angle_deg",
+  CheckOption(min_triangulation_angle_deg >= 0, "TriangulationOptions::min_triangulation_angle_deg",
               ">= 0", min_triangulation_angle_deg);
-  CheckOption(min_num_observations >= 2, "TriangulationOptions.min_num_observations", ">= 2",
+  CheckOption(min_num_observations >= 2, "TriangulationOptions::min_num_observations", ">= 2",
               min_num_observations);
 }
 

@@ -75,8 +75,7 @@ BorderRange UndistortedBorders(const Camera& camera, const Camera& pinhole,
 }  // namespace
 
 void UndistortionOptions::Check() const {
-  CheckOption(blank_pixels >= 0 && blank_pixels <= 1, "--blank_pixels", "in [0, 1]", blank_pixels);
-  CheckOption(min_scale > 0, "--min_scale", "> 0", min_scale);
+  CheckOptionValues(UndistortionOptionTable(), *this);
   CheckOption(max_scale >= min_scale, "--max_scale", ">= --min_scale", max_scale);
 }
 

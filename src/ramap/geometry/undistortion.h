@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "ramap/scene/camera.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -28,6 +29,10 @@ struct UndistortionOptions {
   // Throws InputError naming the option.
   void Check() const;
 };
+
+// Its options, as `ramap image_undistorter` takes them (COLMAP's names: --blank_pixels, ...),
+// each declared once with its range and help (util/option_table.h).
+const OptionTable<UndistortionOptions>& UndistortionOptionTable();
 
 // The PINHOLE camera (same id) of `camera`. Throws InputError (naming `source`) for a camera whose
 // borders cannot be undistorted (a fisheye wider than a pinhole image can show).

@@ -7,9 +7,7 @@
 
 namespace ramap {
 
-void KeyframeOptions::Check() const {
-  CheckOption(keyframe_interval >= 1, "--ViewGraph.keyframe_interval", ">= 1", keyframe_interval);
-}
+void KeyframeOptions::Check() const { CheckOptionValues(KeyframeOptionTable(), *this); }
 
 Keyframes SelectKeyframes(const std::vector<uint32_t>& frames_in_order,
                           const KeyframeOptions& options) {

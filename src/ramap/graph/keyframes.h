@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ramap/graph/view_graph_algorithms.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -17,6 +18,10 @@ struct KeyframeOptions {
   // Throws InputError("--ViewGraph.keyframe_interval", ...) when out of range.
   void Check() const;
 };
+
+// Its options (--ViewGraph.*), each declared once with its range and help (util/option_table.h):
+// the command line, Check(), summary.json and Python read them.
+const OptionTable<KeyframeOptions>& KeyframeOptionTable();
 
 struct KeyframeWindow {
   uint32_t first_keyframe = 0;   // node id

@@ -11,18 +11,7 @@
 
 namespace ramap {
 
-void LoopCandidateOptions::Check() const {
-  if (!(max_distance_baselines > 0)) {
-    throw InputError("--LoopClosure.max_distance_baselines", "must be > 0");
-  }
-  if (!(max_view_angle_deg > 0 && max_view_angle_deg <= 180)) {
-    throw InputError("--LoopClosure.max_view_angle_deg", "must be in (0, 180]");
-  }
-  if (min_frame_gap < 2) throw InputError("--LoopClosure.min_frame_gap", "must be >= 2");
-  if (max_candidates_per_image < 1) {
-    throw InputError("--LoopClosure.max_candidates_per_image", "must be >= 1");
-  }
-}
+void LoopCandidateOptions::Check() const { CheckOptionValues(LoopCandidateOptionTable(), *this); }
 
 std::vector<LoopCandidate> FindLoopCandidates(const Reconstruction& reconstruction,
                                               const std::vector<uint32_t>& capture_order,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ramap/scene/reconstruction.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -27,6 +28,10 @@ struct LoopCandidateOptions {
 
   void Check() const;  // throws InputError("--LoopClosure.<option>", ...)
 };
+
+// Its options (--LoopClosure.*), each declared once with its range and help (util/option_table.h):
+// the command line, Check(), summary.json and Python read them.
+const OptionTable<LoopCandidateOptions>& LoopCandidateOptionTable();
 
 struct LoopCandidate {
   uint32_t image_id1 = 0;  // image_id1 < image_id2

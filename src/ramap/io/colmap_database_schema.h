@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "ramap/io/sqlite.h"
+#include "ramap/util/option_table.h"
 #include "ramap/scene/features.h"
 
 namespace ramap {
@@ -29,6 +30,33 @@ std::string DatabaseGenerationName(DatabaseGeneration generation);
 DatabaseGeneration DatabaseGenerationFromName(const std::string& name, const std::string& option);
 // "COLMAP 3.8-3.9", "COLMAP 3.10-3.11", "COLMAP 3.12-4.x": for logs and summaries.
 std::string DatabaseGenerationLabel(DatabaseGeneration generation);
+
+// --Database.generation, for any settings struct that holds the generation of a database it
+// writes: COLMAP's version names as DatabaseGenerationFromName reads them (3.9, 4.x, 4.1.1, ...),
+// a choice of three schemas under many names.
+template <typename Settings, typename Access>
+OptionDeclaration<Settings> DatabaseGenerationOption(Access access) {
+  OptionDeclaration<Settings> d;
+  d.name = "Database.generation";
+  d.type = OptionType::kText;
+  d.choices = {"3.8", "3.10", "4"};
+  d.help =
+      "schema of the database written: 3.8 (COLMAP 3.8-3.9, read by every COLMAP), 3.10 "
+      "(3.10-3.11) or 4 (3.12-4.x)";
+  d.check = [](const std::string& text) -> std::string {
+    try {
+      DatabaseGenerationFromName(text, "--Database.generation");
+    } catch (const InputError&) {
+      return "'" + text + "' is not 3.8, 3.10 or 4 (COLMAP 3.8-3.9, 3.10-3.11, 3.12-4.x)";
+    }
+    return "";
+  };
+  d.text = [access](const Settings& s) { return DatabaseGenerationName(access(s)); };
+  d.store = [access](Settings& s, const std::string& text) {
+    access(s) = DatabaseGenerationFromName(text, "--Database.generation");
+  };
+  return d;
+}
 
 enum class PosePriorTable {
   kNone,          // no pose_priors table (3.8-3.9)

@@ -19,7 +19,6 @@
 
 #include "ramap/io/colmap_model_rigs.h"
 #include "ramap/io/model_file_io.h"
-#include "ramap/io/trajectory.h"
 #include "ramap/util/error.h"
 #include "ramap/util/staged_output.h"
 
@@ -680,15 +679,6 @@ void WriteColmapModel(const Reconstruction& reconstruction, const std::string& p
   } else {
     for (const auto& staged : staged_files) staged->Commit();
   }
-}
-
-void WriteColmapModelAndTrajectory(const Reconstruction& reconstruction, const std::string& path,
-                                   ModelFormat format) {
-  const std::string trajectory = (fs::path(path) / "trajectory_tum.txt").string();
-  std::error_code ec;
-  const bool had_trajectory = fs::is_regular_file(trajectory, ec);
-  WriteColmapModel(reconstruction, path, format);
-  if (had_trajectory) WriteTumTrajectory(reconstruction, trajectory);
 }
 
 }  // namespace ramap

@@ -46,10 +46,4 @@ void CheckImageNamesFit(const FeatureDatabase& database, ModelFormat format,
 void WriteColmapModel(const Reconstruction& reconstruction, const std::string& path,
                       ModelFormat format = ModelFormat::kBinary);
 
-// WriteColmapModel for a command that changes a model's poses in place (bundle_adjuster,
-// model_aligner): a trajectory_tum.txt that the mapper wrote beside the model is written again
-// from the new poses, so that nothing in the folder describes the old ones.
-void WriteColmapModelAndTrajectory(const Reconstruction& reconstruction, const std::string& path,
-                                   ModelFormat format);
-
 }  // namespace ramap

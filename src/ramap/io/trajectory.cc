@@ -407,4 +407,13 @@ void WriteTumTrajectory(const Reconstruction& reconstruction, const std::string&
   });
 }
 
+void WriteColmapModelAndTrajectory(const Reconstruction& reconstruction, const std::string& path,
+                                   ModelFormat format) {
+  const std::string trajectory = (std::filesystem::path(path) / "trajectory_tum.txt").string();
+  std::error_code ec;
+  const bool had_trajectory = std::filesystem::is_regular_file(trajectory, ec);
+  WriteColmapModel(reconstruction, path, format);
+  if (had_trajectory) WriteTumTrajectory(reconstruction, trajectory);
+}
+
 }  // namespace ramap

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "ramap/io/colmap_model.h"
 #include "ramap/scene/reconstruction.h"
 #include "ramap/scene/rigid3.h"
 
@@ -55,5 +56,11 @@ std::map<std::string, Rigid3d> GroundTruthByImageName(const GroundTruth& ground_
 // is a number (e.g. 000123.png -> 123); if any is not, all timestamps are indices, so that they
 // stay distinct. Values are written with 17 significant digits (lossless). Staged write.
 void WriteTumTrajectory(const Reconstruction& reconstruction, const std::string& path);
+
+// WriteColmapModel for a command that changes a model's poses in place (bundle_adjuster,
+// model_aligner): a trajectory_tum.txt that the mapper wrote beside the model is written again
+// from the new poses, so that nothing in the folder describes the old ones.
+void WriteColmapModelAndTrajectory(const Reconstruction& reconstruction, const std::string& path,
+                                   ModelFormat format);
 
 }  // namespace ramap

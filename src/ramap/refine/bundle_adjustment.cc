@@ -460,36 +460,17 @@ std::vector<TrackElement> ThinnedTrack(std::vector<TrackElement> track, int max_
 }  // namespace
 
 void BundleAdjustmentOptions::Check() const {
-  const std::string s = "--BundleAdjustment.";
-  CheckOption(max_num_iterations >= 0, s + "max_num_iterations", ">= 0", max_num_iterations);
-  CheckOption(function_tolerance >= 0, s + "function_tolerance", ">= 0", function_tolerance);
-  CheckOption(pose_tolerance_deg >= 0, s + "pose_tolerance_deg", ">= 0", pose_tolerance_deg);
-  CheckOption(loss_scale_px > 0, s + "loss_scale_px", "> 0", loss_scale_px);
-  CheckOption(wide_start_loss_factor >= 0, s + "wide_start_loss_factor", ">= 0",
-              wide_start_loss_factor);
-  CheckOption(min_bearing_z > 0 && min_bearing_z < 1, "BundleAdjustmentOptions::min_bearing_z",
-              "in (0, 1)", min_bearing_z);
-  CheckOption(num_threads >= 1, "BundleAdjustmentOptions::num_threads", ">= 1", num_threads);
-  CheckOption(max_reprojection_error_px > 0, "BundleAdjustmentOptions::max_reprojection_error_px",
-              "> 0", max_reprojection_error_px);
-  CheckOption(max_num_points >= 0, s + "max_num_points", ">= 0", max_num_points);
-  CheckOption(min_track_length >= 2, s + "min_track_length", ">= 2", min_track_length);
-  CheckOption(max_principal_point_shift >= 0, s + "max_principal_point_shift", ">= 0",
-              max_principal_point_shift);
-  CheckOption(max_observations_per_point == 0 || max_observations_per_point >= 2,
-              s + "max_observations_per_point", "0 or >= 2", max_observations_per_point);
-  CheckOption(
-      min_filtered_fraction_to_solve_again >= 0 && min_filtered_fraction_to_solve_again <= 1,
-      s + "min_filtered_fraction_to_solve_again", "in [0, 1]",
-      min_filtered_fraction_to_solve_again);
-  CheckOption(min_observations_per_image >= 0,
-              "BundleAdjustmentOptions::min_observations_per_image", ">= 0",
+  CheckOptionValues(BundleAdjustmentOptionTable(), *this);
+  // The settings no command line option reaches.
+  const std::string s = "BundleAdjustmentOptions::";
+  CheckOption(min_bearing_z > 0 && min_bearing_z < 1, s + "min_bearing_z", "in (0, 1)",
+              min_bearing_z);
+  CheckOption(num_threads >= 1, s + "num_threads", ">= 1", num_threads);
+  CheckOption(min_observations_per_image >= 0, s + "min_observations_per_image", ">= 0",
               min_observations_per_image);
-  CheckOption(intrinsics_function_tolerance >= 0,
-              "BundleAdjustmentOptions::intrinsics_function_tolerance", ">= 0",
+  CheckOption(intrinsics_function_tolerance >= 0, s + "intrinsics_function_tolerance", ">= 0",
               intrinsics_function_tolerance);
-  CheckOption(intrinsics_max_num_iterations >= 0,
-              "BundleAdjustmentOptions::intrinsics_max_num_iterations", ">= 0",
+  CheckOption(intrinsics_max_num_iterations >= 0, s + "intrinsics_max_num_iterations", ">= 0",
               intrinsics_max_num_iterations);
 }
 

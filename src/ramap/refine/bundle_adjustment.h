@@ -24,6 +24,7 @@
 #include "ramap/scene/features.h"
 #include "ramap/scene/pose_prior.h"
 #include "ramap/scene/reconstruction.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -115,7 +116,7 @@ struct BundleAdjustmentOptions {
   // A camera whose focal length the database marks known (prior_focal_length 1: the user's
   // calibration, or EXIF) keeps its focal length and principal point; its distortion is refined as
   // refine_extra_params says (EXIF gives none, and the data determine it well).
-  // refine/given_intrinsics_test.h then decides whether the data prove the focal length wrong.
+  // refine/given_intrinsics_check.h then decides whether the data prove the focal length wrong.
   // Refining such a focal length from averaging's poses chased their errors instead: given their
   // true calibrations, one camera per image, templeRing's and kitti07_first160's focal lengths
   // moved away from the truth (BENCHMARKS.md, "A calibration the user gives, one camera per
@@ -141,6 +142,10 @@ struct BundleAdjustmentOptions {
 
   void Check() const;
 };
+
+// Its options (--BundleAdjustment.*), each declared once with its range and help
+// (util/option_table.h): the command line, Check(), summary.json and Python read them.
+const OptionTable<BundleAdjustmentOptions>& BundleAdjustmentOptionTable();
 
 struct BundleAdjustmentSummary {
   int num_images = 0;

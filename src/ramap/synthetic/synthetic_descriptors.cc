@@ -48,7 +48,7 @@ void AddNoise(double sigma, std::mt19937_64& rng, std::vector<float>* values) {
 }  // namespace
 
 void SyntheticDescriptorOptions::Check() const {
-  CheckOption(noise_sigma >= 0, "--Synthetic.descriptor_noise", ">= 0", noise_sigma);
+  CheckOptionValues(SyntheticDescriptorOptionTable(), *this);
 }
 
 void AddSyntheticDescriptors(const SyntheticDescriptorOptions& options, SyntheticScene* scene) {

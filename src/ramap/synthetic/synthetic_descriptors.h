@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "ramap/synthetic/synthetic_scene.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -20,6 +21,10 @@ struct SyntheticDescriptorOptions {
 
   void Check() const;  // throws InputError naming the option
 };
+
+// Its options (--Synthetic.descriptor_noise), each declared once with its range and help (util/option_table.h):
+// the command line, Check() and Python read them.
+const OptionTable<SyntheticDescriptorOptions>& SyntheticDescriptorOptionTable();
 
 // Fills scene->database.descriptors: one 128-column row per keypoint of every image.
 void AddSyntheticDescriptors(const SyntheticDescriptorOptions& options, SyntheticScene* scene);

@@ -14,6 +14,7 @@
 #include "ramap/geometry/camera_projection.h"
 #include "ramap/geometry/rotation.h"
 #include "ramap/util/error.h"
+#include "ramap/util/option_check.h"
 
 namespace ramap {
 namespace {
@@ -265,52 +266,35 @@ std::vector<std::string> PhotoNames(size_t count, uint64_t seed) {
   return names;
 }
 
-void CheckPositive(double value, const char* option) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw InputError(std::string("--Synthetic.") + option,
-                     "must be a positive number, got " + std::to_string(value));
-  }
+void CheckPositive(double value, const std::string& field) {
+  CheckOption(value > 0.0 && std::isfinite(value), "SyntheticSceneOptions::" + field,
+              "a finite number > 0", value);
 }
 
-void CheckNonNegative(double value, const char* option) {
-  if (!(value >= 0.0) || !std::isfinite(value)) {
-    throw InputError(std::string("--Synthetic.") + option,
-                     "must be zero or positive, got " + std::to_string(value));
-  }
+void CheckNonNegative(double value, const std::string& field) {
+  CheckOption(value >= 0.0 && std::isfinite(value), "SyntheticSceneOptions::" + field,
+              "a finite number >= 0", value);
 }
 
-// The view-distance, revisit, aliasing, facade and keypoint options of
-// SyntheticSceneOptions::Check.
-void CheckViewAndAliasingOptions(const SyntheticSceneOptions& o) {
-  CheckNonNegative(o.max_view_distance, "max_view_distance");
-  if (o.loop_min_frame_gap < 0) throw InputError("--Synthetic.loop_min_frame_gap", "must be >= 0");
-  if (o.num_aliased_pairs < 0) throw InputError("--Synthetic.num_aliased_pairs", "must be >= 0");
-  if (!(o.aliased_pair_ratio >= 0.0 && o.aliased_pair_ratio <= 1.0)) {
-    throw InputError("--Synthetic.aliased_pair_ratio", "must be in [0, 1]");
+// A trajectory's poses: at least two, finite rigid transforms, num_images of them at most.
+void CheckGivenPoses(const SyntheticSceneOptions& o) {
+  if (o.given_poses.size() < 2) {
+    throw InputError("SyntheticSceneOptions::given_poses",
+                     "needs at least 2 given poses, got " + std::to_string(o.given_poses.size()));
   }
-  if (!(o.aliased_min_angle_deg >= 0.0 && o.aliased_min_angle_deg <= o.aliased_max_angle_deg &&
-        o.aliased_max_angle_deg <= 180.0)) {
-    throw InputError("--Synthetic.aliased_min_angle_deg",
-                     "must satisfy 0 <= aliased_min_angle_deg <= aliased_max_angle_deg <= 180");
+  if (o.num_images < 0 || static_cast<size_t>(o.num_images) > o.given_poses.size() ||
+      o.num_images == 1) {
+    throw InputError("--Synthetic.num_images",
+                     "must be 0 (all) or between 2 and the " +
+                         std::to_string(o.given_poses.size()) +
+                         " poses of --Synthetic.trajectory_path, got " + std::to_string(o.num_images));
   }
-  if (o.photo_names && o.num_images > 26 * 26 * 26 * 26) {
-    throw InputError("--Synthetic.photo_names", "names at most 456976 images (four letters)");
-  }
-  if (o.aliased_max_frame_gap < 0) {
-    throw InputError("--Synthetic.aliased_max_frame_gap", "must be >= 0 (0: any two frames)");
-  }
-  if (!(o.aliased_shift_m >= 0.0 && std::isfinite(o.aliased_shift_m))) {
-    throw InputError("--Synthetic.aliased_shift_m", "must be a finite distance >= 0");
-  }
-  if (o.num_aliased_pair_matches < 8) {
-    throw InputError("--Synthetic.num_aliased_pair_matches", "must be at least 8");
-  }
-  CheckNonNegative(o.facade_distance, "facade_distance");
-  CheckPositive(o.facade_height, "facade_height");
-  CheckNonNegative(o.facade_roughness, "facade_roughness");
-  if (o.keypoint_columns != 2 && o.keypoint_columns != 4 && o.keypoint_columns != 6) {
-    throw InputError("--Synthetic.keypoint_columns",
-                     "must be 2, 4 or 6, got " + std::to_string(o.keypoint_columns));
+  for (const Rigid3d& pose : o.given_poses) {
+    if (!pose.rotation.coeffs().allFinite() || !pose.translation.allFinite() ||
+        std::abs(pose.rotation.norm() - 1.0) > 1e-6) {
+      throw InputError("SyntheticSceneOptions::given_poses",
+                       "a given pose is not a finite rigid transform");
+    }
   }
 }
 
@@ -327,32 +311,14 @@ Camera SyntheticSceneOptions::DefaultCamera() {
 }
 
 void SyntheticSceneOptions::Check() const {
+  CheckOptionValues(SyntheticSceneOptionTable(), *this);
   if (layout == SyntheticLayout::kSequential && path == SyntheticPath::kGiven) {
-    if (given_poses.size() < 2) {
-      throw InputError("SyntheticSceneOptions::trajectory",
-                       "needs at least 2 given poses, got " + std::to_string(given_poses.size()));
-    }
-    if (num_images < 0 || static_cast<size_t>(num_images) > given_poses.size() || num_images == 1) {
-      throw InputError("--Synthetic.num_images", "must be 0 (all) or between 2 and the " +
-                                                     std::to_string(given_poses.size()) +
-                                                     " given poses, got " +
-                                                     std::to_string(num_images));
-    }
-    for (const Rigid3d& pose : given_poses) {
-      if (!pose.rotation.coeffs().allFinite() || !pose.translation.allFinite() ||
-          std::abs(pose.rotation.norm() - 1.0) > 1e-6) {
-        throw InputError("SyntheticSceneOptions::trajectory",
-                         "a given pose is not a finite rigid transform");
-      }
-    }
-  } else if (num_images < 2) {
-    throw InputError("--Synthetic.num_images",
-                     "must be at least 2, got " + std::to_string(num_images));
+    CheckGivenPoses(*this);
+  } else {
+    CheckOption(num_images >= 2, "--Synthetic.num_images",
+                ">= 2 (0 takes every pose of --Synthetic.trajectory_path)", num_images);
   }
   CheckCameraParams(camera, "Synthetic.camera");
-  if (camera.width == 0 || camera.height == 0) {
-    throw InputError("SyntheticSceneOptions::camera", "image width and height must be positive");
-  }
   if (second_camera) {
     CheckCameraParams(*second_camera, "Synthetic.second_camera");
     if (second_camera->width != camera.width || second_camera->height != camera.height) {
@@ -360,46 +326,21 @@ void SyntheticSceneOptions::Check() const {
                        "must have the first camera's image size");
     }
   }
-  if (num_points < 1) {
-    throw InputError("--Synthetic.num_points",
-                     "must be at least 1, got " + std::to_string(num_points));
-  }
-  CheckPositive(min_depth, "min_depth");
-  CheckPositive(max_depth, "max_depth");
-  if (max_depth <= min_depth) {
-    throw InputError("--Synthetic.max_depth", "must exceed Synthetic.min_depth");
-  }
-  CheckPositive(step_length, "step_length");
+  CheckOption(max_depth > min_depth, "--Synthetic.max_depth", "> --Synthetic.min_depth",
+              max_depth);
+  CheckOption(aliased_min_angle_deg <= aliased_max_angle_deg, "--Synthetic.aliased_min_angle_deg",
+              "<= --Synthetic.aliased_max_angle_deg", aliased_min_angle_deg);
+  CheckOption(!photo_names || num_images <= 26 * 26 * 26 * 26, "--Synthetic.num_images",
+              "at most 456976 with --Synthetic.photo_names (four letters)", num_images);
+  // The settings no command line option reaches.
   CheckNonNegative(rotation_jitter_deg, "rotation_jitter_deg");
   CheckNonNegative(position_jitter, "position_jitter");
   CheckPositive(object_radius, "object_radius");
-  if (!(camera_distance > object_radius) || !std::isfinite(camera_distance)) {
-    throw InputError("SyntheticSceneOptions::camera_distance",
-                     "must exceed Synthetic.object_radius");
-  }
-  CheckNonNegative(pixel_noise_sigma, "pixel_noise");
-  if (!(outlier_ratio >= 0.0 && outlier_ratio <= 0.9)) {
-    throw InputError("--Synthetic.outlier_ratio",
-                     "must be in [0, 0.9], got " + std::to_string(outlier_ratio));
-  }
-  if (num_outlier_pairs < 0) {
-    throw InputError("--Synthetic.num_outlier_pairs", "must be zero or positive");
-  }
-  if (num_outlier_pair_matches < 1) {
-    throw InputError("SyntheticSceneOptions::num_outlier_pair_matches", "must be at least 1");
-  }
-  if (overlap < 1) {
-    throw InputError("--Synthetic.overlap", "must be at least 1, got " + std::to_string(overlap));
-  }
-  CheckNonNegative(loop_max_distance, "loop_max_distance");
-  CheckViewAndAliasingOptions(*this);
-  CheckNonNegative(loop_max_angle_deg, "loop_max_angle_deg");
-  if (min_shared_points < 1) {
-    throw InputError("--Synthetic.min_shared_points", "must be at least 1");
-  }
-  if (min_num_inliers < 0) {
-    throw InputError("--Synthetic.min_num_inliers", "must be zero or positive");
-  }
+  CheckOption(camera_distance > object_radius && std::isfinite(camera_distance),
+              "SyntheticSceneOptions::camera_distance", "> object_radius", camera_distance);
+  CheckOption(num_outlier_pair_matches >= 1, "SyntheticSceneOptions::num_outlier_pair_matches",
+              ">= 1", num_outlier_pair_matches);
+  CheckNonNegative(facade_roughness, "facade_roughness");
 }
 
 namespace {

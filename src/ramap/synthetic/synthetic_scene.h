@@ -16,6 +16,7 @@
 #include "ramap/scene/features.h"
 #include "ramap/scene/reconstruction.h"
 #include "ramap/scene/rigid3.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 
@@ -139,6 +140,10 @@ struct SyntheticSceneOptions {
   // ("SyntheticSceneOptions::<field>" for settings no command line reaches).
   void Check() const;
 };
+
+// Its options (--Synthetic.*), each declared once with its range and help (util/option_table.h):
+// the command line, Check() and Python read them.
+const OptionTable<SyntheticSceneOptions>& SyntheticSceneOptionTable();
 
 struct SyntheticScene {
   // One camera (id 1; two with second_camera), images 1..N named frame_000001.png... in order

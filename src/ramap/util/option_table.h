@@ -1,13 +1,14 @@
-// Options declared once: each with its COLMAP-style name ("Mapper.refine"), type, default, range
-// and one line of help, bound to a field of a settings struct. The command line, the checks,
-// summary.json's options block, Python's keyword names and the options reference are all read
-// from the declaration, so they cannot disagree.
+// Options declared once: each with its COLMAP-style name ("Mapper.refine"), type, default, range,
+// aliases and one line of help, bound to a field of a settings struct. The command line, the
+// checks, summary.json's options block (util/option_json.h), Python's keyword names and the
+// options reference are all read from the declaration, so they cannot disagree. Each options
+// struct owns the table of its own fields, in its own layer; a command's table assembles them
+// (AppendOptions).
 #pragma once
 
 #include <algorithm>
 #include <functional>
 #include <limits>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,24 +40,42 @@ enum class OptionType { kBool, kInteger, kNumber, kChoice, kText };
 // One option of a settings struct `Settings`.
 template <typename Settings>
 struct OptionDeclaration {
-  std::string name;  // "Section.option": --Section.option on the command line
+  // "Section.option": --Section.option on the command line; a command's own paths and switches
+  // have no section ("database_path").
+  std::string name;
   // Names the option had before (README, "Renamed"): accepted as aliases of `name`.
   std::vector<std::string> former_names;
+  // COLMAP's names for it (3.x and 4.x), accepted with a note that says how they are read, so
+  // that command lines written for `colmap` run unchanged.
+  std::vector<std::string> colmap_names;
   OptionType type = OptionType::kNumber;
   OptionRange range;                 // numeric options
   std::vector<std::string> choices;  // kChoice: the accepted words
   std::string help;
+  // A command's option it cannot run without (an input path).
+  bool required = false;
+  // Not empty: a COLMAP option accepted and dropped, for this reason ("ramap runs on the CPU").
+  std::string ignored_because;
   // A check of the text beyond type and range (empty: none): the problem, or "" when none.
   std::function<std::string(const std::string&)> check;
   // The value as the command line takes it ("1", "0.05", "adaptive").
   std::function<std::string(const Settings&)> text;
-  // The value for summary.json (numbers as numbers).
-  std::function<nlohmann::json(const Settings&)> json;
   // Stores already checked text.
   std::function<void(Settings&, const std::string&)> store;
 
-  std::string Section() const { return name.substr(0, name.find('.')); }
+  // "Section" of "Section.option"; "" for a name without a section.
+  std::string Section() const {
+    const size_t dot = name.find('.');
+    return dot == std::string::npos ? "" : name.substr(0, dot);
+  }
   std::string Key() const { return name.substr(name.find('.') + 1); }
+  // Every name the option is accepted under: its own, its former ones, COLMAP's.
+  std::vector<std::string> AllNames() const {
+    std::vector<std::string> names = {name};
+    names.insert(names.end(), former_names.begin(), former_names.end());
+    names.insert(names.end(), colmap_names.begin(), colmap_names.end());
+    return names;
+  }
 };
 
 // A boolean option's value: 1, true, on, yes, enable (any case) are true; what else passes
@@ -84,7 +103,6 @@ OptionDeclaration<Settings> BoolOption(std::string name, Access access, std::str
   d.type = OptionType::kBool;
   d.help = std::move(help);
   d.text = [access](const Settings& s) -> std::string { return access(s) ? "1" : "0"; };
-  d.json = [access](const Settings& s) -> nlohmann::json { return static_cast<bool>(access(s)); };
   d.store = [access](Settings& s, const std::string& text) { access(s) = OptionBoolValue(text); };
   return d;
 }
@@ -114,7 +132,6 @@ OptionDeclaration<Settings> NumberOption(std::string name, Access access, Option
     if constexpr (std::is_integral_v<Value>) return std::to_string(access(s));
     return FormatOptionNumber(static_cast<double>(access(s)));
   };
-  d.json = [access](const Settings& s) -> nlohmann::json { return access(s); };
   d.store = [access](Settings& s, const std::string& text) {
     if constexpr (std::is_integral_v<Value>) {
       access(s) = static_cast<Value>(std::stoll(text));
@@ -133,7 +150,6 @@ OptionDeclaration<Settings> TextOption(std::string name, Access access, std::str
   d.type = OptionType::kText;
   d.help = std::move(help);
   d.text = [access](const Settings& s) -> std::string { return access(s); };
-  d.json = [access](const Settings& s) -> nlohmann::json { return access(s); };
   d.store = [access](Settings& s, const std::string& text) { access(s) = text; };
   return d;
 }
@@ -154,7 +170,6 @@ OptionDeclaration<Settings> ChoiceOption(std::string name, Access access,
     }
     return "?";
   };
-  d.json = [text = d.text](const Settings& s) -> nlohmann::json { return text(s); };
   d.store = [access, names](Settings& s, const std::string& text) {
     for (const auto& entry : names) {
       if (entry.first == text) access(s) = entry.second;
@@ -175,12 +190,15 @@ void AppendOptions(const OptionTable<Inner>& inner, Access access, OptionTable<O
     OptionDeclaration<Outer> lifted;
     lifted.name = d.name;
     lifted.former_names = d.former_names;
+    lifted.colmap_names = d.colmap_names;
     lifted.type = d.type;
     lifted.range = d.range;
     lifted.choices = d.choices;
     lifted.help = d.help;
+    lifted.required = d.required;
+    lifted.ignored_because = d.ignored_because;
+    lifted.check = d.check;
     lifted.text = [text = d.text, access](const Outer& s) { return text(access(s)); };
-    lifted.json = [json = d.json, access](const Outer& s) { return json(access(s)); };
     lifted.store = [store = d.store, access](Outer& s, const std::string& value) {
       store(access(s), value);
     };
@@ -193,9 +211,8 @@ template <typename Settings>
 const OptionDeclaration<Settings>* FindOption(const OptionTable<Settings>& table,
                                               const std::string& name) {
   for (const OptionDeclaration<Settings>& d : table) {
-    if (d.name == name) return &d;
-    if (std::find(d.former_names.begin(), d.former_names.end(), name) != d.former_names.end())
-      return &d;
+    const std::vector<std::string> names = d.AllNames();
+    if (std::find(names.begin(), names.end(), name) != names.end()) return &d;
   }
   return nullptr;
 }
@@ -208,10 +225,53 @@ OptionDeclaration<Settings> FormerlyNamed(OptionDeclaration<Settings> declaratio
   return declaration;
 }
 
+// `declaration` with `check` (the problem with a value, or "") run after its own checks: a rule
+// a range cannot state ("0 or >= 2").
+template <typename Settings>
+OptionDeclaration<Settings> AlsoChecked(OptionDeclaration<Settings> declaration,
+                                        std::function<std::string(const std::string&)> check) {
+  declaration.check = [first = declaration.check, check](const std::string& text) {
+    const std::string problem = first ? first(text) : "";
+    return problem.empty() ? check(text) : problem;
+  };
+  return declaration;
+}
+
+// `declaration` with COLMAP's `names` for it as aliases.
+template <typename Settings>
+OptionDeclaration<Settings> ColmapNamed(OptionDeclaration<Settings> declaration,
+                                        std::vector<std::string> names) {
+  for (std::string& name : names) declaration.colmap_names.push_back(std::move(name));
+  return declaration;
+}
+
+// `declaration`, which a command cannot run without.
+template <typename Settings>
+OptionDeclaration<Settings> Required(OptionDeclaration<Settings> declaration) {
+  declaration.required = true;
+  return declaration;
+}
+
+// A COLMAP option ramap accepts and drops, with the reason the note gives.
+template <typename Settings>
+OptionDeclaration<Settings> IgnoredColmapOption(std::string name, std::string because) {
+  OptionDeclaration<Settings> d;
+  d.name = std::move(name);
+  d.type = OptionType::kText;
+  d.help = "COLMAP's option, accepted and ignored: " + because;
+  d.ignored_because = std::move(because);
+  d.text = [](const Settings&) { return std::string(); };
+  d.store = [](Settings&, const std::string&) {};
+  return d;
+}
+
+// The names of the options that do something (COLMAP's ignored ones left out).
 template <typename Settings>
 std::vector<std::string> OptionNames(const OptionTable<Settings>& table) {
   std::vector<std::string> names;
-  for (const OptionDeclaration<Settings>& d : table) names.push_back(d.name);
+  for (const OptionDeclaration<Settings>& d : table) {
+    if (d.ignored_because.empty()) names.push_back(d.name);
+  }
   return names;
 }
 
@@ -252,15 +312,6 @@ void CheckOptionValues(const OptionTable<Settings>& table, const Settings& setti
   }
 }
 
-// {"Section": {"option": value, ...}, ...}, in declaration order within each section.
-template <typename Settings>
-nlohmann::json OptionValuesToJson(const OptionTable<Settings>& table, const Settings& settings) {
-  nlohmann::json sections = nlohmann::json::object();
-  for (const OptionDeclaration<Settings>& d : table)
-    sections[d.Section()][d.Key()] = d.json(settings);
-  return sections;
-}
-
 // What a reader of the help or the options reference is told the values may be:
 // "integer >= 1", "number > 0 and < 90", "0|1", "grid|random|roi|ransac5".
 std::string OptionValueHint(OptionType type, const OptionRange& range,
@@ -269,17 +320,25 @@ std::string OptionValueHint(OptionType type, const OptionRange& range,
 // The value's type as a command line's help shows it: "INT", "FLOAT", "0|1", "grid|random".
 std::string OptionTypeName(OptionType type, const std::vector<std::string>& choices);
 
-// The options as a Markdown table: | option | default | values | what it does |.
+// The options as a Markdown table: | option | default | values | what it does |; COLMAP's options
+// that are accepted and ignored are listed after it.
 template <typename Settings>
 std::string OptionTableMarkdown(const OptionTable<Settings>& table, const Settings& defaults) {
   std::string out = "| option | default | values | what it does |\n|---|---|---|---|\n";
+  std::string ignored;
   for (const OptionDeclaration<Settings>& d : table) {
+    if (!d.ignored_because.empty()) {
+      ignored += "- `--" + d.name + "`: " + d.ignored_because + "\n";
+      continue;
+    }
     std::string help;
     for (const char c : d.help) help += c == '|' ? std::string("\\|") : std::string(1, c);
     for (const std::string& former : d.former_names) help += " (formerly `--" + former + "`)";
+    for (const std::string& colmap : d.colmap_names) help += " (COLMAP: `--" + colmap + "`)";
     out += "| `--" + d.name + "` | " + d.text(defaults) + " | " +
            OptionValueHint(d.type, d.range, d.choices) + " | " + help + " |\n";
   }
+  if (!ignored.empty()) out += "\nCOLMAP's options accepted and ignored:\n\n" + ignored;
   return out;
 }
 

@@ -13,7 +13,7 @@ namespace ramap {
 class RunObserver {
  public:
   virtual ~RunObserver() = default;
-  // A stage ended (the mapper's stage names, pipeline/stage_log.h).
+  // A stage ended (the mapper's stage names, mapper/stage_log.h).
   virtual void OnStage(const std::string& /*stage*/, double /*seconds*/,
                        const std::string& /*message*/) {}
   // Asked only in the thread that installed the observer, at most every 50 ms; true stops the run.

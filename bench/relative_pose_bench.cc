@@ -14,7 +14,7 @@
 #include "ramap/geometry/rotation.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/trajectory.h"
-#include "ramap/pipeline/relative_poses.h"
+#include "ramap/estimators/relative_poses.h"
 #include "ramap/util/timer.h"
 
 namespace {

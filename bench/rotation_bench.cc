@@ -10,7 +10,7 @@
 
 #include "ramap/averaging/rotation_averaging.h"
 #include "ramap/graph/fiedler.h"
-#include "ramap/graph/synthetic_view_graph.h"
+#include "ramap/synthetic/synthetic_view_graph.h"
 #include "ramap/io/g2o_reader.h"
 #include "ramap/util/timer.h"
 

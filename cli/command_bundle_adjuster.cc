@@ -31,16 +31,16 @@ const OptionTable<BundleAdjusterCommand>& BundleAdjusterCommandTable() {
     t.push_back(Required(PathOption<BundleAdjusterCommand>(
         "output_path", [](auto& o) -> auto& { return o.output_path; },
         "folder for the adjusted model (may be the input)")));
-    t.push_back(ModelFormatOption<BundleAdjusterCommand>(
-        [](auto& o) -> auto& { return o.output_format; }));
+    t.push_back(
+        ModelFormatOption<BundleAdjusterCommand>([](auto& o) -> auto& { return o.output_format; }));
     // Bundle adjustment's own settings, declared with the mapper's.
     AppendOptions(
         MapperOptionSections(
-            {}, {"BundleAdjustment.max_num_iterations", "BundleAdjustment.loss_scale_px",
-                 "BundleAdjustment.function_tolerance", "BundleAdjustment.pose_tolerance_deg",
-                 "BundleAdjustment.max_num_points", "BundleAdjustment.refine_focal_length",
-                 "BundleAdjustment.refine_principal_point",
-                 "BundleAdjustment.refine_extra_params"}),
+            {},
+            {"BundleAdjustment.max_num_iterations", "BundleAdjustment.loss_scale_px",
+             "BundleAdjustment.function_tolerance", "BundleAdjustment.pose_tolerance_deg",
+             "BundleAdjustment.max_num_points", "BundleAdjustment.refine_focal_length",
+             "BundleAdjustment.refine_principal_point", "BundleAdjustment.refine_extra_params"}),
         [](auto& o) -> auto& { return o.mapper; }, &t);
     return t;
   }();

@@ -21,9 +21,9 @@ const OptionTable<ConverterCommand>& ConverterCommandTable() {
       Required(PathOption<ConverterCommand>(
           "database_path", [](auto& o) -> auto& { return o.database_path; },
           "COLMAP database to read")),
-      Required(PathOption<ConverterCommand>("output_path",
-                                            [](auto& o) -> auto& { return o.output_path; },
-                                            "the new database (must not exist)")),
+      Required(PathOption<ConverterCommand>(
+          "output_path", [](auto& o) -> auto& { return o.output_path; },
+          "the new database (must not exist)")),
       DatabaseGenerationOption<ConverterCommand>([](auto& o) -> auto& { return o.generation; })};
   return table;
 }

@@ -24,10 +24,9 @@ struct DatabaseInfoCommand {
 };
 
 const OptionTable<DatabaseInfoCommand>& DatabaseInfoCommandTable() {
-  static const OptionTable<DatabaseInfoCommand> table = {
-      Required(PathOption<DatabaseInfoCommand>("database_path",
-                                               [](auto& o) -> auto& { return o.database_path; },
-                                               "COLMAP database (SQLite)"))};
+  static const OptionTable<DatabaseInfoCommand> table = {Required(PathOption<DatabaseInfoCommand>(
+      "database_path", [](auto& o) -> auto& { return o.database_path; },
+      "COLMAP database (SQLite)"))};
   return table;
 }
 

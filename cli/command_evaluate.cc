@@ -35,16 +35,17 @@ const OptionTable<EvaluateCommand>& EvaluateCommandTable() {
             {"middlebury", GroundTruthFormat::kMiddlebury},
             {"colmap", GroundTruthFormat::kColmap}},
         "the ground truth's format")));
-    t.push_back(PathOption<EvaluateCommand>("output_path",
-                                            [](auto& o) -> auto& { return o.output_path; },
-                                            "write the evaluation as JSON here"));
+    t.push_back(PathOption<EvaluateCommand>(
+        "output_path", [](auto& o) -> auto& { return o.output_path; },
+        "write the evaluation as JSON here"));
     t.push_back(PathOption<EvaluateCommand>(
         "image_list", [](auto& o) -> auto& { return o.input.image_list_path; },
         "the input images, one name per line (unregistered ones are failures)"));
     t.push_back(PathOption<EvaluateCommand>(
         "database_path", [](auto& o) -> auto& { return o.input.database_path; },
         "COLMAP database whose images are the input (when no --image_list)"));
-    AppendOptions(PoseEvaluationOptionTable(), [](auto& o) -> auto& { return o.options; }, &t);
+    AppendOptions(
+        PoseEvaluationOptionTable(), [](auto& o) -> auto& { return o.options; }, &t);
     return t;
   }();
   return table;

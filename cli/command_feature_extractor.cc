@@ -19,14 +19,15 @@ const OptionTable<ExtractorCommand>& ExtractorCommandTable() {
     OptionTable<ExtractorCommand> t;
     t.push_back(Required(PathOption<ExtractorCommand>(
         "image_path", [](auto& o) -> auto& { return o.image_path; }, "folder of the images")));
-    t.push_back(PathOption<ExtractorCommand>("image_list",
-                                             [](auto& o) -> auto& { return o.image_list; },
-                                             "only these images (names relative to image_path)"));
+    t.push_back(PathOption<ExtractorCommand>(
+        "image_list", [](auto& o) -> auto& { return o.image_list; },
+        "only these images (names relative to image_path)"));
     t.push_back(Required(PathOption<ExtractorCommand>(
         "database_path", [](auto& o) -> auto& { return o.database_path; },
         "the COLMAP database to write")));
     t.push_back(LogLevelOption<ExtractorCommand>([](auto& o) -> auto& { return o.log_level; }));
-    AppendOptions(ExtractionOptionTable(), [](auto& o) -> auto& { return o.options; }, &t);
+    AppendOptions(
+        ExtractionOptionTable(), [](auto& o) -> auto& { return o.options; }, &t);
     return t;
   }();
   return table;

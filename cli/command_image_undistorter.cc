@@ -32,16 +32,17 @@ const OptionTable<UndistorterCommand>& UndistorterCommandTable() {
         "output_path", [](auto& o) -> auto& { return o.output_path; },
         "folder for images/ and sparse/")));
     t.push_back(AlsoChecked(
-        TextOption<UndistorterCommand>("output_type",
-                                       [](auto& o) -> auto& { return o.output_type; },
-                                       "COLMAP (the one layout ramap writes)"),
+        TextOption<UndistorterCommand>(
+            "output_type", [](auto& o) -> auto& { return o.output_type; },
+            "COLMAP (the one layout ramap writes)"),
         [](const std::string& text) -> std::string {
           return text == "COLMAP" ? ""
                                   : "'" + text +
                                         "': ramap writes COLMAP's layout only (PMVS and CMP-MVS "
                                         "are not supported)";
         }));
-    AppendOptions(UndistortionOptionTable(), [](auto& o) -> auto& { return o.options; }, &t);
+    AppendOptions(
+        UndistortionOptionTable(), [](auto& o) -> auto& { return o.options; }, &t);
     t.push_back(NumberOption<UndistorterCommand>(
         "num_threads", [](auto& o) -> auto& { return o.num_threads; }, AtLeast(1, 256),
         "images undistorted at once"));

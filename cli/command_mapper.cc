@@ -26,10 +26,11 @@ const OptionTable<MapperCommand>& MapperCommandTable() {
     t.push_back(Required(PathOption<MapperCommand>(
         "output_path", [](auto& o) -> auto& { return o.job.output_path; },
         "folder for the models 0, 1, ... and summary.json")));
-    t.push_back(ModelFormatOption<MapperCommand>(
-        [](auto& o) -> auto& { return o.job.output_format; }));
+    t.push_back(
+        ModelFormatOption<MapperCommand>([](auto& o) -> auto& { return o.job.output_format; }));
     t.push_back(LogLevelOption<MapperCommand>([](auto& o) -> auto& { return o.log_level; }));
-    AppendOptions(MapperOptionTable(), [](auto& o) -> auto& { return o.job.options; }, &t);
+    AppendOptions(
+        MapperOptionTable(), [](auto& o) -> auto& { return o.job.options; }, &t);
     return t;
   }();
   return table;

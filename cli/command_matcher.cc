@@ -22,7 +22,8 @@ const OptionTable<MatcherCommand>& MatcherCommandTable() {
         "database_path", [](auto& o) -> auto& { return o.database_path; },
         "COLMAP database with descriptors")));
     t.push_back(LogLevelOption<MatcherCommand>([](auto& o) -> auto& { return o.log_level; }));
-    AppendOptions(MatchingOptionTable(), [](auto& o) -> auto& { return o.options; }, &t);
+    AppendOptions(
+        MatchingOptionTable(), [](auto& o) -> auto& { return o.options; }, &t);
     return t;
   }();
   return table;

@@ -10,14 +10,14 @@
 #include <iostream>
 
 #include "options.h"
+#include "ramap/estimators/plane_alignment.h"
+#include "ramap/estimators/prior_alignment.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/colmap_model.h"
-#include "ramap/io/trajectory.h"
 #include "ramap/io/geo_export.h"
-#include "ramap/mapper/mapper_options.h"
-#include "ramap/estimators/plane_alignment.h"
+#include "ramap/io/trajectory.h"
 #include "ramap/jobs/pose_prior_loading.h"
-#include "ramap/estimators/prior_alignment.h"
+#include "ramap/mapper/mapper_options.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/staged_output.h"
@@ -37,9 +37,8 @@ struct ColmapAlignerOptions {
   std::string ref_images_path;         // NAME X Y Z per line: ramap's prior file
   bool ref_is_gps = true;
   double alignment_max_error = 0;  // m; 0: ramap's default
-  bool robust_alignment = true;  // ramap's alignment is always robust
+  bool robust_alignment = true;    // ramap's alignment is always robust
 };
-
 
 // COLMAP's model_aligner --alignment_type plane.
 int AlignToPlane(Reconstruction model, const std::string& input_path,
@@ -108,7 +107,8 @@ const OptionTable<AlignerCommand>& AlignerCommandTable() {
                                   return d.Key() == "align" || d.Key().rfind("use_in_", 0) == 0;
                                 }),
                  priors.end());
-    AppendOptions(priors, [](auto& o) -> auto& { return o.prior_options; }, &t);
+    AppendOptions(
+        priors, [](auto& o) -> auto& { return o.prior_options; }, &t);
     DeclareColmapAlignerOptions(t);
     return t;
   }();

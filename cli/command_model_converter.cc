@@ -80,9 +80,9 @@ const OptionTable<ModelConverterCommand>& ModelConverterCommandTable() {
             }
             return "";
           })),
-      BoolOption<ModelConverterCommand>("export_cameras",
-                                        [](auto& o) -> auto& { return o.export_cameras; },
-                                        "PLY: add each camera centre, in red")};
+      BoolOption<ModelConverterCommand>(
+          "export_cameras", [](auto& o) -> auto& { return o.export_cameras; },
+          "PLY: add each camera centre, in red")};
   return table;
 }
 
@@ -96,8 +96,7 @@ int RunModelConverter(int argc, char** argv) {
   CLI::App app("Convert a COLMAP sparse model between .bin and .txt, or export it",
                "ramap model_converter");
   ModelConverterCommand command;
-  if (const auto code =
-          ParseCommandLine(app, ModelConverterCommandTable(), &command, argc, argv))
+  if (const auto code = ParseCommandLine(app, ModelConverterCommandTable(), &command, argc, argv))
     return *code;
   const std::string& input_path = command.input_path;
   const std::string& output_path = command.output_path;

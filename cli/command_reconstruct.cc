@@ -30,7 +30,8 @@ const OptionTable<ReconstructCommand>& ReconstructCommandTable() {
         "output_path", [](auto& o) -> auto& { return o.job.output_path; },
         "folder for database.db and sparse/")));
     t.push_back(LogLevelOption<ReconstructCommand>([](auto& o) -> auto& { return o.log_level; }));
-    AppendOptions(ReconstructOptionTable(), [](auto& o) -> auto& { return o.job.options; }, &t);
+    AppendOptions(
+        ReconstructOptionTable(), [](auto& o) -> auto& { return o.job.options; }, &t);
     return t;
   }();
   return table;

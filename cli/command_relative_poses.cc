@@ -7,10 +7,10 @@
 #include <map>
 
 #include "options.h"
+#include "ramap/estimators/relative_poses.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/relative_pose_file.h"
 #include "ramap/mapper/mapper_options.h"
-#include "ramap/estimators/relative_poses.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 #include "ramap/util/timer.h"
@@ -32,8 +32,9 @@ const OptionTable<RelativePosesCommand>& RelativePosesCommandTable() {
     t.push_back(Required(PathOption<RelativePosesCommand>(
         "output_path", [](auto& o) -> auto& { return o.output_path; },
         "text file: NAME1 NAME2 qw qx qy qz tx ty tz num_inliers flags")));
-    AppendOptions(MapperOptionSections({"RelativePose"}, {"Mapper.num_threads"}),
-                  [](auto& o) -> auto& { return o.options; }, &t);
+    AppendOptions(
+        MapperOptionSections({"RelativePose"}, {"Mapper.num_threads"}),
+        [](auto& o) -> auto& { return o.options; }, &t);
     return t;
   }();
   return table;

@@ -9,11 +9,11 @@
 #include <utility>
 
 #include "options.h"
+#include "ramap/estimators/relative_poses.h"
+#include "ramap/estimators/rotations.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/relative_pose_file.h"
 #include "ramap/mapper/mapper_options.h"
-#include "ramap/estimators/relative_poses.h"
-#include "ramap/estimators/rotations.h"
 #include "ramap/util/error.h"
 #include "ramap/util/output_policy.h"
 
@@ -102,9 +102,10 @@ const OptionTable<RotationAveragerCommand>& RotationAveragerCommandTable() {
     t.push_back(Required(PathOption<RotationAveragerCommand>(
         "output_path", [](auto& o) -> auto& { return o.output_path; },
         "text file: NAME qw qx qy qz (cam_from_world)")));
-    AppendOptions(MapperOptionSections({"RelativePose", "ViewGraph", "RotationAveraging"},
-                                       {"Mapper.num_threads"}),
-                  [](auto& o) -> auto& { return o.options; }, &t);
+    AppendOptions(
+        MapperOptionSections({"RelativePose", "ViewGraph", "RotationAveraging"},
+                             {"Mapper.num_threads"}),
+        [](auto& o) -> auto& { return o.options; }, &t);
     return t;
   }();
   return table;
@@ -120,8 +121,7 @@ int RunRotationAverager(int argc, char** argv) {
   CLI::App app("Absolute rotations by robust rotation averaging (L1 + IRLS, pruning, certificate).",
                "ramap rotation_averager");
   RotationAveragerCommand command;
-  if (const auto code =
-          ParseCommandLine(app, RotationAveragerCommandTable(), &command, argc, argv))
+  if (const auto code = ParseCommandLine(app, RotationAveragerCommandTable(), &command, argc, argv))
     return *code;
   const std::string& database_path = command.database_path;
   const std::string& relative_poses_path = command.relative_poses_path;

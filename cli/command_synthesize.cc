@@ -59,11 +59,12 @@ const OptionTable<SynthesizeCommand>& SynthesizeCommandTable() {
     t.push_back(Required(PathOption<SynthesizeCommand>(
         "output_path", [](auto& o) -> auto& { return o.output_path; },
         "folder for database.db, ground_truth/ and ground_truth.txt (created)")));
-    t.push_back(ModelFormatOption<SynthesizeCommand>(
-        [](auto& o) -> auto& { return o.output_format; }));
+    t.push_back(
+        ModelFormatOption<SynthesizeCommand>([](auto& o) -> auto& { return o.output_format; }));
     t.push_back(
         DatabaseGenerationOption<SynthesizeCommand>([](auto& o) -> auto& { return o.generation; }));
-    AppendOptions(SyntheticSceneOptionTable(), [](auto& o) -> auto& { return o.scene; }, &t);
+    AppendOptions(
+        SyntheticSceneOptionTable(), [](auto& o) -> auto& { return o.scene; }, &t);
     t.push_back(PathOption<SynthesizeCommand>(
         "Synthetic.trajectory_path", [](auto& o) -> auto& { return o.trajectory_path; },
         "KITTI odometry pose file whose poses the sequential cameras take (instead of "
@@ -72,8 +73,8 @@ const OptionTable<SynthesizeCommand>& SynthesizeCommandTable() {
         "Synthetic.descriptors", [](auto& o) -> auto& { return o.descriptors; },
         "1: SIFT-like descriptors for every keypoint (one per 3D point, noisy per view), so that "
         "ramap matcher can match the database again"));
-    AppendOptions(SyntheticDescriptorOptionTable(), [](auto& o) -> auto& { return o.descriptor; },
-                  &t);
+    AppendOptions(
+        SyntheticDescriptorOptionTable(), [](auto& o) -> auto& { return o.descriptor; }, &t);
     return t;
   }();
   return table;

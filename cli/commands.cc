@@ -51,7 +51,8 @@ int RunMatcherInMode(const char* mode, int argc, char** argv) {
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {
-      {"reconstruct", "images to a COLMAP model: features, matching, mapper", RunReconstruct, ReconstructOptionsMarkdown},
+      {"reconstruct", "images to a COLMAP model: features, matching, mapper", RunReconstruct,
+       ReconstructOptionsMarkdown},
       {"feature_extractor", "ORB or SIFT features of images into a COLMAP database",
        RunFeatureExtractor, FeatureExtractorOptionsMarkdown},
       {"matcher", "matches and verified geometries (sequential, retrieval or exhaustive)",
@@ -79,8 +80,8 @@ const std::vector<Command>& AllCommands() {
       {"options", "every option, its default and meaning (Markdown)", RunOptions},
       {"database_converter", "a COLMAP database rewritten as another generation (3.8, 3.10, 4)",
        RunDatabaseConverter, DatabaseConverterOptionsMarkdown},
-      {"model_aligner", "align a COLMAP model to GPS / pose priors (ENU, GeoJSON)",
-       RunModelAligner, ModelAlignerOptionsMarkdown},
+      {"model_aligner", "align a COLMAP model to GPS / pose priors (ENU, GeoJSON)", RunModelAligner,
+       ModelAlignerOptionsMarkdown},
       {"model_converter", "convert a COLMAP sparse model between BIN and TXT", RunModelConverter,
        ModelConverterOptionsMarkdown},
       {"bundle_adjuster", "bundle adjustment of a COLMAP model (poses, points, intrinsics)",

@@ -1,6 +1,6 @@
 // The command line of every subcommand: one table of declarations (util/option_table.h) per
-// command, registered with CLI11 under COLMAP-style names (--database_path, --RelativePose.grid_cols)
-// and the aliases the declarations carry.
+// command, registered with CLI11 under COLMAP-style names (--database_path,
+// --RelativePose.grid_cols) and the aliases the declarations carry.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -166,8 +166,6 @@ OptionDeclaration<Settings> ModelFormatOption(Access access) {
 }
 
 // Where a command's progress lines go at `log_level`: std::cout, or nowhere at 0.
-inline std::ostream* ProgressStream(int log_level) {
-  return log_level > 0 ? &std::cout : nullptr;
-}
+inline std::ostream* ProgressStream(int log_level) { return log_level > 0 ? &std::cout : nullptr; }
 
 }  // namespace ramap::cli

@@ -9,10 +9,10 @@
 #include "model_bindings.h"
 #include "ramap/io/trajectory.h"
 #include "ramap/jobs/mapper_job.h"
-#include "ramap/mapper/mapper_options.h"
 #include "ramap/jobs/mapper_output.h"
 #include "ramap/jobs/model_evaluation.h"
 #include "ramap/jobs/reconstruct_job.h"
+#include "ramap/mapper/mapper_options.h"
 #include "ramap/util/error.h"
 #include "ramap/util/run_observer.h"
 

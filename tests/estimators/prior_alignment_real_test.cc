@@ -12,8 +12,8 @@
 #include "ramap/geometry/geodetic.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/trajectory.h"
-#include "ramap/mapper/mapper.h"
 #include "ramap/jobs/pose_priors.h"
+#include "ramap/mapper/mapper.h"
 #include "test_support.h"
 
 namespace ramap {

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <set>
 
-#include "ramap/geometry/absolute_pose.h"
 #include "ramap/estimators/bearings.h"
 #include "ramap/estimators/track_triangulation.h"
+#include "ramap/geometry/absolute_pose.h"
 #include "ramap/synthetic/synthetic_scene.h"
 #include "test_support.h"
 

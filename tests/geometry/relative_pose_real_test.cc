@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "ramap/estimators/relative_poses.h"
 #include "ramap/geometry/camera_projection.h"
 #include "ramap/geometry/relative_pose.h"
 #include "ramap/io/colmap_database.h"
 #include "ramap/io/trajectory.h"
-#include "ramap/estimators/relative_poses.h"
 #include "test_support.h"
 
 namespace ramap::test {

@@ -6,10 +6,10 @@
 #include <gtest/gtest.h>
 
 #include "ramap/estimators/bearings.h"
+#include "ramap/estimators/relative_poses.h"
 #include "ramap/mapper/components.h"
 #include "ramap/mapper/mapper_options.h"
 #include "ramap/mapper/mapper_summary.h"
-#include "ramap/estimators/relative_poses.h"
 #include "ramap/scene/image_order.h"
 #include "ramap/synthetic/synthetic_scene.h"
 #include "test_support.h"
@@ -45,8 +45,9 @@ class TranslationStage : public ::testing::TestWithParam<int> {
   }
 
   PassInput Input() const {
-    return PassInput{scene_.database, options_, scene_.database.cameras, bearings_, pairs_,
-                     order_,          true,     priors_};
+    return PassInput{
+        scene_.database, options_, scene_.database.cameras, bearings_, pairs_, order_, true,
+        priors_};
   }
 
   // Stage 4 as the mapper runs it: the early tracks started over the whole graph, then

@@ -101,10 +101,11 @@ TEST(Mapper, PairsAliasedInTranslationAreRejectedWithTheirReasons) {
   int named = 0;
   for (const uint64_t pair_id : scene.aliased_pair_ids) {
     const auto [image_id1, image_id2] = PairIdToImagePair(pair_id);
-    const std::string what = scene.database.images.at(image_id1).name + " " +
-                             scene.database.images.at(image_id2).name;
+    const std::string what =
+        scene.database.images.at(image_id1).name + " " + scene.database.images.at(image_id2).name;
     for (const DroppedItem& dropped : result.summary.dropped_edges) {
-      if (dropped.what == what && dropped.reason.rfind("pair direction off its cycles by ", 0) == 0) {
+      if (dropped.what == what &&
+          dropped.reason.rfind("pair direction off its cycles by ", 0) == 0) {
         ++named;
       }
     }

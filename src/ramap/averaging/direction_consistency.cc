@@ -241,7 +241,7 @@ bool RejectRound(const std::vector<PairDirection>& directions, const std::vector
 }  // namespace
 
 DirectionConsistencyResult CheckDirectionCycles(const std::vector<PairDirection>& directions,
-                                                   const DirectionConsistencyOptions& options) {
+                                                const DirectionConsistencyOptions& options) {
   options.Check();
   DirectionConsistencyResult result;
   std::vector<bool> active(directions.size(), true);

@@ -11,9 +11,7 @@
 
 namespace ramap {
 
-void PairDirectionOptions::Check() const {
-  CheckOptionValues(PairDirectionOptionTable(), *this);
-}
+void PairDirectionOptions::Check() const { CheckOptionValues(PairDirectionOptionTable(), *this); }
 
 namespace {
 

@@ -821,10 +821,9 @@ void SolveConnected(const std::map<uint32_t, Eigen::Quaterniond>& rotations,
   for (size_t i = 0; i < solved.size(); ++i) {
     (*column)[solved[i]] = static_cast<int>(i) - (has_priors ? 0 : 1);
   }
-  constraints->erase(
-      std::remove_if(constraints->begin(), constraints->end(),
-                     [&](const Constraint& c) { return !column->count(c.a.from); }),
-      constraints->end());
+  constraints->erase(std::remove_if(constraints->begin(), constraints->end(),
+                                    [&](const Constraint& c) { return !column->count(c.a.from); }),
+                     constraints->end());
   pairs->erase(std::remove_if(pairs->begin(), pairs->end(),
                               [&](const PairRow& pair) { return !column->count(pair.i); }),
                pairs->end());

@@ -49,8 +49,8 @@ struct WindowAlignmentOptions {
   int num_threads = 1;  // Ceres's
 };
 
-// Its options (--TranslationAveraging.*), each declared once with its range and help (util/option_table.h):
-// the command line, Check(), summary.json and Python read them.
+// Its options (--TranslationAveraging.*), each declared once with its range and help
+// (util/option_table.h): the command line, Check(), summary.json and Python read them.
 const OptionTable<WindowAlignmentOptions>& WindowAlignmentOptionTable();
 
 // c = scale * c_local + translation.

@@ -42,21 +42,28 @@ OptionDeclaration<CompareOptions> Program(std::string name, Access access, std::
 
 OptionTable<CompareOptions> BuildTable() {
   OptionTable<CompareOptions> t;
-  t.push_back(Required(Path("database_path", [](auto& o) -> auto& { return o.database_path; },
-                            "COLMAP database with verified matches")));
-  t.push_back(Required(Path("output_path", [](auto& o) -> auto& { return o.output_path; },
-                            "folder for the models, logs, report and figures")));
-  t.push_back(Path("image_path", [](auto& o) -> auto& { return o.image_path; },
-                   "the images (colours; COLMAP's mapper wants one)"));
-  t.push_back(Path("ground_truth", [](auto& o) -> auto& { return o.ground_truth_path; },
-                   "ground-truth file or folder"));
-  t.push_back(Path("ground_truth_format", [](auto& o) -> auto& { return o.ground_truth_format; },
-                   "tum, kitti, strecha, middlebury or colmap"));
-  t.push_back(Program("colmap_path", [](auto& o) -> auto& { return o.colmap_binary; },
-                      "the reference colmap binary (3.8)"));
-  t.push_back(Program("peer_colmap", [](auto& o) -> auto& { return o.peer_colmap_binary; },
-                      "a COLMAP 4 binary (scripts/peers.sh): adds its mapper and global_mapper "
-                      "(GLOMAP), each on a copy of the database"));
+  t.push_back(Required(Path(
+      "database_path", [](auto& o) -> auto& { return o.database_path; },
+      "COLMAP database with verified matches")));
+  t.push_back(Required(Path(
+      "output_path", [](auto& o) -> auto& { return o.output_path; },
+      "folder for the models, logs, report and figures")));
+  t.push_back(Path(
+      "image_path", [](auto& o) -> auto& { return o.image_path; },
+      "the images (colours; COLMAP's mapper wants one)"));
+  t.push_back(Path(
+      "ground_truth", [](auto& o) -> auto& { return o.ground_truth_path; },
+      "ground-truth file or folder"));
+  t.push_back(Path(
+      "ground_truth_format", [](auto& o) -> auto& { return o.ground_truth_format; },
+      "tum, kitti, strecha, middlebury or colmap"));
+  t.push_back(Program(
+      "colmap_path", [](auto& o) -> auto& { return o.colmap_binary; },
+      "the reference colmap binary (3.8)"));
+  t.push_back(Program(
+      "peer_colmap", [](auto& o) -> auto& { return o.peer_colmap_binary; },
+      "a COLMAP 4 binary (scripts/peers.sh): adds its mapper and global_mapper "
+      "(GLOMAP), each on a copy of the database"));
   t.push_back(BoolOption<CompareOptions>(
       "Compare.refine_intrinsics", [](auto& o) -> auto& { return o.refine_intrinsics; },
       "0: intrinsics fixed in every mapper (fair with known calibration); 1: refined"));

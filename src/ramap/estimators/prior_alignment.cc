@@ -11,9 +11,7 @@
 
 namespace ramap {
 
-void PriorAlignmentOptions::Check() const {
-  CheckOptionValues(PriorAlignmentOptionTable(), *this);
-}
+void PriorAlignmentOptions::Check() const { CheckOptionValues(PriorAlignmentOptionTable(), *this); }
 
 namespace {
 

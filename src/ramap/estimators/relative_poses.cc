@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "ramap/geometry/pair_correspondences.h"
 #include "ramap/estimators/stage_names.h"
+#include "ramap/geometry/pair_correspondences.h"
 #include "ramap/util/even_subset.h"
 #include "ramap/util/parallel.h"
 #include "ramap/util/statistics.h"
@@ -47,15 +47,15 @@ void EstimatePair(const FeatureDatabase& database, const ImageBearings& bearings
   const Camera& camera1 = database.cameras.at(database.images.at(geometry.image_id1).camera_id);
   const Camera& camera2 = database.cameras.at(database.images.at(geometry.image_id2).camera_id);
   std::vector<uint32_t> match_indices;
-  const TwoViewCorrespondences correspondences = PairCorrespondences(
-      {camera1, database.keypoints.at(geometry.image_id1),
-       &bearings.bearings.at(geometry.image_id1)},
-      {camera2, database.keypoints.at(geometry.image_id2),
-       &bearings.bearings.at(geometry.image_id2)},
-      geometry,
-      0.5 * (bearings.focal_lengths_px.at(camera1.camera_id) +
-             bearings.focal_lengths_px.at(camera2.camera_id)),
-      options.use_descriptor_ratios, &match_indices);
+  const TwoViewCorrespondences correspondences =
+      PairCorrespondences({camera1, database.keypoints.at(geometry.image_id1),
+                           &bearings.bearings.at(geometry.image_id1)},
+                          {camera2, database.keypoints.at(geometry.image_id2),
+                           &bearings.bearings.at(geometry.image_id2)},
+                          geometry,
+                          0.5 * (bearings.focal_lengths_px.at(camera1.camera_id) +
+                                 bearings.focal_lengths_px.at(camera2.camera_id)),
+                          options.use_descriptor_ratios, &match_indices);
   pair->estimate = EstimateRelativePose(correspondences, options);
   pair->is_inlier.assign(geometry.inlier_matches.size(), false);
   for (const int inlier : pair->estimate.inliers) pair->is_inlier[match_indices[inlier]] = true;

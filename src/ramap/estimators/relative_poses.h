@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "ramap/estimators/bearings.h"
 #include "ramap/geometry/correspondence_sampling.h"
 #include "ramap/geometry/relative_pose.h"
 #include "ramap/io/relative_pose_file.h"
-#include "ramap/estimators/bearings.h"
 #include "ramap/scene/features.h"
 #include "ramap/scene/view_graph.h"
 

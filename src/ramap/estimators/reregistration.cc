@@ -3,8 +3,8 @@
 #include <cmath>
 #include <set>
 
-#include "ramap/geometry/absolute_pose.h"
 #include "ramap/estimators/track_triangulation.h"
+#include "ramap/geometry/absolute_pose.h"
 #include "ramap/util/option_check.h"
 #include "ramap/util/statistics.h"
 #include "ramap/util/timer.h"
@@ -90,9 +90,7 @@ double RotationChangeDeg(const Rigid3d& a, const Rigid3d& b) {
 
 }  // namespace
 
-void ReregistrationOptions::Check() const {
-  CheckOptionValues(ReregistrationOptionTable(), *this);
-}
+void ReregistrationOptions::Check() const { CheckOptionValues(ReregistrationOptionTable(), *this); }
 
 std::vector<ReregisteredImage> ReregisterImages(const std::vector<Track>& tracks,
                                                 const KeypointBearings& bearings,
@@ -150,6 +148,5 @@ std::vector<ReregisteredImage> ReregisterImages(const std::vector<Track>& tracks
   }
   return tried;
 }
-
 
 }  // namespace ramap

@@ -59,5 +59,4 @@ std::vector<ReregisteredImage> ReregisterImages(const std::vector<Track>& tracks
                                                 double max_reprojection_error_px,
                                                 std::map<uint32_t, Rigid3d>* poses);
 
-
 }  // namespace ramap

@@ -155,5 +155,4 @@ Reconstruction BuildReconstruction(const FeatureDatabase& database,
   return reconstruction;
 }
 
-
 }  // namespace ramap

@@ -64,5 +64,4 @@ Reconstruction BuildReconstruction(
     const TrackTriangulationOptions& options = TrackTriangulationOptions(),
     TrackTriangulationSummary* summary = nullptr, int num_threads = 1);
 
-
 }  // namespace ramap

@@ -10,8 +10,8 @@
 
 #include "ramap/geometry/rotation.h"
 #include "ramap/util/error.h"
-#include "ramap/util/staged_output.h"
 #include "ramap/util/option_check.h"
+#include "ramap/util/staged_output.h"
 
 namespace ramap {
 namespace {

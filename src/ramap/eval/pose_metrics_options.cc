@@ -57,8 +57,9 @@ OptionTable<Options> BuildTable() {
   t.push_back(NumberOption<Options>(
       "min_baseline", [](auto& o) -> auto& { return o.min_baseline; }, AtLeast(0),
       "pairs with a shorter ground-truth baseline score rotation only"));
-  t.push_back(BoolOption<Options>("ordered_pairs", [](auto& o) -> auto& { return o.ordered_pairs; },
-                                  "score both orders of each pair, as COLMAP's benchmark"));
+  t.push_back(BoolOption<Options>(
+      "ordered_pairs", [](auto& o) -> auto& { return o.ordered_pairs; },
+      "score both orders of each pair, as COLMAP's benchmark"));
   return t;
 }
 

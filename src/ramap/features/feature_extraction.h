@@ -30,8 +30,8 @@ struct FeatureExtractionOptions {
   void Check() const;  // throws InputError naming the option
 };
 
-// Its options (--FeatureExtraction.*), each declared once with its range and help (util/option_table.h):
-// the command line, Check(), summary.json and Python read them.
+// Its options (--FeatureExtraction.*), each declared once with its range and help
+// (util/option_table.h): the command line, Check(), summary.json and Python read them.
 const OptionTable<FeatureExtractionOptions>& FeatureExtractionOptionTable();
 
 struct ImageFeatures {

@@ -92,8 +92,8 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
                               const std::vector<float>& ratios = {});
 
 struct MatchingSummary {
-  int num_pairs = 0;             // pairs matched in full
-  int num_verified_pairs = 0;    // pairs with a two-view geometry
+  int num_pairs = 0;           // pairs matched in full
+  int num_verified_pairs = 0;  // pairs with a two-view geometry
   double seconds = 0.0;
 };
 

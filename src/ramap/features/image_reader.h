@@ -28,8 +28,8 @@ struct ImageReaderOptions {
   void Check() const;  // throws InputError naming the option
 };
 
-// Its options (--FeatureExtraction.*, --ImageReader.*), each declared once with its range and help (util/option_table.h):
-// the command line, Check(), summary.json and Python read them.
+// Its options (--FeatureExtraction.*, --ImageReader.*), each declared once with its range and help
+// (util/option_table.h): the command line, Check(), summary.json and Python read them.
 const OptionTable<ImageReaderOptions>& ImageReaderOptionTable();
 
 // Image file names in `image_path` (its files with an image extension, sorted), or the names in

@@ -19,8 +19,8 @@
 #include "ramap/geometry/triangulation.h"
 #include "ramap/util/error.h"
 #include "ramap/util/even_subset.h"
-#include "ramap/util/statistics.h"
 #include "ramap/util/option_check.h"
+#include "ramap/util/statistics.h"
 
 namespace ramap {
 namespace {

@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "ramap/io/sqlite.h"
-#include "ramap/util/option_table.h"
 #include "ramap/scene/features.h"
+#include "ramap/util/option_table.h"
 
 namespace ramap {
 

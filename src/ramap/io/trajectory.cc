@@ -240,8 +240,8 @@ GroundTruth ReadMiddlebury(const std::string& path) {
   }
   // Compared as doubles: a count past size_t's range (a corrupt header) must not be cast.
   if (static_cast<double>(gt.poses.size()) != *count) {
-    throw InputError(path, "announces " + count_text + " images but lists " +
-                               std::to_string(gt.poses.size()));
+    throw InputError(
+        path, "announces " + count_text + " images but lists " + std::to_string(gt.poses.size()));
   }
   return gt;
 }
@@ -284,8 +284,9 @@ GroundTruthFormat GroundTruthFormatFromName(const std::string& name) {
   if (name == "strecha") return GroundTruthFormat::kStrecha;
   if (name == "middlebury") return GroundTruthFormat::kMiddlebury;
   if (name == "colmap") return GroundTruthFormat::kColmap;
-  throw InputError("--ground_truth_format",
-                   "unknown format '" + name + "' (known: tum, kitti, strecha, middlebury, colmap)");
+  throw InputError(
+      "--ground_truth_format",
+      "unknown format '" + name + "' (known: tum, kitti, strecha, middlebury, colmap)");
 }
 
 namespace {

@@ -6,10 +6,10 @@
 #include <ostream>
 #include <string>
 
-#include "ramap/jobs/pose_priors.h"
 #include "ramap/estimators/prior_alignment.h"
-#include "ramap/scene/features.h"
+#include "ramap/jobs/pose_priors.h"
 #include "ramap/mapper/pose_prior_source.h"
+#include "ramap/scene/features.h"
 
 namespace ramap {
 

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "ramap/features/matching_plan.h"
-#include "ramap/mapper/mapper.h"
 #include "ramap/jobs/reconstruct_options.h"
+#include "ramap/mapper/mapper.h"
 
 namespace ramap {
 

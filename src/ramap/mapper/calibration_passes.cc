@@ -8,8 +8,8 @@
 
 namespace ramap {
 
-void LogViewGraphCalibration(const ViewGraphCalibrationSummary& calibration,
-                             std::ostream* progress, StageReport* report) {
+void LogViewGraphCalibration(const ViewGraphCalibrationSummary& calibration, std::ostream* progress,
+                             StageReport* report) {
   if (calibration.cameras.empty()) return;
   int num_estimated = 0;
   std::ostringstream focal_lengths;

@@ -21,8 +21,8 @@ namespace ramap {
 
 // The view-graph calibration's progress line (each unknown camera's guess and estimate) and time,
 // into `report`.
-void LogViewGraphCalibration(const ViewGraphCalibrationSummary& calibration,
-                             std::ostream* progress, StageReport* report);
+void LogViewGraphCalibration(const ViewGraphCalibrationSummary& calibration, std::ostream* progress,
+                             StageReport* report);
 
 // The bundle adjustment options of a subset's adjustment: at most calibration_num_points points
 // (the longest tracks), each image keeping at least 50 of its observations.

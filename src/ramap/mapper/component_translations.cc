@@ -134,8 +134,8 @@ bool EarlyTracksFit(const EarlyTracks& early, const KeptEdges& kept) {
 // The tracks of the `kept` edges, on a thread of their own while the pair directions are
 // estimated, which shortens the two together; the early tracks, which do not fit, are dropped
 // first.
-std::future<std::vector<Track>> TracksOfKeptEdges(const PassInput& input,
-                                                  const KeptEdges& kept, EarlyTracks* early) {
+std::future<std::vector<Track>> TracksOfKeptEdges(const PassInput& input, const KeptEdges& kept,
+                                                  EarlyTracks* early) {
   early->built = {};  // their memory freed (an async build is waited for)
   return std::async(TracksLaunch(input), [&database = input.database, &kept] {
     return BuildTracks(database.two_view_geometries, kept.pair_ids);
@@ -237,10 +237,10 @@ EarlyTracks StartComponentTracks(const PassInput& input, const ViewGraph& graph)
     early.pair_ids.insert(ImagePairToPairId(pair.image_id1, pair.image_id2));
   }
   // The set is copied: `early` moves when returned.
-  early.built = std::async(TracksLaunch(input),
-                           [&database = input.database, pair_ids = early.pair_ids] {
-                             return BuildTracks(database.two_view_geometries, pair_ids);
-                           });
+  early.built =
+      std::async(TracksLaunch(input), [&database = input.database, pair_ids = early.pair_ids] {
+        return BuildTracks(database.two_view_geometries, pair_ids);
+      });
   return early;
 }
 
@@ -249,9 +249,9 @@ ComponentState AverageComponentTranslations(const PassInput& input, ComponentSta
   ComponentTranslations result;
   KeptEdges kept = SplitKeptEdges(input, state.graph, state.edge_status, state.rotations);
   const bool early_fits = EarlyTracksFit(state.early_tracks, kept);
-  std::future<std::vector<Track>> tracks = early_fits
-                                               ? std::move(state.early_tracks.built)
-                                               : TracksOfKeptEdges(input, kept, &state.early_tracks);
+  std::future<std::vector<Track>> tracks =
+      early_fits ? std::move(state.early_tracks.built)
+                 : TracksOfKeptEdges(input, kept, &state.early_tracks);
   std::set<uint64_t> rejected;
   result.directions = ConsistentDirections(
       input, KeptPairDirections(input, kept.with_translation, state.rotations), &rejected, &state);
@@ -271,7 +271,8 @@ ComponentState AverageComponentTranslations(const PassInput& input, ComponentSta
   try {
     positions = SolvePositions(input, state.rotations, result, &how);
   } catch (const StageFailure& error) {
-    for (const auto& [id, rotation] : state.rotations) state.report.image_reasons[id] = error.what();
+    for (const auto& [id, rotation] : state.rotations)
+      state.report.image_reasons[id] = error.what();
     RecordStage(input, stage::kTranslationAveraging, timer.ElapsedSeconds(), error.what(), &state);
     return state;
   }
@@ -318,10 +319,10 @@ ComponentState ReportPriorErrors(const PassInput& input, ComponentState state) {
     MeasurePriorErrors(state.model, input.priors, alignment.inliers, &alignment.summary);
     const PriorAlignmentSummary& geo = alignment.summary;
     for (const PriorOutlier& outlier : geo.outliers) {
-      state.report.prior_outliers.push_back(
-          {input.database.images.at(outlier.image_id).name,
-           "prior " + FormatMetres(outlier.error_m) + " from the aligned camera centre (> " +
-               FormatMetres(geo.threshold_m) + "): not used"});
+      state.report.prior_outliers.push_back({input.database.images.at(outlier.image_id).name,
+                                             "prior " + FormatMetres(outlier.error_m) +
+                                                 " from the aligned camera centre (> " +
+                                                 FormatMetres(geo.threshold_m) + "): not used"});
     }
   }
   state.summary.prior_alignment = alignment.summary;

@@ -9,13 +9,14 @@ Reconstruction TriangulateComponent(const PassInput& input,
                                     const std::map<uint32_t, Rigid3d>& poses,
                                     const std::vector<Track>& tracks, const ImageBearings& bearings,
                                     const std::map<uint32_t, Camera>& cameras,
-                                    const std::string& what, const TrackTriangulationOptions& options,
+                                    const std::string& what,
+                                    const TrackTriangulationOptions& options,
                                     ComponentState* state) {
   Timer timer;
   TrackTriangulationSummary triangulated;
-  Reconstruction reconstruction =
-      BuildReconstruction(input.database, poses, tracks, bearings.bearings,
-                          bearings.focal_lengths_px, options, &triangulated, input.options.num_threads);
+  Reconstruction reconstruction = BuildReconstruction(
+      input.database, poses, tracks, bearings.bearings, bearings.focal_lengths_px, options,
+      &triangulated, input.options.num_threads);
   for (auto& [camera_id, camera] : reconstruction.cameras) camera = cameras.at(camera_id);
   state->summary.num_points = triangulated.num_points;
   state->summary.num_observations = triangulated.num_observations;
@@ -36,9 +37,9 @@ ComponentState TriangulateAveragedPoses(const PassInput& input, ComponentState s
     if (prior_alignment.summary.aligned)
       state.poses[id] = TransformPose(prior_alignment.prior_from_model, state.poses[id]);
   }
-  state.model = TriangulateComponent(input, state.poses, state.translations->tracks,
-                                     input.bearings, input.cameras, "",
-                                     input.options.TriangulationOfAveragedPoses(), &state);
+  state.model =
+      TriangulateComponent(input, state.poses, state.translations->tracks, input.bearings,
+                           input.cameras, "", input.options.TriangulationOfAveragedPoses(), &state);
   return state;
 }
 
@@ -58,9 +59,9 @@ ComponentState ReregisterComponent(const PassInput& input, ComponentState state)
                   std::to_string(tried.size()) + " images its points left out placed again",
               &state);
   if (num_replaced == 0) return state;
-  state.model = TriangulateComponent(input, state.poses, tracks, input.bearings, input.cameras,
-                                     "again with the re-registered images: ",
-                                     options.TriangulationOfAveragedPoses(), &state);
+  state.model = TriangulateComponent(
+      input, state.poses, tracks, input.bearings, input.cameras,
+      "again with the re-registered images: ", options.TriangulationOfAveragedPoses(), &state);
   return state;
 }
 

@@ -21,7 +21,8 @@ Reconstruction TriangulateComponent(const PassInput& input,
                                     const std::map<uint32_t, Rigid3d>& poses,
                                     const std::vector<Track>& tracks, const ImageBearings& bearings,
                                     const std::map<uint32_t, Camera>& cameras,
-                                    const std::string& what, const TrackTriangulationOptions& options,
+                                    const std::string& what,
+                                    const TrackTriangulationOptions& options,
                                     ComponentState* state);
 
 // The averaged poses (in the priors' frame when aligned to them) into state.poses, and every track

@@ -14,7 +14,7 @@ ViewGraph ViewGraphOfAcceptedPairs(const FeatureDatabase& database,
   for (const ImagePair& pair : pairs) {
     if (pair.accepted()) continue;
     report->dropped_edges.push_back({PairName(database, pair.image_id1, pair.image_id2),
-                                      "relative pose rejected: " + pair.estimate.reason});
+                                     "relative pose rejected: " + pair.estimate.reason});
     for (const uint32_t id : {pair.image_id1, pair.image_id2}) {
       if (!nodes.count(id))
         report->image_reasons[id] = "every relative pose rejected (" + pair.estimate.reason + ")";

@@ -173,9 +173,9 @@ PassOutcome RunMapperPass(const FeatureDatabase& database, const MapperOptions& 
   // 2. The view graph, one reconstruction per connected component (stages 3-6).
   summary.sequential = IsSequentialInput(options.order, ImageNames(database));
   const std::vector<uint32_t> order = ImageIdsInCaptureOrder(database);
-  const PassInput input{database, pass_options,       cameras, bearings,
-                        pairs,    order,              summary.sequential,
-                        priors,   first.calibration_pass, progress};
+  const PassInput input{
+      database, pass_options,           cameras, bearings, pairs, order, summary.sequential,
+      priors,   first.calibration_pass, progress};
   const RefinementPlan refinement = PlanRefinement(pass_options, first.calibration_pass);
   std::vector<ComponentState> components;
   for (ViewGraph& component :
@@ -205,9 +205,8 @@ MapperResult RunMapper(const FeatureDatabase& database, const MapperOptions& giv
   if (!options.AdjustsAfterAveraging() || !(options.max_focal_change_in_bundle_adjustment > 0))
     return first.result;
   std::map<uint32_t, Camera> written;
-  const double change =
-      FocalChangeInBundleAdjustment(database, first.calibration, first.disproved_cameras,
-                                    first.result.reconstructions, &written);
+  const double change = FocalChangeInBundleAdjustment(
+      database, first.calibration, first.disproved_cameras, first.result.reconstructions, &written);
   if (change <= options.max_focal_change_in_bundle_adjustment && !first.calibration_pass)
     return first.result;
   std::map<uint32_t, Camera> refined = database.cameras;

@@ -1,9 +1,9 @@
-#include "ramap/mapper/mapper_options.h"
-
 #include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "ramap/mapper/mapper_options.h"
 
 namespace ramap {
 

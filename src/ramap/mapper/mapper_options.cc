@@ -1,7 +1,5 @@
 #include "ramap/mapper/mapper_options.h"
 
-#include "ramap/mapper/mapper_options.h"
-
 namespace ramap {
 
 // The mapper's own options are checked against their declarations (mapper_option_table.cc); each

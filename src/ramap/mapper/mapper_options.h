@@ -9,21 +9,20 @@
 #include "ramap/averaging/rotation_averaging.h"
 #include "ramap/averaging/translation_averaging.h"
 #include "ramap/averaging/windowed_translation_averaging.h"
-#include "ramap/geometry/relative_pose.h"
-#include "ramap/graph/keyframes.h"
-#include "ramap/estimators/rotations.h"
-#include "ramap/mapper/pose_prior_source.h"
 #include "ramap/estimators/prior_alignment.h"
 #include "ramap/estimators/reregistration.h"
+#include "ramap/estimators/rotations.h"
 #include "ramap/estimators/track_triangulation.h"
 #include "ramap/estimators/view_graph_calibration.h"
+#include "ramap/geometry/relative_pose.h"
+#include "ramap/graph/keyframes.h"
+#include "ramap/mapper/pose_prior_source.h"
 #include "ramap/refine/bundle_adjustment.h"
 #include "ramap/refine/given_intrinsics_check.h"
 #include "ramap/scene/image_order.h"
 #include "ramap/util/option_table.h"
 
 namespace ramap {
-
 
 struct MapperOptions {
   // Focal lengths of uncalibrated cameras (prior_focal_length 0) from the view graph, first.

@@ -42,7 +42,7 @@ struct MapperComponentSummary {
   int num_translation_constraints = 0;
   int num_solver_iterations = 0;
   int num_factorizations = 0;
-  int num_translation_windows = 0;            // 0: translation averaging in one system
+  int num_translation_windows = 0;  // 0: translation averaging in one system
   // The images averaging placed badly that were tried again from the points.
   std::vector<ReregisteredImage> reregistered_images;
   BundleAdjustmentSummary bundle_adjustment;  // zeros when not refined

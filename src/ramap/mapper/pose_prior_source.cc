@@ -1,8 +1,8 @@
+#include "ramap/mapper/pose_prior_source.h"
+
 #include <string>
 #include <utility>
 #include <vector>
-
-#include "ramap/mapper/pose_prior_source.h"
 
 namespace ramap {
 

@@ -24,4 +24,3 @@ struct PosePriorSource {
 const OptionTable<PosePriorSource>& PosePriorSourceOptionTable();
 
 }  // namespace ramap
-

@@ -23,10 +23,9 @@ void LogBundleAdjustment(const PassInput& input, const BundleAdjustmentSummary& 
                                      " px loss (median start error above the loss scale)"
                                : "";
   RecordStage(input, stage::kBundleAdjustment, ba.seconds,
-                     what + std::to_string(ba.num_points) + " points, RMSE " +
-                         std::to_string(ba.initial_rmse_px) + " -> " +
-                         std::to_string(ba.final_rmse_px) + " px, " +
-                         std::to_string(ba.num_iterations) + " iterations" + wide + held,
+              what + std::to_string(ba.num_points) + " points, RMSE " +
+                  std::to_string(ba.initial_rmse_px) + " -> " + std::to_string(ba.final_rmse_px) +
+                  " px, " + std::to_string(ba.num_iterations) + " iterations" + wide + held,
               state);
 }
 
@@ -45,8 +44,7 @@ ImageBearings BearingsThrough(const PassInput& input, const Reconstruction& mode
 // bearing of their images) under `options`; `what` opens the progress line.
 Reconstruction TriangulateThrough(const PassInput& input, const std::vector<Track>& tracks,
                                   const Reconstruction& model, const std::string& what,
-                                  ComponentState* state,
-                                  const TrackTriangulationOptions& options) {
+                                  ComponentState* state, const TrackTriangulationOptions& options) {
   std::map<uint32_t, Rigid3d> poses;
   for (const auto& [image_id, image] : model.images) poses[image_id] = image.cam_from_world;
   const bool intrinsics_changed =
@@ -55,8 +53,8 @@ Reconstruction TriangulateThrough(const PassInput& input, const std::vector<Trac
         return given == input.cameras.end() || given->second.params != entry.second.params;
       });
   if (!intrinsics_changed) {
-    return TriangulateComponent(input, poses, tracks, input.bearings, input.cameras,
-                                what + ": ", options, state);
+    return TriangulateComponent(input, poses, tracks, input.bearings, input.cameras, what + ": ",
+                                options, state);
   }
   std::map<uint32_t, Camera> cameras;
   const ImageBearings bearings = BearingsThrough(input, model, &cameras);
@@ -79,8 +77,8 @@ void LogGivenIntrinsicsTest(const PassInput& input, const GivenIntrinsicsTestSum
       line << std::setprecision(3) << ", focal length alone " << group.focal_only_rmse_px << " px";
     line << ": " << (group.focal_accepted ? "focal length wrong" : "focal length kept")
          << (group.distortion_accepted ? ", distortion added (" + group.final_model + ")" : "");
-    RecordStage(input, stage::kBundleAdjustment,
-                &group == &test.groups.front() ? test.seconds : 0, line.str(), state);
+    RecordStage(input, stage::kBundleAdjustment, &group == &test.groups.front() ? test.seconds : 0,
+                line.str(), state);
   }
 }
 
@@ -164,8 +162,9 @@ void TestGivenIntrinsicsFirst(const PassInput& input, const RefinementPlan& plan
   GivenIntrinsicsTestSummary& test = state->summary.given_intrinsics_test;
   if (!TestsSomeCamera(run->adjustment, plan.given_intrinsics_test, model)) return;
   const std::vector<Track>& tracks = state->translations->tracks;
-  Reconstruction judged = TriangulateThrough(
-      input, tracks, model, "for the test of the given intrinsics", state, plan.judged_triangulation);
+  Reconstruction judged =
+      TriangulateThrough(input, tracks, model, "for the test of the given intrinsics", state,
+                         plan.judged_triangulation);
   test = TestGivenIntrinsics(run->bearings->bearings, run->bearings->focal_lengths_px,
                              run->adjustment, plan.given_intrinsics_test, &judged);
   model.cameras = judged.cameras;
@@ -211,13 +210,12 @@ void AdjustBundleAgain(const PassInput& input, const RefinementPlan& plan, int r
   std::map<uint32_t, Camera> cameras;
   const ImageBearings bearings = BearingsThrough(input, state->model, &cameras);
   Reconstruction again = PointsForBundleAdjustment(state->model, run->adjustment);
-  const BundleAdjustmentSummary summary =
-      BundleAdjust(bearings.bearings, bearings.focal_lengths_px, &again, run->adjustment,
-                   run->priors);
+  const BundleAdjustmentSummary summary = BundleAdjust(bearings.bearings, bearings.focal_lengths_px,
+                                                       &again, run->adjustment, run->priors);
   LogBundleAdjustment(input, summary, "round " + std::to_string(round) + ": ", state);
-  state->model = TriangulateThrough(input, state->translations->tracks, again,
-                                    "again with the refined poses", state,
-                                    plan.final_triangulation);
+  state->model =
+      TriangulateThrough(input, state->translations->tracks, again, "again with the refined poses",
+                         state, plan.final_triangulation);
 }
 
 }  // namespace

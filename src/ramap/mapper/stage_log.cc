@@ -52,7 +52,8 @@ void AppendReport(const StageReport& later, StageReport* report) {
                                later.dropped_edges.end());
   report->prior_outliers.insert(report->prior_outliers.end(), later.prior_outliers.begin(),
                                 later.prior_outliers.end());
-  for (const auto& [image_id, reason] : later.image_reasons) report->image_reasons[image_id] = reason;
+  for (const auto& [image_id, reason] : later.image_reasons)
+    report->image_reasons[image_id] = reason;
   report->num_keyframes += later.num_keyframes;
   report->num_loop_edges += later.num_loop_edges;
 }

@@ -22,8 +22,8 @@ struct SyntheticDescriptorOptions {
   void Check() const;  // throws InputError naming the option
 };
 
-// Its options (--Synthetic.descriptor_noise), each declared once with its range and help (util/option_table.h):
-// the command line, Check() and Python read them.
+// Its options (--Synthetic.descriptor_noise), each declared once with its range and help
+// (util/option_table.h): the command line, Check() and Python read them.
 const OptionTable<SyntheticDescriptorOptions>& SyntheticDescriptorOptionTable();
 
 // Fills scene->database.descriptors: one 128-column row per keypoint of every image.

@@ -284,10 +284,10 @@ void CheckGivenPoses(const SyntheticSceneOptions& o) {
   }
   if (o.num_images < 0 || static_cast<size_t>(o.num_images) > o.given_poses.size() ||
       o.num_images == 1) {
-    throw InputError("--Synthetic.num_images",
-                     "must be 0 (all) or between 2 and the " +
-                         std::to_string(o.given_poses.size()) +
-                         " poses of --Synthetic.trajectory_path, got " + std::to_string(o.num_images));
+    throw InputError("--Synthetic.num_images", "must be 0 (all) or between 2 and the " +
+                                                   std::to_string(o.given_poses.size()) +
+                                                   " poses of --Synthetic.trajectory_path, got " +
+                                                   std::to_string(o.num_images));
   }
   for (const Rigid3d& pose : o.given_poses) {
     if (!pose.rotation.coeffs().allFinite() || !pose.translation.allFinite() ||
@@ -326,8 +326,7 @@ void SyntheticSceneOptions::Check() const {
                        "must have the first camera's image size");
     }
   }
-  CheckOption(max_depth > min_depth, "--Synthetic.max_depth", "> --Synthetic.min_depth",
-              max_depth);
+  CheckOption(max_depth > min_depth, "--Synthetic.max_depth", "> --Synthetic.min_depth", max_depth);
   CheckOption(aliased_min_angle_deg <= aliased_max_angle_deg, "--Synthetic.aliased_min_angle_deg",
               "<= --Synthetic.aliased_max_angle_deg", aliased_min_angle_deg);
   CheckOption(!photo_names || num_images <= 26 * 26 * 26 * 26, "--Synthetic.num_images",

@@ -330,6 +330,55 @@ TEST_F(BadInput, OptionsOutOfRange) {
                 "--Matching.max_ratio");
 }
 
+// Each a clear error naming the option, exit 2, nothing written (ExpectRefused checks the tree).
+TEST_F(BadInput, EmptyOutputPathIsRefusedBeforeAnyWork) {
+  const test::CommandResult result = test::RunCommand(
+      "cd " + Q(work_.path()) + " && " + test::RamapCommand() +
+      "mapper --database_path database.db --output_path ''");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("--output_path: names no file or folder (the path is empty)"),
+            std::string::npos)
+      << result.output;
+  // Refused at parsing: no stage ran.
+  EXPECT_EQ(result.output.find("relative poses"), std::string::npos) << result.output;
+  EXPECT_EQ(Snapshot(work_.path()), before_);
+  ExpectRefused("reconstruct --image_path images --output_path ''", "--output_path");
+  ExpectRefused("synthesize --output_path ''", "--output_path");
+}
+
+TEST_F(BadInput, AucThresholdsOutOfRangeNameTheOption) {
+  const std::string evaluate =
+      "evaluate --model_path sparse/0 --ground_truth ground_truth --ground_truth_format colmap ";
+  ExpectRefused(evaluate + "--auc_thresholds -5,0",
+                "--auc_thresholds: must be a list of angles in (0, 180] degrees, got -5,0");
+  ExpectRefused(evaluate + "--auc_thresholds 3,x", "--auc_thresholds");
+  ExpectRefused(evaluate + "--robust_alignment 1", "--robust_alignment_max_error");
+}
+
+// Index-matched ground truth (TUM, KITTI) and a list that names no image of the model: said as
+// such, not as a count of poses and images.
+TEST_F(BadInput, ImageListNamingNoImageOfTheModelNamesTheList) {
+  std::ofstream(W("list.txt")) << "a.png\nb.png\n";
+  before_ = Snapshot(work_.path());
+  for (const std::string format : {"tum", "colmap"}) {
+    const std::string truth = format == "tum" ? "ground_truth.txt" : "ground_truth";
+    ExpectRefused("evaluate --model_path sparse/0 --ground_truth " + truth +
+                      " --ground_truth_format " + format + " --image_list list.txt",
+                  "--image_list: none of the 2 images of list.txt (a.png, b.png) is in the model "
+                  "sparse/0");
+  }
+}
+
+TEST_F(BadInput, CompareWithAMissingColmapSaysSoBeforeRunning) {
+  ExpectRefused(
+      "compare --database_path database.db --output_path report --colmap_path "
+      "/nonexistent/colmap",
+      "--colmap_path: no such file: /nonexistent/colmap");
+  ExpectRefused(
+      "compare --database_path database.db --output_path report --colmap_path no_such_colmap",
+      "--colmap_path: no program 'no_such_colmap' on the PATH");
+}
+
 // --- Silent wrong successes ---
 
 TEST_F(BadInput, DuplicateImageNames) {
@@ -399,6 +448,9 @@ TEST_F(BadInput, NameWithBlankRefusedBeforeTheSolve) {
       "mapper --database_path database.db --output_path out --output_type TXT --log_level 1");
   EXPECT_EQ(result.exit_code, 2) << result.output;
   EXPECT_NE(result.output.find("database.db: image 1 'with blank.png'"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("asked for by --output_type TXT; --output_type BIN holds it"),
+            std::string::npos)
       << result.output;
   EXPECT_EQ(result.output.find("rotation averaging"), std::string::npos) << result.output;
   EXPECT_EQ(Snapshot(work_.path()), before_);

@@ -339,6 +339,11 @@ TEST(ViewGraphCalibration, FocalLengthTheViewGraphCannotFixFoundByACalibrationPa
   const CameraCalibration& view_graph = result.summary.cameras[0].view_graph;
   EXPECT_FALSE(view_graph.estimated) << view_graph.estimated_focal_px;
   EXPECT_NE(view_graph.problem.find("undetermined"), std::string::npos) << view_graph.problem;
+  // The cost's rise is said as a rise ("only 4% above its minimum", or "no higher than at the
+  // estimate"), never as a negative share.
+  EXPECT_EQ(view_graph.problem.find("-"), std::string::npos) << view_graph.problem;
+  EXPECT_NE(view_graph.problem.find("the cost 20% away is "), std::string::npos)
+      << view_graph.problem;
   EXPECT_TRUE(result.summary.calibration_pass);
   EXPECT_EQ(result.summary.num_averaging_passes, 2);
   ASSERT_EQ(result.reconstructions.size(), 1u);

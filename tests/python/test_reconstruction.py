@@ -93,3 +93,15 @@ def test_evaluate_against_the_ground_truth(default_scene, tmp_path):
     assert evaluation["num_registered"] == evaluation["num_images"] == 120
     with pytest.raises(ValueError, match="format"):
         ramap.evaluate(tmp_path / "0", default_scene / "ground_truth.txt", "nonsense")
+    # The command's own options, by its names, checked as the command line checks them.
+    two = ramap.evaluate(tmp_path / "0", default_scene / "ground_truth.txt", "tum",
+                         database_path=default_scene / "database.db",
+                         options={"auc_thresholds": [2, 7.5], "ordered_pairs": True})
+    assert sorted(two["relative"]["auc_by_threshold_deg"], key=float) == ["2", "7.5"]
+    with pytest.raises(ValueError, match="--auc_thresholds"):
+        ramap.evaluate(tmp_path / "0", default_scene / "ground_truth.txt", "tum",
+                       database_path=default_scene / "database.db",
+                       options={"auc_thresholds": [-5, 0]})
+    with pytest.raises(ValueError, match="--min_baselin"):
+        ramap.evaluate(tmp_path / "0", default_scene / "ground_truth.txt", "tum",
+                       options={"min_baselin": 1})

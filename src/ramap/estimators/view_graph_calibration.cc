@@ -292,10 +292,14 @@ std::string EstimateProblem(const CameraCalibration& result, const EstimateShape
            std::to_string(options.max_focal_factor) + " x the prior)";
   }
   if (shape.cost_rise < options.min_cost_rise) {
-    return "the pairs leave the focal length undetermined (cost within " +
-           std::to_string(static_cast<int>(100 * shape.cost_rise)) +
-           "% of its minimum 20% away: every optical axis through one point, as around a "
-           "turntable, or too little rotation)";
+    const std::string rise =
+        shape.cost_rise > 0
+            ? "only " + std::to_string(static_cast<int>(100 * shape.cost_rise)) +
+                  "% above its minimum"
+            : "no higher than at the estimate";
+    return "the pairs leave the focal length undetermined (the cost 20% away is " + rise +
+           ": every optical axis through one point, as around a turntable, or too little "
+           "rotation)";
   }
   if (result.median_cost > options.max_median_cost) {
     return "the pairs disagree (median cost " + std::to_string(result.median_cost) + " > " +

@@ -60,7 +60,9 @@ MapperResult RunMapperJob(const MapperJob& job, std::ostream* progress, std::ost
   if (!job.output_path.empty()) {
     CheckImageNamesFit(
         database, job.output_format, job.database_path,
-        job.output_format == ModelFormat::kText ? "--output_type TXT" : "--output_type BIN");
+        job.output_format == ModelFormat::kText
+            ? "the text format was asked for by --output_type TXT; --output_type BIN holds it"
+            : "--output_type BIN");
   }
   const LocalizedPriors priors =
       LoadPosePriors(options.prior_source, database, job.command, warnings);

@@ -1,5 +1,6 @@
 #include "ramap/jobs/model_evaluation.h"
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <vector>
@@ -48,6 +49,30 @@ std::vector<std::string> InputImageNames(const std::string& image_list_path,
   return input_names;
 }
 
+// A list that names no image of the model and none of the ground truth's is another scene's (or
+// its names differ): said so, before ground truth matched by index is given to its names.
+void CheckImageListNamesSome(const ModelEvaluationInput& input,
+                             const std::vector<std::string>& listed,
+                             const std::map<std::string, Rigid3d>& estimated,
+                             const GroundTruth& ground_truth) {
+  std::set<std::string> known;
+  for (const auto& [name, pose] : estimated) known.insert(name);
+  for (const GroundTruthPose& pose : ground_truth.poses) known.insert(pose.image_name);
+  if (std::any_of(listed.begin(), listed.end(),
+                  [&](const std::string& name) { return known.count(name) > 0; })) {
+    return;
+  }
+  std::string examples;
+  for (size_t k = 0; k < std::min<size_t>(listed.size(), 3); ++k)
+    examples += (k ? ", " : "") + listed[k];
+  throw InputError("--image_list", "none of the " + std::to_string(listed.size()) + " images of " +
+                                       input.image_list_path + " (" + examples +
+                                       (listed.size() > 3 ? ", ..." : "") +
+                                       ") is in the model " + input.model_path +
+                                       " or named by the ground truth " +
+                                       input.ground_truth_path + " (another scene?)");
+}
+
 }  // namespace
 
 PoseEvaluation EvaluateModel(const ModelEvaluationInput& input,
@@ -58,6 +83,7 @@ PoseEvaluation EvaluateModel(const ModelEvaluationInput& input,
       ReadGroundTruth(input.ground_truth_path, input.ground_truth_format);
   const std::vector<std::string> input_names = InputImageNames(
       input.image_list_path, input.database_path, estimated, ground_truth, input.ground_truth_path);
+  if (!input.image_list_path.empty()) CheckImageListNamesSome(input, input_names, estimated, ground_truth);
   const std::map<std::string, Rigid3d> gt_poses = GroundTruthByImageName(ground_truth, input_names);
   PoseEvaluation evaluation = EvaluatePoses(estimated, gt_poses, input_names, options);
   if (evaluation.num_with_ground_truth == 0) {

@@ -10,8 +10,8 @@
 
 #include "ramap/averaging/rotation_averaging.h"
 #include "ramap/graph/fiedler.h"
-#include "ramap/synthetic/synthetic_view_graph.h"
 #include "ramap/io/g2o_reader.h"
+#include "ramap/synthetic/synthetic_rotation_graph.h"
 #include "ramap/util/timer.h"
 
 namespace {
@@ -31,7 +31,7 @@ void BenchSeSync(const std::string& dir) {
       std::printf("%-16s missing (%s)\n", name, path.c_str());
       continue;
     }
-    const G2oViewGraph g2o = ReadG2oViewGraph(path);
+    const G2oPoseGraph g2o = ReadG2oPoseGraph(path);
     RotationAveragingOptions options;
     const RotationAveragingResult ours = AverageRotations(g2o.graph, options);
     const ChordalAveragingResult chordal = AverageRotationsChordal(g2o.graph);
@@ -56,7 +56,7 @@ void BenchSeSync(const std::string& dir) {
 }
 
 void BenchSynthetic(bool windows) {
-  SyntheticViewGraphOptions options;
+  SyntheticRotationGraphOptions options;
   options.num_nodes = 10000;
   options.forward_neighbours = 20;  // ~40 nearest neighbours per camera
   options.num_loop_edges = 200;
@@ -65,7 +65,7 @@ void BenchSynthetic(bool windows) {
   options.outlier_fraction = 0.05;
   options.seed = 42;
   Timer timer;
-  const SyntheticViewGraph synthetic = MakeSyntheticViewGraph(options);
+  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(options);
   const double make_seconds = timer.ElapsedSeconds();
   size_t outliers = 0;
   for (bool o : synthetic.is_outlier) outliers += o;
@@ -105,7 +105,7 @@ void BenchSynthetic(bool windows) {
       result.pruned_edges.size(), outliers_kept, result.certificate.certified ? "yes" : "no",
       result.certificate.bound_deg, result.certificate.max_residual_deg);
   Timer chordal_timer;
-  ViewGraph inliers = synthetic.graph;
+  RotationGraph inliers = synthetic.graph;
   inliers.edges.clear();
   for (size_t e = 0; e < synthetic.graph.edges.size(); ++e) {
     if (!synthetic.is_outlier[e]) inliers.edges.push_back(synthetic.graph.edges[e]);

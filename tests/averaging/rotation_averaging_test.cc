@@ -9,7 +9,7 @@
 
 #include "ramap/graph/fiedler.h"
 #include "ramap/graph/keyframes.h"
-#include "ramap/synthetic/synthetic_view_graph.h"
+#include "ramap/synthetic/synthetic_rotation_graph.h"
 #include "ramap/util/error.h"
 
 namespace ramap {
@@ -17,29 +17,29 @@ namespace {
 
 // A sequence of `num_nodes` cameras, each linked to its next `forward_neighbours`, with
 // `num_loop_edges` random loops.
-SyntheticViewGraph Sequence(int num_nodes, int forward_neighbours, int num_loop_edges,
-                            double noise_deg, double outlier_fraction, uint32_t seed) {
-  SyntheticViewGraphOptions options;
+SyntheticRotationGraph Sequence(int num_nodes, int forward_neighbours, int num_loop_edges,
+                                double noise_deg, double outlier_fraction, uint32_t seed) {
+  SyntheticRotationGraphOptions options;
   options.num_nodes = num_nodes;
   options.forward_neighbours = forward_neighbours;
   options.num_loop_edges = num_loop_edges;
   options.noise_deg = noise_deg;
   options.outlier_fraction = outlier_fraction;
   options.seed = seed;
-  return MakeSyntheticViewGraph(options);
+  return MakeSyntheticRotationGraph(options);
 }
 
-SyntheticViewGraph PathWithLoops(double noise_deg, double outlier_fraction, uint32_t seed) {
+SyntheticRotationGraph PathWithLoops(double noise_deg, double outlier_fraction, uint32_t seed) {
   return Sequence(200, 8, 30, noise_deg, outlier_fraction, seed);
 }
 
-double TrueEdgeErrorDeg(const SyntheticViewGraph& synthetic, size_t e) {
+double TrueEdgeErrorDeg(const SyntheticRotationGraph& synthetic, size_t e) {
   const RelativeRotationEdge& edge = synthetic.graph.edges[e];
   return EdgeResidualDeg(edge, synthetic.true_rotations[edge.i], synthetic.true_rotations[edge.j]);
 }
 
 TEST(RotationAveraging, ExactRecoveryWithoutNoise) {
-  const SyntheticViewGraph synthetic = PathWithLoops(0.0, 0.0, 3);
+  const SyntheticRotationGraph synthetic = PathWithLoops(0.0, 0.0, 3);
   const RotationAveragingResult result = AverageRotations(synthetic.graph, {});
   ASSERT_EQ(result.rotations.size(), synthetic.true_rotations.size());
   for (bool estimated : result.estimated) EXPECT_TRUE(estimated);
@@ -89,7 +89,7 @@ class RotationAveragingNoise : public ::testing::TestWithParam<NoiseCase> {};
 
 TEST_P(RotationAveragingNoise, CloseToInlierOnlyChordalOptimum) {
   const NoiseCase c = GetParam();
-  const SyntheticViewGraph synthetic =
+  const SyntheticRotationGraph synthetic =
       PathWithLoops(c.noise_deg, c.outlier_fraction, 7 + static_cast<uint32_t>(c.noise_deg * 10));
   const RotationAveragingResult result = AverageRotations(synthetic.graph, {});
   int estimated = 0;
@@ -98,7 +98,7 @@ TEST_P(RotationAveragingNoise, CloseToInlierOnlyChordalOptimum) {
   const double median = Median(
       AlignedRotationErrorsDeg(result.rotations, synthetic.true_rotations, result.estimated));
 
-  ViewGraph inliers = synthetic.graph;
+  RotationGraph inliers = synthetic.graph;
   inliers.edges.clear();
   for (size_t e = 0; e < synthetic.graph.edges.size(); ++e) {
     if (!synthetic.is_outlier[e]) inliers.edges.push_back(synthetic.graph.edges[e]);
@@ -150,18 +150,18 @@ INSTANTIATE_TEST_SUITE_P(
 
 // The bound grows with algebraic connectivity: a well connected graph (each camera linked to its
 // 12 successors and 400 loop edges) at 0.2 deg noise is certified.
-SyntheticViewGraph CertifiableGraph() {
-  SyntheticViewGraphOptions options;
+SyntheticRotationGraph CertifiableGraph() {
+  SyntheticRotationGraphOptions options;
   options.num_nodes = 150;
   options.forward_neighbours = 12;
   options.num_loop_edges = 400;
   options.noise_deg = 0.2;
   options.seed = 11;
-  return MakeSyntheticViewGraph(options);
+  return MakeSyntheticRotationGraph(options);
 }
 
 TEST(RotationAveraging, CertificateOnLowNoiseGraphMatchesChordalOptimum) {
-  const SyntheticViewGraph synthetic = CertifiableGraph();
+  const SyntheticRotationGraph synthetic = CertifiableGraph();
   const RotationAveragingResult result = AverageRotations(synthetic.graph, {});
   const RotationCertificate& certificate = result.certificate;
   ASSERT_TRUE(certificate.computed);
@@ -183,7 +183,7 @@ TEST(RotationAveraging, CertificateOnLowNoiseGraphMatchesChordalOptimum) {
 
 TEST(RotationAveraging, HighNoiseIsNotCertified) {
   // A sparse path-like graph has a tiny Fiedler value, so its bound is far below 20 deg noise.
-  const SyntheticViewGraph synthetic = PathWithLoops(20.0, 0.0, 5);
+  const SyntheticRotationGraph synthetic = PathWithLoops(20.0, 0.0, 5);
   RotationAveragingOptions options;
   options.max_pruning_rounds = 0;
   const RotationAveragingResult result = AverageRotations(synthetic.graph, options);
@@ -195,7 +195,8 @@ TEST(RotationAveraging, HighNoiseIsNotCertified) {
 // certified and on one that is not, the answer is the same with and without it, and only the
 // uncertifiable one skips its refinement.
 TEST(RotationAveraging, CycleCheckSkipsOnlyRefinementsThatCannotCertify) {
-  for (const SyntheticViewGraph& synthetic : {CertifiableGraph(), PathWithLoops(20.0, 0.0, 5)}) {
+  for (const SyntheticRotationGraph& synthetic :
+       {CertifiableGraph(), PathWithLoops(20.0, 0.0, 5)}) {
     RotationAveragingOptions options;
     options.max_pruning_rounds = 0;
     const RotationCertificate checked = AverageRotations(synthetic.graph, options).certificate;
@@ -214,7 +215,7 @@ TEST(RotationAveraging, CycleCheckSkipsOnlyRefinementsThatCannotCertify) {
 }
 
 TEST(RotationAveraging, StrongDualityPruningModeUsesTheBound) {
-  const SyntheticViewGraph synthetic = PathWithLoops(2.0, 0.1, 21);
+  const SyntheticRotationGraph synthetic = PathWithLoops(2.0, 0.1, 21);
   RotationAveragingOptions options;
   options.pruning_mode = PruningThresholdMode::kStrongDualityBound;
   const RotationAveragingResult result = AverageRotations(synthetic.graph, options);
@@ -228,7 +229,7 @@ TEST(RotationAveraging, StrongDualityPruningModeUsesTheBound) {
 }
 
 TEST(RotationAveraging, WindowsThenGlobalMatchesGlobal) {
-  const SyntheticViewGraph synthetic = Sequence(150, 6, 30, 2.0, 0.1, 9);
+  const SyntheticRotationGraph synthetic = Sequence(150, 6, 30, 2.0, 0.1, 9);
   KeyframeOptions keyframe_options;
   keyframe_options.keyframe_interval = 30;
   const Keyframes keyframes = SelectKeyframes(synthetic.graph.node_ids, keyframe_options);
@@ -247,7 +248,7 @@ TEST(RotationAveraging, WindowsThenGlobalMatchesGlobal) {
 // refactorising at every step reaches, with fewer factorisations. Many random loops make the
 // factor costly (fill), as a long drive's loops do: only then are conjugate gradients tried.
 TEST(RotationAveraging, ConjugateGradientStepsMatchRefactorising) {
-  const SyntheticViewGraph synthetic = Sequence(400, 8, 4000, 2.0, 0.1, 21);
+  const SyntheticRotationGraph synthetic = Sequence(400, 8, 4000, 2.0, 0.1, 21);
   RotationAveragingOptions refactorise;
   refactorise.max_pcg_iterations = 0;
   refactorise.compute_certificate = false;
@@ -275,11 +276,11 @@ TEST(RotationAveraging, ConjugateGradientStepsMatchRefactorising) {
 // robust loss's scale so that IRLS alone keeps them at full weight, as weak far-apart pairs come
 // out on real drives: weighting by the counts keeps them from bending the sequence.
 TEST(RotationAveraging, EdgeWeightsDiscountWeakEdges) {
-  SyntheticViewGraph synthetic = PathWithLoops(0.1, 0.0, 5);
+  SyntheticRotationGraph synthetic = PathWithLoops(0.1, 0.0, 5);
   const Eigen::Quaterniond bias(Eigen::AngleAxisd(3.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()));
   int num_weak = 0;
   for (RelativeRotationEdge& edge : synthetic.graph.edges) {
-    if (edge.j - edge.i < static_cast<uint32_t>(SyntheticViewGraphOptions().loop_min_gap)) {
+    if (edge.j - edge.i < static_cast<uint32_t>(SyntheticRotationGraphOptions().loop_min_gap)) {
       continue;
     }
     edge.R_ij = bias * edge.R_ij;
@@ -301,7 +302,7 @@ TEST(RotationAveraging, EdgeWeightsDiscountWeakEdges) {
 }
 
 TEST(RotationAveraging, DisconnectedNodesAreReported) {
-  SyntheticViewGraph synthetic = PathWithLoops(1.0, 0.0, 2);
+  SyntheticRotationGraph synthetic = PathWithLoops(1.0, 0.0, 2);
   synthetic.graph.node_ids.push_back(1000);
   synthetic.graph.node_ids.push_back(1001);
   RelativeRotationEdge island;
@@ -316,10 +317,10 @@ TEST(RotationAveraging, DisconnectedNodesAreReported) {
 }
 
 TEST(RotationAveraging, ChordalCostOfExactRotationsIsZero) {
-  const SyntheticViewGraph synthetic = PathWithLoops(0.0, 0.0, 4);
+  const SyntheticRotationGraph synthetic = PathWithLoops(0.0, 0.0, 4);
   EXPECT_NEAR(ChordalCost(synthetic.graph, synthetic.true_rotations), 0.0, 1e-20);
   // One edge off by angle a costs ||I - R||_F^2 = 8 sin^2(a / 2).
-  SyntheticViewGraph perturbed = synthetic;
+  SyntheticRotationGraph perturbed = synthetic;
   perturbed.graph.edges[0].R_ij =
       Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY())) *
       perturbed.graph.edges[0].R_ij;
@@ -341,7 +342,7 @@ namespace {
 // inlier edges then exceed alpha_max. Re-initialising such suspect nodes from their neighbours'
 // consensus must recover it instead of stranding it on an outlier edge.
 TEST(RotationAveraging, SuspectNodesAreReinitialisedNotStranded) {
-  const SyntheticViewGraph synthetic = PathWithLoops(0.5, 0.3, 12);
+  const SyntheticRotationGraph synthetic = PathWithLoops(0.5, 0.3, 12);
   RotationAveragingOptions options;
   options.max_l1_iterations = 5;
   options.l1_inner_iterations = 10;
@@ -372,7 +373,7 @@ namespace ramap {
 namespace {
 
 TEST(RotationAveraging, L1HalfLossAlsoRejectsOutliers) {
-  const SyntheticViewGraph synthetic = PathWithLoops(2.0, 0.1, 31);
+  const SyntheticRotationGraph synthetic = PathWithLoops(2.0, 0.1, 31);
   RotationAveragingOptions options;
   options.loss = RobustLoss::kL1Half;
   const RotationAveragingResult l_half = AverageRotations(synthetic.graph, options);

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "ramap/geometry/rotation.h"
-#include "ramap/synthetic/synthetic_view_graph.h"
+#include "ramap/synthetic/synthetic_rotation_graph.h"
 
 namespace ramap {
 namespace {
@@ -16,7 +16,7 @@ TEST(RotationStage, RecordsBecomeAGraphNumberedByFirstAppearance) {
       {"b.png", "a.png", q, Eigen::Vector3d::UnitX(), 40, 0},
       {"a.png", "c.png", q, Eigen::Vector3d::UnitX(), 0, 0}};
   std::vector<std::string> names;
-  const ViewGraph graph = ViewGraphOfRecords(records, &names);
+  const RotationGraph graph = RotationGraphOfRecords(records, &names);
   EXPECT_EQ(names, (std::vector<std::string>{"b.png", "a.png", "c.png"}));
   EXPECT_EQ(graph.node_ids, (std::vector<uint32_t>{0, 1, 2}));
   ASSERT_EQ(graph.edges.size(), 2u);
@@ -39,14 +39,14 @@ TEST(RotationStage, EdgeWeightsFollowTheFocalLengthsOnAuto) {
 }
 
 TEST(RotationStage, SequenceThroughKeyframesAndCollectionAtOnceAgree) {
-  SyntheticViewGraphOptions options;
+  SyntheticRotationGraphOptions options;
   options.num_nodes = 120;
   options.noise_deg = 0.5;
-  const SyntheticViewGraph synthetic = MakeSyntheticViewGraph(options);
+  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(options);
   std::vector<uint32_t> order = synthetic.graph.node_ids;
-  const RotationStageResult sequence = AverageViewGraphRotations(
+  const RotationStageResult sequence = AverageGraphRotations(
       synthetic.graph, order, true, KeyframeOptions(), RotationAveragingOptions());
-  const RotationStageResult collection = AverageViewGraphRotations(
+  const RotationStageResult collection = AverageGraphRotations(
       synthetic.graph, order, false, KeyframeOptions(), RotationAveragingOptions());
   EXPECT_GT(sequence.num_keyframes, 1);
   EXPECT_EQ(collection.num_keyframes, 0);

@@ -9,7 +9,7 @@
 
 #include "ramap/averaging/rotation_averaging.h"
 #include "ramap/geometry/rotation.h"
-#include "ramap/synthetic/synthetic_view_graph.h"
+#include "ramap/synthetic/synthetic_rotation_graph.h"
 
 namespace ramap {
 namespace {
@@ -21,8 +21,8 @@ Eigen::Quaterniond AboutZ(double degrees) {
 }
 
 // 10 -> 20 by 10 deg and 20 -> 30 by 20 deg about z, closed by 10 -> 30 at 30 + `closing_error`.
-ViewGraph Triangle(double closing_error_deg) {
-  ViewGraph graph;
+RotationGraph Triangle(double closing_error_deg) {
+  RotationGraph graph;
   graph.node_ids = {10, 20, 30};
   graph.edges = {{10, 20, AboutZ(10), 1.0},
                  {20, 30, AboutZ(20), 1.0},
@@ -37,7 +37,7 @@ TEST(TriangleCycleBound, ReadsTheCycleAngleOfATriangle) {
   EXPECT_EQ(bound.triangles_checked, 1u);
   EXPECT_NEAR(bound.residual_lower_bound_deg, 2.0, 1e-9);
   // The same triangle with the closing edge stored the other way round.
-  ViewGraph reversed = Triangle(6.0);
+  RotationGraph reversed = Triangle(6.0);
   reversed.edges[2] = {30, 10, AboutZ(36).conjugate(), 1.0};
   EXPECT_NEAR(TriangleCycleResidualBound(reversed, {true, true, true}, all_active, kNoStop)
                   .residual_lower_bound_deg,
@@ -53,20 +53,20 @@ TEST(TriangleCycleBound, ReadsTheCycleAngleOfATriangle) {
 }
 
 // 60 nodes along a path, each linked to its next 5, 2 deg noise.
-SyntheticViewGraph NoisyPath(int num_loop_edges, double outlier_fraction, uint32_t seed) {
-  SyntheticViewGraphOptions options;
+SyntheticRotationGraph NoisyPath(int num_loop_edges, double outlier_fraction, uint32_t seed) {
+  SyntheticRotationGraphOptions options;
   options.num_nodes = 60;
   options.forward_neighbours = 5;
   options.num_loop_edges = num_loop_edges;
   options.noise_deg = 2.0;
   options.outlier_fraction = outlier_fraction;
   options.seed = seed;
-  return MakeSyntheticViewGraph(options);
+  return MakeSyntheticRotationGraph(options);
 }
 
 // The bound over the whole graph, every edge kept and every node active, stopping above
 // `stop_above_deg`.
-TriangleCycleBound WholeGraphBound(const ViewGraph& graph, double stop_above_deg) {
+TriangleCycleBound WholeGraphBound(const RotationGraph& graph, double stop_above_deg) {
   return TriangleCycleResidualBound(graph, std::vector<bool>(graph.edges.size(), true),
                                     std::vector<bool>(graph.node_ids.size(), true), stop_above_deg);
 }
@@ -74,7 +74,7 @@ TriangleCycleBound WholeGraphBound(const ViewGraph& graph, double stop_above_deg
 // The true rotations and averaged ones on a noisy graph with outliers: each leaves some edge
 // with a residual at least the bound, which must also be positive (the noise closes no triangle).
 TEST(TriangleCycleBound, NoAssignmentHasASmallerLargestResidual) {
-  const SyntheticViewGraph synthetic = NoisyPath(20, 0.05, 7);
+  const SyntheticRotationGraph synthetic = NoisyPath(20, 0.05, 7);
   const TriangleCycleBound bound = WholeGraphBound(synthetic.graph, kNoStop);
   EXPECT_GT(bound.triangles_checked, 100u);
   EXPECT_GT(bound.residual_lower_bound_deg, 0.5);
@@ -93,7 +93,7 @@ TEST(TriangleCycleBound, NoAssignmentHasASmallerLargestResidual) {
 }
 
 TEST(TriangleCycleBound, StopsAtTheFirstTriangleAboveTheThreshold) {
-  const SyntheticViewGraph synthetic = NoisyPath(0, 0.0, 3);
+  const SyntheticRotationGraph synthetic = NoisyPath(0, 0.0, 3);
   const TriangleCycleBound all = WholeGraphBound(synthetic.graph, kNoStop);
   const TriangleCycleBound stopped = WholeGraphBound(synthetic.graph, 0.0);
   EXPECT_EQ(stopped.triangles_checked, 1u);

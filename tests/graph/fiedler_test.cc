@@ -7,8 +7,8 @@
 namespace ramap {
 namespace {
 
-ViewGraph MakeGraph(int n, const std::vector<std::pair<int, int>>& pairs) {
-  ViewGraph graph;
+RotationGraph MakeGraph(int n, const std::vector<std::pair<int, int>>& pairs) {
+  RotationGraph graph;
   for (int k = 0; k < n; ++k) graph.node_ids.push_back(100 + k);  // ids need not be 0..n-1
   for (const auto& [a, b] : pairs) {
     RelativeRotationEdge edge;
@@ -19,7 +19,7 @@ ViewGraph MakeGraph(int n, const std::vector<std::pair<int, int>>& pairs) {
   return graph;
 }
 
-ViewGraph Path(int n) {
+RotationGraph Path(int n) {
   std::vector<std::pair<int, int>> pairs;
   for (int k = 0; k + 1 < n; ++k) pairs.emplace_back(k, k + 1);
   return MakeGraph(n, pairs);
@@ -52,16 +52,16 @@ TEST(Fiedler, CompleteGraphIsN) {
 }
 
 TEST(Fiedler, WeightedAndParallelEdges) {
-  ViewGraph graph = Path(10);
+  RotationGraph graph = Path(10);
   graph.edges.push_back(graph.edges[3]);  // a parallel edge: ignored unweighted
   EXPECT_NEAR(FiedlerValue(graph), 2.0 * (1.0 - std::cos(M_PI / 10)), 1e-9);
-  ViewGraph doubled = Path(10);
+  RotationGraph doubled = Path(10);
   for (auto& edge : doubled.edges) edge.weight = 2.0;
   EXPECT_NEAR(FiedlerValue(doubled, /*weighted=*/true), 4.0 * (1.0 - std::cos(M_PI / 10)), 1e-9);
 }
 
 TEST(Fiedler, DisconnectedIsZero) {
-  ViewGraph graph = MakeGraph(6, {{0, 1}, {1, 2}, {3, 4}, {4, 5}});
+  RotationGraph graph = MakeGraph(6, {{0, 1}, {1, 2}, {3, 4}, {4, 5}});
   EXPECT_EQ(FiedlerValue(graph), 0.0);
   std::vector<bool> keep(Path(5).edges.size(), true);
   keep[2] = false;

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "ramap/graph/view_graph_algorithms.h"
+#include "ramap/graph/rotation_graph_algorithms.h"
 #include "ramap/util/error.h"
 
 namespace ramap {
@@ -43,7 +43,7 @@ TEST(Keyframes, ClassifiesLocalAndLoopEdges) {
   KeyframeOptions options;
   options.keyframe_interval = 5;
   const Keyframes keyframes = SelectKeyframes(frames, options);  // 0 5 10 15 19
-  ViewGraph graph;
+  RotationGraph graph;
   graph.node_ids = frames;
   auto add = [&](uint32_t i, uint32_t j) {
     RelativeRotationEdge edge;
@@ -63,7 +63,7 @@ TEST(Keyframes, ClassifiesLocalAndLoopEdges) {
 }
 
 TEST(Keyframes, ViewGraphComponentsAndSpanningTree) {
-  ViewGraph graph;
+  RotationGraph graph;
   graph.node_ids = {0, 1, 2, 3, 4, 5};
   auto add = [&](uint32_t i, uint32_t j, double w) {
     RelativeRotationEdge edge;

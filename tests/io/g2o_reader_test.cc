@@ -7,7 +7,7 @@
 #include <iostream>
 
 #include "ramap/averaging/rotation_averaging.h"
-#include "ramap/synthetic/synthetic_view_graph.h"
+#include "ramap/synthetic/synthetic_rotation_graph.h"
 #include "ramap/util/error.h"
 #include "test_support.h"
 
@@ -16,7 +16,7 @@ namespace {
 
 TEST(G2oReader, TinyGrid3DConventionMatchesVertices) {
   RAMAP_REQUIRE_SHARED_DATA(path, "sesync_posegraphs/tinyGrid3D.g2o");
-  const G2oViewGraph g2o = ReadG2oViewGraph(path);
+  const G2oPoseGraph g2o = ReadG2oPoseGraph(path);
   EXPECT_EQ(g2o.graph.node_ids.size(), 9u);
   EXPECT_EQ(g2o.graph.edges.size(), 11u);
   EXPECT_FALSE(g2o.planar);
@@ -34,7 +34,7 @@ TEST(G2oReader, TinyGrid3DConventionMatchesVertices) {
 
 TEST(G2oReader, SmallGrid3DAveragesToSmallResiduals) {
   RAMAP_REQUIRE_SHARED_DATA(path, "sesync_posegraphs/smallGrid3D.g2o");
-  const G2oViewGraph g2o = ReadG2oViewGraph(path);
+  const G2oPoseGraph g2o = ReadG2oPoseGraph(path);
   EXPECT_EQ(g2o.graph.node_ids.size(), 125u);
   EXPECT_EQ(g2o.graph.edges.size(), 297u);
   const RotationAveragingResult result = AverageRotations(g2o.graph, {});
@@ -42,7 +42,7 @@ TEST(G2oReader, SmallGrid3DAveragesToSmallResiduals) {
   // The file's rotation noise is large (information 25 per axis: sigma 0.2 rad = 11.5 deg). The
   // same graph read with the opposite convention (R_ij inverted) is inconsistent around every
   // cycle, and its averaged residuals are much larger.
-  ViewGraph inverted = g2o.graph;
+  RotationGraph inverted = g2o.graph;
   for (RelativeRotationEdge& edge : inverted.edges) edge.R_ij = edge.R_ij.conjugate();
   const RotationAveragingResult wrong = AverageRotations(inverted, {});
   const double median = Median(result.edge_residuals_deg);
@@ -70,7 +70,7 @@ TEST(G2oReader, PlanarEdgesAreRotationsAboutZ) {
   std::ofstream(path) << "VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 1 0 0.5\n"
                          "# a comment\nFIX 0\n"
                          " EDGE_SE2 0 1 1 0 0.5 10 0 0 10 0 40\n";
-  const G2oViewGraph g2o = ReadG2oViewGraph(path);
+  const G2oPoseGraph g2o = ReadG2oPoseGraph(path);
   EXPECT_TRUE(g2o.planar);
   ASSERT_EQ(g2o.graph.edges.size(), 1u);
   const Eigen::Quaterniond expected(Eigen::AngleAxisd(-0.5, Eigen::Vector3d::UnitZ()));
@@ -84,13 +84,13 @@ TEST(G2oReader, BadLinesNameFileAndLine) {
   const std::string path = dir / "bad.g2o";
   std::ofstream(path) << "VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nEDGE_SE3:QUAT 0 1 1 2 3\n";
   try {
-    ReadG2oViewGraph(path);
+    ReadG2oPoseGraph(path);
     FAIL() << "expected an InputError";
   } catch (const InputError& error) {
     EXPECT_EQ(error.source(), path);
     EXPECT_NE(std::string(error.what()).find("line 2"), std::string::npos) << error.what();
   }
-  EXPECT_THROW(ReadG2oViewGraph(dir / "missing.g2o"), InputError);
+  EXPECT_THROW(ReadG2oPoseGraph(dir / "missing.g2o"), InputError);
 }
 
 }  // namespace

@@ -39,7 +39,7 @@ class TranslationStage : public ::testing::TestWithParam<int> {
         pairs_(EstimateRelativePoses(scene_.database, bearings_, options_.relative_pose, 1)),
         order_(ImageIdsInCaptureOrder(scene_.database)) {
     options_.num_threads = GetParam();
-    graph_ = ViewGraphOfAcceptedPairs(scene_.database, pairs_, &report_);
+    graph_ = RotationGraphOfAcceptedPairs(scene_.database, pairs_, &report_);
     for (const auto& [id, image] : scene_.ground_truth.images)
       rotations_[id] = image.cam_from_world.rotation;
   }
@@ -80,7 +80,7 @@ class TranslationStage : public ::testing::TestWithParam<int> {
   std::vector<uint32_t> order_;
   StageReport report_;
   PosePriors priors_;
-  ViewGraph graph_;
+  RotationGraph graph_;
   std::map<uint32_t, Eigen::Quaterniond> rotations_;
 };
 

@@ -30,7 +30,7 @@ TEST(Components, AcceptedPairsAreTheGraphAndRejectedOnesAreExplained) {
   const std::vector<ImagePair> pairs = {Pair(1, 2, true, 80), Pair(1, 4, false), Pair(2, 3, true),
                                         Pair(3, 4, true), Pair(4, 5, false)};
   StageReport report;
-  const ViewGraph graph = ViewGraphOfAcceptedPairs(database, pairs, &report);
+  const RotationGraph graph = RotationGraphOfAcceptedPairs(database, pairs, &report);
   const std::map<uint32_t, std::string>& reasons = report.image_reasons;
   EXPECT_EQ(graph.node_ids, (std::vector<uint32_t>{1, 2, 3, 4}));
   ASSERT_EQ(graph.edges.size(), 3u);
@@ -50,9 +50,9 @@ TEST(Components, SmallComponentsAreSetAsideLargestFirst) {
   const std::vector<ImagePair> pairs = {Pair(1, 2, true), Pair(6, 7, true), Pair(7, 8, true),
                                         Pair(8, 9, true), Pair(2, 3, true), Pair(4, 5, true)};
   StageReport report;
-  const ViewGraph graph = ViewGraphOfAcceptedPairs(database, pairs, &report);
+  const RotationGraph graph = RotationGraphOfAcceptedPairs(database, pairs, &report);
   std::map<uint32_t, std::string>& reasons = report.image_reasons;
-  const std::vector<ViewGraph> components = ComponentsToReconstruct(graph, 3, &reasons);
+  const std::vector<RotationGraph> components = ComponentsToReconstruct(graph, 3, &reasons);
   ASSERT_EQ(components.size(), 2u);
   EXPECT_EQ(components[0].node_ids, (std::vector<uint32_t>{6, 7, 8, 9}));
   EXPECT_EQ(components[1].node_ids, (std::vector<uint32_t>{1, 2, 3}));

@@ -69,7 +69,7 @@ constexpr int kMinPcgIterationsPerFactorization = 10;
 // when the factor is costly enough, first tries conjugate gradients preconditioned by the last one.
 class TangentIrls {
  public:
-  TangentIrls(const ViewGraph& graph, const std::vector<int>& edge_a,
+  TangentIrls(const RotationGraph& graph, const std::vector<int>& edge_a,
               const std::vector<int>& edge_b, const std::vector<size_t>& edges,
               const std::vector<bool>& active_nodes, const std::vector<double>& base_weights,
               const PreconditionedCgOptions& pcg)
@@ -238,7 +238,7 @@ class TangentIrls {
     return static_cast<int>(std::min(1e6, std::floor(common.fl / iteration_flops)));
   }
 
-  const ViewGraph& graph_;
+  const RotationGraph& graph_;
   const std::vector<int>& edge_a_;
   const std::vector<int>& edge_b_;
   std::vector<size_t> edges_;
@@ -288,7 +288,7 @@ struct IndexedEdges {
   std::vector<int> b;  // node position of edge.j
 };
 
-IndexedEdges IndexEdges(const ViewGraph& graph) {
+IndexedEdges IndexEdges(const RotationGraph& graph) {
   const auto index = NodeIndex(graph);
   IndexedEdges indexed;
   indexed.a.reserve(graph.edges.size());
@@ -302,7 +302,7 @@ IndexedEdges IndexEdges(const ViewGraph& graph) {
 
 // Active nodes = the largest component of the kept edges among `candidates`; kept edges leaving
 // it are marked disconnected.
-void RestrictToLargestComponent(const ViewGraph& graph, const IndexedEdges& indexed, int round,
+void RestrictToLargestComponent(const RotationGraph& graph, const IndexedEdges& indexed, int round,
                                 RotationAveragingResult* result, std::vector<bool>* keep) {
   std::vector<bool> usable(*keep);
   for (size_t e = 0; e < graph.edges.size(); ++e) {
@@ -342,15 +342,15 @@ std::vector<size_t> KeptEdges(const std::vector<bool>& keep) {
   return edges;
 }
 
-int MaxDegree(const ViewGraph& graph, const std::vector<bool>& keep) {
+int MaxDegree(const RotationGraph& graph, const std::vector<bool>& keep) {
   const std::vector<int> degree = NodeDegrees(graph, keep);
   return degree.empty() ? 0 : *std::max_element(degree.begin(), degree.end());
 }
 
 // The Eriksson et al. bound of the kept graph restricted to its estimated nodes (radians).
-double KeptGraphBound(const ViewGraph& graph, const std::vector<bool>& keep,
+double KeptGraphBound(const RotationGraph& graph, const std::vector<bool>& keep,
                       const std::vector<bool>& estimated, double* lambda2, int* max_degree) {
-  ViewGraph sub;
+  RotationGraph sub;
   std::vector<bool> sub_keep;
   for (size_t k = 0; k < graph.node_ids.size(); ++k) {
     if (estimated[k]) sub.node_ids.push_back(graph.node_ids[k]);
@@ -388,7 +388,7 @@ double EdgeResidualDeg(const RelativeRotationEdge& edge, const Eigen::Quaternion
   return AngleOf(EdgeError(edge, R_i, R_j)) * kRadToDeg;
 }
 
-double ChordalCost(const ViewGraph& graph, const std::vector<Eigen::Quaterniond>& rotations,
+double ChordalCost(const RotationGraph& graph, const std::vector<Eigen::Quaterniond>& rotations,
                    const std::vector<bool>& keep, const std::vector<bool>& estimated) {
   const IndexedEdges indexed = IndexEdges(graph);
   double cost = 0.0;
@@ -406,7 +406,7 @@ double ChordalCost(const ViewGraph& graph, const std::vector<Eigen::Quaterniond>
 namespace {
 
 // Every edge's residual (deg) under the current rotations; NaN where a node is not estimated.
-void ComputeEdgeResiduals(const ViewGraph& graph, const IndexedEdges& indexed,
+void ComputeEdgeResiduals(const RotationGraph& graph, const IndexedEdges& indexed,
                           RotationAveragingResult* result) {
   for (size_t e = 0; e < graph.edges.size(); ++e) {
     const int a = indexed.a[e];
@@ -421,7 +421,7 @@ void ComputeEdgeResiduals(const ViewGraph& graph, const IndexedEdges& indexed,
 // A node most of whose kept edges exceed the threshold is more likely mis-estimated than
 // surrounded by outliers; pruning would strand it on whichever edges happen to agree with its
 // wrong estimate. Such nodes (at least three kept edges) are suspect.
-std::vector<bool> SuspectNodes(const ViewGraph& graph, const IndexedEdges& indexed,
+std::vector<bool> SuspectNodes(const RotationGraph& graph, const IndexedEdges& indexed,
                                const std::vector<bool>& keep, const RotationAveragingResult& result,
                                double threshold_deg) {
   const size_t n = graph.node_ids.size();
@@ -443,7 +443,7 @@ std::vector<bool> SuspectNodes(const ViewGraph& graph, const IndexedEdges& index
 // Re-initialises each suspect node from the consensus of its neighbours (the candidate rotation
 // most of the others agree with). A node whose neighbours agree with its current estimate is
 // right after all and is no longer suspect: its edges are pruned as usual. True when a node moved.
-bool ReinitializeSuspectNodes(const ViewGraph& graph, const IndexedEdges& indexed,
+bool ReinitializeSuspectNodes(const RotationGraph& graph, const IndexedEdges& indexed,
                               const std::vector<bool>& keep, double threshold_deg,
                               std::vector<bool>* suspect, RotationAveragingResult* result) {
   const size_t n = graph.node_ids.size();
@@ -532,7 +532,7 @@ struct RobustIrls {
 // Pruning rounds: edges above the threshold (the adaptive one, alpha_max_deg, or the
 // strong-duality bound) are pruned, suspect nodes re-initialised, and the robust IRLS run again on
 // the largest component, until a round changes nothing or max_pruning_rounds have run.
-void RunPruningRounds(const ViewGraph& graph, const IndexedEdges& indexed,
+void RunPruningRounds(const RotationGraph& graph, const IndexedEdges& indexed,
                       const RotationAveragingOptions& options, const RobustIrls& irls,
                       std::vector<bool>* keep, RotationAveragingResult* result) {
   const size_t n = graph.node_ids.size();
@@ -573,7 +573,7 @@ void RunPruningRounds(const ViewGraph& graph, const IndexedEdges& indexed,
 
 // The global optimality certificate on the kept graph: the chordal optimum from the robust
 // solution, its largest residual against the strong-duality bound of the kept graph.
-void ComputeCertificate(const ViewGraph& graph, const IndexedEdges& indexed,
+void ComputeCertificate(const RotationGraph& graph, const IndexedEdges& indexed,
                         const std::vector<bool>& keep, const RotationAveragingOptions& options,
                         RotationAveragingResult* result) {
   RotationCertificate& certificate = result->certificate;
@@ -613,7 +613,7 @@ void ComputeCertificate(const ViewGraph& graph, const IndexedEdges& indexed,
 
 }  // namespace
 
-RotationAveragingResult AverageRotationsFrom(const ViewGraph& graph,
+RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
                                              const std::vector<Eigen::Quaterniond>& initial,
                                              const std::vector<bool>& initial_known,
                                              const RotationAveragingOptions& options) {
@@ -677,7 +677,7 @@ RotationAveragingResult AverageRotationsFrom(const ViewGraph& graph,
   return result;
 }
 
-RotationAveragingResult AverageRotations(const ViewGraph& graph,
+RotationAveragingResult AverageRotations(const RotationGraph& graph,
                                          const RotationAveragingOptions& options) {
   const size_t n = graph.node_ids.size();
   return AverageRotationsFrom(graph,
@@ -685,7 +685,7 @@ RotationAveragingResult AverageRotations(const ViewGraph& graph,
                               std::vector<bool>(n, false), options);
 }
 
-RotationAveragingResult AverageRotationsInWindows(const ViewGraph& graph,
+RotationAveragingResult AverageRotationsInWindows(const RotationGraph& graph,
                                                   const Keyframes& keyframes,
                                                   const RotationAveragingOptions& options) {
   options.Check();
@@ -711,7 +711,7 @@ RotationAveragingResult AverageRotationsInWindows(const ViewGraph& graph,
       any = any || local_edge[e];
     }
     if (!any) continue;
-    const ViewGraph local = Subgraph(graph, local_edge, nullptr);
+    const RotationGraph local = Subgraph(graph, local_edge, nullptr);
     const RotationAveragingResult local_result = AverageRotations(local, local_options);
     // Gauge G of this window in the stitched frame: R_stitched = R_local G.
     Eigen::Quaterniond G = Eigen::Quaterniond::Identity();
@@ -785,7 +785,7 @@ void SolveChordalSystem(const std::vector<Eigen::Triplet<double, int>>& triplets
 
 }  // namespace
 
-ChordalAveragingResult AverageRotationsChordal(const ViewGraph& graph, bool refine,
+ChordalAveragingResult AverageRotationsChordal(const RotationGraph& graph, bool refine,
                                                int max_refine_iterations,
                                                double refine_step_tolerance_deg) {
   Timer timer;

@@ -18,7 +18,7 @@
 //      exceeds 3 alpha proves no solution can pass, and then the chordal refinement is skipped
 //      (graph/cycle_consistency.h).
 //
-// Conventions in scene/relative_rotations.h: R_i is cam_from_world, an edge holds R_ij = R_j R_i^T.
+// Conventions in scene/rotation_graph.h: R_i is cam_from_world, an edge holds R_ij = R_j R_i^T.
 // Updates are right perturbations R_k <- R_k exp([w_k]_x). With that linearisation every edge row
 // of the 3E x 3N system is (-I, +I), so the normal matrix is (weighted Laplacian) (x) I_3: it is
 // solved as one N x N Laplacian (gauge: one node held fixed) with three right-hand sides by
@@ -35,7 +35,7 @@
 
 #include "ramap/averaging/preconditioned_cg.h"
 #include "ramap/graph/keyframes.h"
-#include "ramap/graph/view_graph_algorithms.h"
+#include "ramap/graph/rotation_graph_algorithms.h"
 #include "ramap/util/option_table.h"
 
 namespace ramap {
@@ -181,12 +181,12 @@ struct RotationAveragingResult {
 
 // The full pipeline from a maximum-spanning-tree initialisation. Throws InputError when options
 // fail Check(), std::invalid_argument when the graph is malformed (see NodeIndex).
-RotationAveragingResult AverageRotations(const ViewGraph& graph,
+RotationAveragingResult AverageRotations(const RotationGraph& graph,
                                          const RotationAveragingOptions& options);
 
 // The same from given rotations (per node position); nodes with initial_known[k] == false are
 // initialised along the maximum spanning tree from the known ones.
-RotationAveragingResult AverageRotationsFrom(const ViewGraph& graph,
+RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
                                              const std::vector<Eigen::Quaterniond>& initial,
                                              const std::vector<bool>& initial_known,
                                              const RotationAveragingOptions& options);
@@ -195,7 +195,7 @@ RotationAveragingResult AverageRotationsFrom(const ViewGraph& graph,
 // ends in the window) is averaged on its own, window solutions are chained through their shared
 // keyframes into a global initialisation (a window sharing no frame with earlier ones is attached
 // through its heaviest edge to them), and the whole graph is then averaged from it.
-RotationAveragingResult AverageRotationsInWindows(const ViewGraph& graph,
+RotationAveragingResult AverageRotationsInWindows(const RotationGraph& graph,
                                                   const Keyframes& keyframes,
                                                   const RotationAveragingOptions& options);
 
@@ -209,13 +209,13 @@ struct ChordalAveragingResult {
   int refine_iterations = 0;
   double seconds = 0.0;
 };
-ChordalAveragingResult AverageRotationsChordal(const ViewGraph& graph, bool refine = true,
+ChordalAveragingResult AverageRotationsChordal(const RotationGraph& graph, bool refine = true,
                                                int max_refine_iterations = 200,
                                                double refine_step_tolerance_deg = 1e-8);
 
 // sum over edges (with keep[e], all when empty; skipping edges with an end not estimated, when
 // `estimated` is given) of ||R_j - R_ij R_i||_F^2 = 8 sin^2(angle / 2); unweighted.
-double ChordalCost(const ViewGraph& graph, const std::vector<Eigen::Quaterniond>& rotations,
+double ChordalCost(const RotationGraph& graph, const std::vector<Eigen::Quaterniond>& rotations,
                    const std::vector<bool>& keep = {}, const std::vector<bool>& estimated = {});
 
 // Residual angle (degrees) of one edge: the angle of R_j^T R_ij R_i.

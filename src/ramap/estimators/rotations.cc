@@ -22,10 +22,10 @@ bool UseRotationEdgeWeights(EdgeWeighting weighting, const FeatureDatabase& data
   return UseRotationEdgeWeights(weighting, AllFocalLengthsKnown(database));
 }
 
-RotationStageResult AverageViewGraphRotations(const ViewGraph& graph,
-                                              const std::vector<uint32_t>& capture_order,
-                                              bool sequential, const KeyframeOptions& view_graph,
-                                              const RotationAveragingOptions& options) {
+RotationStageResult AverageGraphRotations(const RotationGraph& graph,
+                                          const std::vector<uint32_t>& capture_order,
+                                          bool sequential, const KeyframeOptions& view_graph,
+                                          const RotationAveragingOptions& options) {
   RotationStageResult result;
   if (!sequential) {
     result.rotations = AverageRotations(graph, options);
@@ -44,15 +44,15 @@ RotationStageResult AverageViewGraphRotations(const ViewGraph& graph,
   return result;
 }
 
-ViewGraph ViewGraphOfRecords(const std::vector<RelativePoseRecord>& records,
-                             std::vector<std::string>* names) {
+RotationGraph RotationGraphOfRecords(const std::vector<RelativePoseRecord>& records,
+                                     std::vector<std::string>* names) {
   std::map<std::string, uint32_t> ids;
   auto id_of = [&](const std::string& name) {
     auto [it, inserted] = ids.emplace(name, static_cast<uint32_t>(names->size()));
     if (inserted) names->push_back(name);
     return it->second;
   };
-  ViewGraph graph;
+  RotationGraph graph;
   for (const RelativePoseRecord& r : records) {
     graph.edges.push_back({id_of(r.image_name1), id_of(r.image_name2), r.rotation,
                            RelativeRotationWeight(r.num_inliers)});
@@ -65,7 +65,7 @@ RecordRotations AverageRecordRotations(const std::vector<RelativePoseRecord>& re
                                        InputOrder order, const KeyframeOptions& view_graph,
                                        const RotationAveragingOptions& options) {
   RecordRotations result;
-  const ViewGraph graph = ViewGraphOfRecords(records, &result.names);
+  const RotationGraph graph = RotationGraphOfRecords(records, &result.names);
   result.num_edges = static_cast<int>(graph.edges.size());
   std::vector<uint32_t> capture_order;
   for (const size_t k : CaptureOrder(result.names))
@@ -73,7 +73,7 @@ RecordRotations AverageRecordRotations(const std::vector<RelativePoseRecord>& re
   result.sequential = IsSequentialInput(order, result.names);
   Timer timer;
   result.stage =
-      AverageViewGraphRotations(graph, capture_order, result.sequential, view_graph, options);
+      AverageGraphRotations(graph, capture_order, result.sequential, view_graph, options);
   result.seconds = timer.ElapsedSeconds();
   const RotationAveragingResult& averaged = result.stage.rotations;
   for (size_t k = 0; k < averaged.node_ids.size(); ++k) {

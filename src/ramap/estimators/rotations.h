@@ -11,7 +11,7 @@
 
 #include "ramap/averaging/rotation_averaging.h"
 #include "ramap/graph/keyframes.h"
-#include "ramap/graph/view_graph_algorithms.h"
+#include "ramap/graph/rotation_graph_algorithms.h"
 #include "ramap/io/relative_pose_file.h"
 #include "ramap/scene/image_order.h"
 #include "ramap/scene/view_graph.h"
@@ -49,17 +49,17 @@ bool AllFocalLengthsKnown(const FeatureDatabase& database);
 
 // `capture_order` lists node ids in capture order (ids not in the graph are ignored); it is only
 // used when `sequential`.
-RotationStageResult AverageViewGraphRotations(const ViewGraph& graph,
-                                              const std::vector<uint32_t>& capture_order,
-                                              bool sequential, const KeyframeOptions& view_graph,
-                                              const RotationAveragingOptions& options);
+RotationStageResult AverageGraphRotations(const RotationGraph& graph,
+                                          const std::vector<uint32_t>& capture_order,
+                                          bool sequential, const KeyframeOptions& view_graph,
+                                          const RotationAveragingOptions& options);
 
 // The view graph of relative pose records, its nodes numbered 0, 1, ... by image name in order
 // of first appearance (`names`, by node); the first record of two images counts.
-ViewGraph ViewGraphOfRecords(const std::vector<RelativePoseRecord>& records,
-                             std::vector<std::string>* names);
+RotationGraph RotationGraphOfRecords(const std::vector<RelativePoseRecord>& records,
+                                     std::vector<std::string>* names);
 
-// `ramap rotation_averager` on relative pose records: their graph (ViewGraphOfRecords), in
+// `ramap rotation_averager` on relative pose records: their graph (RotationGraphOfRecords), in
 // capture order of the names when `order` makes them a sequence, averaged as the mapper does.
 struct RecordRotations {
   std::vector<std::string> names;  // by node id

@@ -16,7 +16,7 @@ struct Neighbour {
 };
 
 // Per node position, its kept neighbours sorted by position, parallel edges collapsed.
-std::vector<std::vector<Neighbour>> SortedNeighbours(const ViewGraph& graph,
+std::vector<std::vector<Neighbour>> SortedNeighbours(const RotationGraph& graph,
                                                      const std::vector<bool>& keep,
                                                      const std::vector<bool>& active) {
   const auto index = NodeIndex(graph);
@@ -42,7 +42,8 @@ std::vector<std::vector<Neighbour>> SortedNeighbours(const ViewGraph& graph,
 
 }  // namespace
 
-TriangleCycleBound TriangleCycleResidualBound(const ViewGraph& graph, const std::vector<bool>& keep,
+TriangleCycleBound TriangleCycleResidualBound(const RotationGraph& graph,
+                                              const std::vector<bool>& keep,
                                               const std::vector<bool>& active,
                                               double stop_above_deg) {
   const std::vector<std::vector<Neighbour>> neighbours = SortedNeighbours(graph, keep, active);

@@ -9,7 +9,7 @@
 
 #include <vector>
 
-#include "ramap/graph/view_graph_algorithms.h"
+#include "ramap/graph/rotation_graph_algorithms.h"
 
 namespace ramap {
 
@@ -22,7 +22,8 @@ struct TriangleCycleBound {
 // and returns the largest cycle angle / 3 seen. Stops at the first triangle above
 // `stop_above_deg` (pass infinity to check all). Parallel edges: the first kept one of each pair is
 // used, which still gives a valid bound.
-TriangleCycleBound TriangleCycleResidualBound(const ViewGraph& graph, const std::vector<bool>& keep,
+TriangleCycleBound TriangleCycleResidualBound(const RotationGraph& graph,
+                                              const std::vector<bool>& keep,
                                               const std::vector<bool>& active,
                                               double stop_above_deg);
 

@@ -45,7 +45,7 @@ class LaplacianPseudoInverseOp {
 
 }  // namespace
 
-double FiedlerValue(const ViewGraph& graph, bool weighted, const std::vector<bool>& keep) {
+double FiedlerValue(const RotationGraph& graph, bool weighted, const std::vector<bool>& keep) {
   const int n = static_cast<int>(graph.node_ids.size());
   if (n < 2) return 0.0;
   const std::vector<int> components = ConnectedComponents(graph, keep);

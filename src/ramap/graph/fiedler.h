@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "ramap/graph/view_graph_algorithms.h"
+#include "ramap/graph/rotation_graph_algorithms.h"
 
 namespace ramap {
 
@@ -16,7 +16,7 @@ namespace ramap {
 // nodes. Computed with Spectra (Lanczos) on the pseudo-inverse L^+ restricted to the complement of
 // the constant vector, applied through a sparse Cholesky factor of the grounded Laplacian, so
 // that small lambda_2 (long paths) converge as fast as large ones.
-double FiedlerValue(const ViewGraph& graph, bool weighted = false,
+double FiedlerValue(const RotationGraph& graph, bool weighted = false,
                     const std::vector<bool>& keep = {});
 
 // The largest angular residual (radians) under which Eriksson et al. (CVPR 2018, the corollary of

@@ -30,7 +30,7 @@ Keyframes SelectKeyframes(const std::vector<uint32_t>& frames_in_order,
   return result;
 }
 
-std::vector<EdgeKind> ClassifyEdges(const ViewGraph& graph, const Keyframes& keyframes) {
+std::vector<EdgeKind> ClassifyEdges(const RotationGraph& graph, const Keyframes& keyframes) {
   // Windows overlap only in their keyframes: a frame belongs to windows w_first..w_last.
   std::unordered_map<uint32_t, std::pair<int, int>> window_range;
   for (size_t w = 0; w < keyframes.windows.size(); ++w) {

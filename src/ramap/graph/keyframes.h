@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "ramap/graph/view_graph_algorithms.h"
+#include "ramap/graph/rotation_graph_algorithms.h"
 #include "ramap/util/option_table.h"
 
 namespace ramap {
@@ -43,6 +43,6 @@ enum class EdgeKind { kLocal, kLoop };
 
 // kLocal for an edge whose two frames lie in one window, kLoop otherwise (also for edges naming a
 // frame absent from the sequence).
-std::vector<EdgeKind> ClassifyEdges(const ViewGraph& graph, const Keyframes& keyframes);
+std::vector<EdgeKind> ClassifyEdges(const RotationGraph& graph, const Keyframes& keyframes);
 
 }  // namespace ramap

@@ -47,10 +47,10 @@ Eigen::Quaterniond UnitQuaternion(double qx, double qy, double qz, double qw,
 
 }  // namespace
 
-G2oViewGraph ReadG2oViewGraph(const std::string& path) {
+G2oPoseGraph ReadG2oPoseGraph(const std::string& path) {
   std::ifstream file(path);
   if (!file) throw InputError(path, "cannot open the g2o file");
-  G2oViewGraph result;
+  G2oPoseGraph result;
   std::unordered_set<uint32_t> seen;
   auto add_node = [&](uint32_t id) {
     if (seen.insert(id).second) result.graph.node_ids.push_back(id);

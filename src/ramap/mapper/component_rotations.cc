@@ -47,7 +47,7 @@ ComponentState AverageComponentRotations(const PassInput& input, ComponentState 
   RotationAveragingOptions rotation_averaging = options.rotation_averaging;
   rotation_averaging.use_edge_weights =
       UseRotationEdgeWeights(options.rotation_edge_weights, input.database);
-  const RotationStageResult averaged = AverageViewGraphRotations(
+  const RotationStageResult averaged = AverageGraphRotations(
       state.graph, input.order, input.sequential, options.view_graph, rotation_averaging);
   const RotationAveragingResult& rotations = averaged.rotations;
   state.report.num_keyframes += averaged.num_keyframes;

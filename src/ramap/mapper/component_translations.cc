@@ -29,7 +29,7 @@ struct KeptEdges {
   std::multimap<uint32_t, uint32_t> pure_rotation_neighbours;
 };
 
-KeptEdges SplitKeptEdges(const PassInput& input, const ViewGraph& graph,
+KeptEdges SplitKeptEdges(const PassInput& input, const RotationGraph& graph,
                          const std::vector<EdgeStatus>& edge_status,
                          const std::map<uint32_t, Eigen::Quaterniond>& world_rotations) {
   KeptEdges kept;
@@ -230,7 +230,7 @@ TranslationAveragingResult SolvePositions(const PassInput& input,
 
 }  // namespace
 
-EarlyTracks StartComponentTracks(const PassInput& input, const ViewGraph& graph) {
+EarlyTracks StartComponentTracks(const PassInput& input, const RotationGraph& graph) {
   EarlyTracks early;
   for (const RelativeRotationEdge& edge : graph.edges) {
     const ImagePair& pair = input.pairs[edge.pair_index];

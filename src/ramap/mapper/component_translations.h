@@ -10,7 +10,7 @@ namespace ramap {
 
 // Starts building the tracks of every edge of `graph`: on a thread of its own with more than one
 // mapper thread, otherwise when first asked for.
-EarlyTracks StartComponentTracks(const PassInput& input, const ViewGraph& graph);
+EarlyTracks StartComponentTracks(const PassInput& input, const RotationGraph& graph);
 
 // The pair directions and tracks of the edges rotation averaging kept (the early tracks when they
 // are built over exactly those), then the camera centres, in state.translations; none when

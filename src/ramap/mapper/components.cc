@@ -2,14 +2,15 @@
 
 #include <set>
 
-#include "ramap/graph/view_graph_algorithms.h"
+#include "ramap/graph/rotation_graph_algorithms.h"
 #include "ramap/mapper/mapper_state.h"
 
 namespace ramap {
 
-ViewGraph ViewGraphOfAcceptedPairs(const FeatureDatabase& database,
-                                   const std::vector<ImagePair>& pairs, StageReport* report) {
-  ViewGraph graph = AcceptedViewGraph(pairs);
+RotationGraph RotationGraphOfAcceptedPairs(const FeatureDatabase& database,
+                                           const std::vector<ImagePair>& pairs,
+                                           StageReport* report) {
+  RotationGraph graph = AcceptedRotationGraph(pairs);
   const std::set<uint32_t> nodes(graph.node_ids.begin(), graph.node_ids.end());
   for (const ImagePair& pair : pairs) {
     if (pair.accepted()) continue;
@@ -23,10 +24,10 @@ ViewGraph ViewGraphOfAcceptedPairs(const FeatureDatabase& database,
   return graph;
 }
 
-std::vector<ViewGraph> ComponentsToReconstruct(const ViewGraph& graph, int min_size,
-                                               std::map<uint32_t, std::string>* image_reasons) {
-  std::vector<ViewGraph> kept;
-  for (ViewGraph& component : ComponentSubgraphs(graph, ConnectedComponents(graph))) {
+std::vector<RotationGraph> ComponentsToReconstruct(const RotationGraph& graph, int min_size,
+                                                   std::map<uint32_t, std::string>* image_reasons) {
+  std::vector<RotationGraph> kept;
+  for (RotationGraph& component : ComponentSubgraphs(graph, ConnectedComponents(graph))) {
     const int size = static_cast<int>(component.node_ids.size());
     if (size >= min_size) {
       kept.push_back(std::move(component));

@@ -9,7 +9,7 @@
 
 #include "ramap/mapper/stage_log.h"
 #include "ramap/scene/features.h"
-#include "ramap/scene/relative_rotations.h"
+#include "ramap/scene/rotation_graph.h"
 #include "ramap/scene/view_graph.h"
 
 namespace ramap {
@@ -17,12 +17,13 @@ namespace ramap {
 // The view graph of the accepted pairs (scene/view_graph.h). Every rejected pair goes to the
 // report's dropped edges with its reason, and every image left without an accepted pair gets the
 // reason of its rejected ones.
-ViewGraph ViewGraphOfAcceptedPairs(const FeatureDatabase& database,
-                                   const std::vector<ImagePair>& pairs, StageReport* report);
+RotationGraph RotationGraphOfAcceptedPairs(const FeatureDatabase& database,
+                                           const std::vector<ImagePair>& pairs,
+                                           StageReport* report);
 
 // The connected components of `graph`, largest first. Those with fewer than `min_size` images are
 // left out and their images get the reason in `image_reasons`.
-std::vector<ViewGraph> ComponentsToReconstruct(const ViewGraph& graph, int min_size,
-                                               std::map<uint32_t, std::string>* image_reasons);
+std::vector<RotationGraph> ComponentsToReconstruct(const RotationGraph& graph, int min_size,
+                                                   std::map<uint32_t, std::string>* image_reasons);
 
 }  // namespace ramap

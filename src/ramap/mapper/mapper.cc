@@ -30,7 +30,7 @@ std::vector<std::string> ImageNames(const FeatureDatabase& database) {
 // What the stages worked on (tracks, pair directions, the graph) released: only the model, the
 // summary and the report outlive a component.
 ComponentState Released(ComponentState state) {
-  state.graph = ViewGraph();
+  state.graph = RotationGraph();
   state.early_tracks = EarlyTracks();
   state.rotations.clear();
   state.edge_status.clear();
@@ -42,7 +42,7 @@ ComponentState Released(ComponentState state) {
 // Stages 3-6 for one connected component of the view graph, in the method's order. A component
 // whose translation averaging fails ends there, without a model (its report says why).
 ComponentState ReconstructComponent(const PassInput& input, const RefinementPlan& refinement,
-                                    ViewGraph graph) {
+                                    RotationGraph graph) {
   ComponentState state;
   state.graph = std::move(graph);
   // The tracks, meanwhile, on a thread of their own (with more than one mapper thread).
@@ -113,12 +113,12 @@ std::vector<ImagePair> EstimateViewGraph(const FeatureDatabase& database,
                                          const ImageBearings& bearings,
                                          const MapperOptions& options, const std::string& source,
                                          std::ostream* progress, MapperSummary* summary,
-                                         StageReport* report, ViewGraph* graph) {
+                                         StageReport* report, RotationGraph* graph) {
   Timer timer;
   std::vector<ImagePair> pairs =
       EstimateRelativePoses(database, bearings, options.relative_pose, options.num_threads);
   summary->num_verified_pairs = static_cast<int>(pairs.size());
-  *graph = ViewGraphOfAcceptedPairs(database, pairs, report);
+  *graph = RotationGraphOfAcceptedPairs(database, pairs, report);
   summary->num_relative_poses = static_cast<int>(graph->edges.size());
   RecordStage(stage::kRelativePoses, timer.ElapsedSeconds(),
               std::to_string(graph->edges.size()) + " of " + std::to_string(pairs.size()) +
@@ -166,7 +166,7 @@ PassOutcome RunMapperPass(const FeatureDatabase& database, const MapperOptions& 
               std::to_string(bearings.bearings.size()) + " images", progress, &report);
 
   // 1. Relative rotations of every verified pair.
-  ViewGraph graph;
+  RotationGraph graph;
   const std::vector<ImagePair> pairs = EstimateViewGraph(database, bearings, pass_options, source,
                                                          progress, &summary, &report, &graph);
 
@@ -178,7 +178,7 @@ PassOutcome RunMapperPass(const FeatureDatabase& database, const MapperOptions& 
       priors,   first.calibration_pass, progress};
   const RefinementPlan refinement = PlanRefinement(pass_options, first.calibration_pass);
   std::vector<ComponentState> components;
-  for (ViewGraph& component :
+  for (RotationGraph& component :
        ComponentsToReconstruct(graph, options.min_component_size, &report.image_reasons)) {
     components.push_back(ReconstructComponent(input, refinement, std::move(component)));
   }

@@ -71,7 +71,7 @@ struct ComponentTranslations {
 // One connected component on its way from the view graph to a model, in the order the stages
 // fill it in.
 struct ComponentState {
-  ViewGraph graph;  // the component's accepted pairs, as rotation averaging reads them
+  RotationGraph graph;  // the component's accepted pairs, as rotation averaging reads them
   EarlyTracks early_tracks;
   // Rotation averaging: each estimated image's rotation (cam_from_world), each edge's status.
   std::map<uint32_t, Eigen::Quaterniond> rotations;

@@ -48,8 +48,8 @@ double RelativeRotationWeight(int num_inliers) {
   return static_cast<double>(std::max(num_inliers, 1));
 }
 
-ViewGraph AcceptedViewGraph(const std::vector<ImagePair>& pairs) {
-  ViewGraph graph;
+RotationGraph AcceptedRotationGraph(const std::vector<ImagePair>& pairs) {
+  RotationGraph graph;
   std::set<uint32_t> nodes;
   for (size_t k = 0; k < pairs.size(); ++k) {
     const ImagePair& pair = pairs[k];

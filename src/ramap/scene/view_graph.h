@@ -1,6 +1,6 @@
 // The view graph's pairs: every verified image pair with the matches the mapper reads from it,
 // its relative pose (or why it has none) and its weight. The stages after relative poses see the
-// accepted ones as a ViewGraph (scene/relative_rotations.h): one edge per accepted pair, each
+// accepted ones as a RotationGraph (scene/rotation_graph.h): one edge per accepted pair, each
 // edge naming its pair by index.
 #pragma once
 
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "ramap/scene/features.h"
-#include "ramap/scene/relative_rotations.h"
+#include "ramap/scene/rotation_graph.h"
 
 namespace ramap {
 
@@ -111,6 +111,6 @@ double RelativeRotationWeight(int num_inliers);
 
 // The accepted pairs as a view graph: one edge per accepted pair (pair_index set), weighted by
 // RelativeRotationWeight, over the images they join (in increasing id order).
-ViewGraph AcceptedViewGraph(const std::vector<ImagePair>& pairs);
+RotationGraph AcceptedRotationGraph(const std::vector<ImagePair>& pairs);
 
 }  // namespace ramap

@@ -8,12 +8,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "ramap/graph/view_graph_algorithms.h"
+#include "ramap/graph/rotation_graph_algorithms.h"
 #include "ramap/util/statistics.h"  // Median, which the rotation tests and benchmark use
 
 namespace ramap {
 
-struct SyntheticViewGraphOptions {
+struct SyntheticRotationGraphOptions {
   int num_nodes = 200;
   // Each camera is linked to the next `forward_neighbours` cameras of the sequence (so to about
   // twice as many nearest neighbours in all).
@@ -30,15 +30,15 @@ struct SyntheticViewGraphOptions {
   uint32_t seed = 1;
 };
 
-struct SyntheticViewGraph {
-  ViewGraph graph;                                 // node ids 0..num_nodes-1 in sequence order
+struct SyntheticRotationGraph {
+  RotationGraph graph;                             // node ids 0..num_nodes-1 in sequence order
   std::vector<Eigen::Quaterniond> true_rotations;  // cam_from_world per node
   std::vector<bool> is_outlier;                    // per edge
 };
 
 // Edge weights mimic inlier counts: they fall with the sequence gap; outliers keep the weight of
 // the edge they replace (the weight says nothing about them, as in practice).
-SyntheticViewGraph MakeSyntheticViewGraph(const SyntheticViewGraphOptions& options);
+SyntheticRotationGraph MakeSyntheticRotationGraph(const SyntheticRotationGraphOptions& options);
 
 // Per-node angle (degrees) between estimated and true rotations after the best global gauge
 // R_est ~ R_true G (chordal mean, then one reweighting step that discounts outlying nodes).

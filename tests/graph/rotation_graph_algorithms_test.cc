@@ -1,5 +1,5 @@
 // The view-graph utilities on small hand-made graphs whose answers can be read off.
-#include "ramap/graph/view_graph_algorithms.h"
+#include "ramap/graph/rotation_graph_algorithms.h"
 
 #include <gtest/gtest.h>
 
@@ -15,8 +15,8 @@ Eigen::Quaterniond AboutZ(double degrees) {
 }
 
 // Two components: a triangle 10-20-30 (edge weights 5, 1, 3) and a pair 40-50; node 60 alone.
-ViewGraph TwoComponents() {
-  ViewGraph graph;
+RotationGraph TwoComponents() {
+  RotationGraph graph;
   graph.node_ids = {10, 20, 30, 40, 50, 60};
   graph.edges = {{10, 20, AboutZ(10), 5.0},
                  {20, 30, AboutZ(20), 1.0},
@@ -25,8 +25,8 @@ ViewGraph TwoComponents() {
   return graph;
 }
 
-TEST(ViewGraph, NodeIndexRejectsUnknownNodesSelfLoopsAndDuplicates) {
-  ViewGraph graph = TwoComponents();
+TEST(RotationGraph, NodeIndexRejectsUnknownNodesSelfLoopsAndDuplicates) {
+  RotationGraph graph = TwoComponents();
   EXPECT_EQ(NodeIndex(graph).at(30), 2);
   graph.edges.push_back({10, 99, AboutZ(0), 1.0});
   EXPECT_THROW(NodeIndex(graph), std::invalid_argument);
@@ -37,8 +37,8 @@ TEST(ViewGraph, NodeIndexRejectsUnknownNodesSelfLoopsAndDuplicates) {
   EXPECT_THROW(NodeIndex(graph), std::invalid_argument);
 }
 
-TEST(ViewGraph, ComponentsAreLabelledLargestFirst) {
-  const ViewGraph graph = TwoComponents();
+TEST(RotationGraph, ComponentsAreLabelledLargestFirst) {
+  const RotationGraph graph = TwoComponents();
   const std::vector<int> labels = ConnectedComponents(graph);
   EXPECT_EQ(labels, (std::vector<int>{0, 0, 0, 1, 1, 2}));
   // Without the pair's edge, 40 and 50 fall apart into components of one, labelled by their first
@@ -46,7 +46,7 @@ TEST(ViewGraph, ComponentsAreLabelledLargestFirst) {
   const std::vector<int> kept = ConnectedComponents(graph, {true, true, true, false});
   EXPECT_EQ(kept, (std::vector<int>{0, 0, 0, 1, 2, 3}));
   // Equal sizes, interleaved: {1, 4} holds the first node, so it is component 0.
-  ViewGraph pairs;
+  RotationGraph pairs;
   pairs.node_ids = {1, 2, 3, 4};
   pairs.edges = {{1, 4, AboutZ(1), 1.0}, {2, 3, AboutZ(1), 1.0}};
   EXPECT_EQ(ConnectedComponents(pairs), (std::vector<int>{0, 1, 1, 0}));
@@ -54,8 +54,8 @@ TEST(ViewGraph, ComponentsAreLabelledLargestFirst) {
   EXPECT_EQ(NodeDegrees(graph, {false, true, true, true}), (std::vector<int>{1, 1, 2, 1, 1, 0}));
 }
 
-TEST(ViewGraph, SpanningTreeKeepsTheHeaviestEdgesAndPropagatesRotations) {
-  const ViewGraph graph = TwoComponents();
+TEST(RotationGraph, SpanningTreeKeepsTheHeaviestEdgesAndPropagatesRotations) {
+  const RotationGraph graph = TwoComponents();
   // The triangle's tree is its two heaviest edges (5 and 3); the pair's edge joins 40 and 50.
   std::vector<size_t> tree = MaximumSpanningTree(graph);
   std::sort(tree.begin(), tree.end());
@@ -74,10 +74,10 @@ TEST(ViewGraph, SpanningTreeKeepsTheHeaviestEdgesAndPropagatesRotations) {
   EXPECT_LT(RotationAngleDeg(rotations[4], AboutZ(40)), 1e-9);
 }
 
-TEST(ViewGraph, SubgraphKeepsTheTouchedNodesAndMapsEdges) {
-  const ViewGraph graph = TwoComponents();
+TEST(RotationGraph, SubgraphKeepsTheTouchedNodesAndMapsEdges) {
+  const RotationGraph graph = TwoComponents();
   std::vector<size_t> edge_map;
-  const ViewGraph sub = Subgraph(graph, {false, true, false, true}, &edge_map);
+  const RotationGraph sub = Subgraph(graph, {false, true, false, true}, &edge_map);
   EXPECT_EQ(sub.node_ids, (std::vector<uint32_t>{20, 30, 40, 50}));
   ASSERT_EQ(sub.edges.size(), 2u);
   EXPECT_EQ(edge_map, (std::vector<size_t>{1, 3}));

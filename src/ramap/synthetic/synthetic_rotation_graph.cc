@@ -1,4 +1,4 @@
-#include "ramap/synthetic/synthetic_view_graph.h"
+#include "ramap/synthetic/synthetic_rotation_graph.h"
 
 #include <Eigen/SVD>
 #include <algorithm>
@@ -35,13 +35,13 @@ Eigen::Matrix3d ProjectToRotation(const Eigen::Matrix3d& M) {
 
 }  // namespace
 
-SyntheticViewGraph MakeSyntheticViewGraph(const SyntheticViewGraphOptions& options) {
+SyntheticRotationGraph MakeSyntheticRotationGraph(const SyntheticRotationGraphOptions& options) {
   if (options.num_nodes < 2 || options.forward_neighbours < 1 || options.outlier_fraction < 0 ||
       options.outlier_fraction > 1) {
-    throw std::invalid_argument("SyntheticViewGraphOptions out of range");
+    throw std::invalid_argument("SyntheticRotationGraphOptions out of range");
   }
   std::mt19937 rng(options.seed);
-  SyntheticViewGraph synthetic;
+  SyntheticRotationGraph synthetic;
   const int n = options.num_nodes;
   synthetic.true_rotations.resize(n);
   synthetic.true_rotations[0] = RandomRotation(rng);

@@ -1,5 +1,6 @@
-// The view graph as rotation averaging reads it: relative rotations between cameras, as plain data
-// (the algorithms on it are graph/view_graph_algorithms.h's).
+// The rotation graph: the relative rotations between cameras that rotation averaging reads, as
+// plain data; the mapper's is a view of the view graph's accepted pairs (scene/view_graph.h), each
+// edge naming its pair (the algorithms on it are graph/rotation_graph_algorithms.h's).
 //
 // Convention, used by every rotation-averaging file in ramap: an absolute rotation R_i is
 // cam_from_world (COLMAP, x_cam = R_i x_world + t_i); an edge (i, j) holds R_ij = R_j R_i^T, the
@@ -25,7 +26,7 @@ struct RelativeRotationEdge {
   size_t pair_index = 0;
 };
 
-struct ViewGraph {
+struct RotationGraph {
   std::vector<uint32_t> node_ids;           // distinct ids; edges refer to nodes by id
   std::vector<RelativeRotationEdge> edges;  // no self loops; parallel edges are allowed
 };

@@ -1,4 +1,4 @@
-#include "ramap/graph/view_graph_algorithms.h"
+#include "ramap/graph/rotation_graph_algorithms.h"
 
 #include <algorithm>
 #include <queue>
@@ -14,18 +14,18 @@ bool Kept(const std::vector<bool>& keep, size_t e) { return keep.empty() || keep
 
 }  // namespace
 
-std::unordered_map<uint32_t, int> NodeIndex(const ViewGraph& graph) {
+std::unordered_map<uint32_t, int> NodeIndex(const RotationGraph& graph) {
   std::unordered_map<uint32_t, int> index;
   index.reserve(graph.node_ids.size());
   for (size_t k = 0; k < graph.node_ids.size(); ++k) {
     if (!index.emplace(graph.node_ids[k], static_cast<int>(k)).second) {
-      throw std::invalid_argument("ViewGraph: duplicate node id " +
+      throw std::invalid_argument("RotationGraph: duplicate node id " +
                                   std::to_string(graph.node_ids[k]));
     }
   }
   for (const RelativeRotationEdge& edge : graph.edges) {
     if (!index.count(edge.i) || !index.count(edge.j) || edge.i == edge.j) {
-      throw std::invalid_argument("ViewGraph: edge (" + std::to_string(edge.i) + ", " +
+      throw std::invalid_argument("RotationGraph: edge (" + std::to_string(edge.i) + ", " +
                                   std::to_string(edge.j) +
                                   ") is a self loop or names an unknown node");
     }
@@ -33,7 +33,7 @@ std::unordered_map<uint32_t, int> NodeIndex(const ViewGraph& graph) {
   return index;
 }
 
-std::vector<int> ConnectedComponents(const ViewGraph& graph, const std::vector<bool>& keep) {
+std::vector<int> ConnectedComponents(const RotationGraph& graph, const std::vector<bool>& keep) {
   const auto index = NodeIndex(graph);
   const int n = static_cast<int>(graph.node_ids.size());
   DisjointSets sets(n);
@@ -56,7 +56,7 @@ std::vector<int> ConnectedComponents(const ViewGraph& graph, const std::vector<b
   return labels;
 }
 
-std::vector<int> NodeDegrees(const ViewGraph& graph, const std::vector<bool>& keep) {
+std::vector<int> NodeDegrees(const RotationGraph& graph, const std::vector<bool>& keep) {
   const auto index = NodeIndex(graph);
   std::vector<int> degree(graph.node_ids.size(), 0);
   for (size_t e = 0; e < graph.edges.size(); ++e) {
@@ -67,7 +67,7 @@ std::vector<int> NodeDegrees(const ViewGraph& graph, const std::vector<bool>& ke
   return degree;
 }
 
-std::vector<size_t> MaximumSpanningTree(const ViewGraph& graph, const std::vector<bool>& keep) {
+std::vector<size_t> MaximumSpanningTree(const RotationGraph& graph, const std::vector<bool>& keep) {
   const auto index = NodeIndex(graph);
   std::vector<size_t> order;
   for (size_t e = 0; e < graph.edges.size(); ++e) {
@@ -84,7 +84,7 @@ std::vector<size_t> MaximumSpanningTree(const ViewGraph& graph, const std::vecto
   return tree;
 }
 
-void PropagateAlongTree(const ViewGraph& graph, const std::vector<size_t>& tree_edges,
+void PropagateAlongTree(const RotationGraph& graph, const std::vector<size_t>& tree_edges,
                         std::vector<Eigen::Quaterniond>* rotations, std::vector<bool>* known) {
   const auto index = NodeIndex(graph);
   const size_t n = graph.node_ids.size();
@@ -131,11 +131,11 @@ void PropagateAlongTree(const ViewGraph& graph, const std::vector<size_t>& tree_
   }
 }
 
-ViewGraph Subgraph(const ViewGraph& graph, const std::vector<bool>& keep,
-                   std::vector<size_t>* edge_map) {
+RotationGraph Subgraph(const RotationGraph& graph, const std::vector<bool>& keep,
+                       std::vector<size_t>* edge_map) {
   const auto index = NodeIndex(graph);
   std::vector<bool> touched(graph.node_ids.size(), false);
-  ViewGraph sub;
+  RotationGraph sub;
   if (edge_map) edge_map->clear();
   for (size_t e = 0; e < graph.edges.size(); ++e) {
     if (!Kept(keep, e)) continue;
@@ -150,10 +150,11 @@ ViewGraph Subgraph(const ViewGraph& graph, const std::vector<bool>& keep,
   return sub;
 }
 
-std::vector<ViewGraph> ComponentSubgraphs(const ViewGraph& graph, const std::vector<int>& labels) {
+std::vector<RotationGraph> ComponentSubgraphs(const RotationGraph& graph,
+                                              const std::vector<int>& labels) {
   const int num_components =
       labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
-  std::vector<ViewGraph> components(num_components);
+  std::vector<RotationGraph> components(num_components);
   for (size_t k = 0; k < graph.node_ids.size(); ++k)
     components[labels[k]].node_ids.push_back(graph.node_ids[k]);
   const auto index = NodeIndex(graph);

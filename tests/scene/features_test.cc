@@ -21,9 +21,8 @@ TEST(TwoViewGeometry, InvertingTwiceGivesTheOriginal) {
   g.image_id1 = 1;
   g.image_id2 = 2;
   g.inlier_matches = {{3, 4}, {5, 6}};
-  g.cam2_from_cam1 =
-      Rigid3d(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized())),
-              Eigen::Vector3d(0.1, -0.2, 0.9));
+  g.cam2_from_cam1 = Rigid3d(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized())),
+                             Eigen::Vector3d(0.1, -0.2, 0.9));
   g.F = Eigen::Matrix3d::Random();
   g.H = Eigen::Matrix3d::Random() + 3 * Eigen::Matrix3d::Identity();
   const TwoViewGeometry inv = InvertTwoViewGeometry(g);

@@ -1,3 +1,7 @@
+// The synthetic scene builder: the same output for the same options, exact projections and epipolar
+// geometry without noise, wrong matches, outlier and aliased pairs, loops and layouts as asked.
+#include "ramap/synthetic/synthetic_scene.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -9,7 +13,6 @@
 #include <sstream>
 
 #include "ramap/geometry/camera_projection.h"
-#include "ramap/synthetic/synthetic_scene.h"
 #include "ramap/util/error.h"
 #include "test_support.h"
 

@@ -99,8 +99,10 @@ TEST(ModelEvaluation, GroundTruthOfAnotherSceneIsRefused) {
                          {dir / "other", "none of the 8 images of the model", "ground-truth pose"});
   std::ofstream(dir / "list.txt") << "nowhere.png\n";
   input.image_list_path = dir / "list.txt";
+  // A list naming no image of the model nor of the ground truth is said as such, naming the list.
   test::ExpectInputError([&] { EvaluateModel(input, PoseEvaluationOptions()); },
-                         {"none of the 1 images of --image_list"});
+                         {"--image_list", "none of the 1 images of", "list.txt (nowhere.png)",
+                          "is in the model"});
 }
 
 TEST(ModelEvaluation, GroundTruthByIndexNeedsTheInputNamedUnlessEveryImageIsRegistered) {

@@ -25,7 +25,7 @@ class ComponentRotations : public ::testing::Test {
         pairs_(EstimateRelativePoses(scene_.database, bearings_, options_.relative_pose, 1)),
         order_(ImageIdsInCaptureOrder(scene_.database)) {
     StageReport report;
-    graph_ = ViewGraphOfAcceptedPairs(scene_.database, pairs_, &report);
+    graph_ = RotationGraphOfAcceptedPairs(scene_.database, pairs_, &report);
   }
 
   PassInput Input() const {
@@ -34,7 +34,7 @@ class ComponentRotations : public ::testing::Test {
         priors_};
   }
 
-  ComponentState Averaged(const ViewGraph& graph) const {
+  ComponentState Averaged(const RotationGraph& graph) const {
     ComponentState state;
     state.graph = graph;
     return AverageComponentRotations(Input(), std::move(state));
@@ -61,7 +61,7 @@ class ComponentRotations : public ::testing::Test {
   std::vector<ImagePair> pairs_;
   std::vector<uint32_t> order_;
   PosePriors priors_;
-  ViewGraph graph_;
+  RotationGraph graph_;
 };
 
 TEST_F(ComponentRotations, EveryImageGetsItsTrueRotationAndTheStageReportsIt) {
@@ -82,7 +82,7 @@ TEST_F(ComponentRotations, EveryImageGetsItsTrueRotationAndTheStageReportsIt) {
 
 TEST_F(ComponentRotations, AWrongEdgeIsPrunedAndNamedWithItsResidual) {
   // The edge between frames 5 and 6 measured 30 degrees off.
-  ViewGraph graph = graph_;
+  RotationGraph graph = graph_;
   size_t wrong = graph.edges.size();
   for (size_t e = 0; e < graph.edges.size(); ++e) {
     if (graph.edges[e].i == 5 && graph.edges[e].j == 6) wrong = e;

@@ -43,7 +43,7 @@ TEST(ViewGraphPairs, RotationWeightIsTheInlierCountAtLeastOne) {
 TEST(ViewGraphPairs, AcceptedPairsBecomeEdgesNamingTheirPair) {
   const std::vector<ImagePair> pairs = {Pair(5, 9, true, 40), Pair(1, 5, false, 0),
                                         Pair(2, 5, true, 0), Pair(7, 8, false, 12)};
-  const ViewGraph graph = AcceptedViewGraph(pairs);
+  const RotationGraph graph = AcceptedRotationGraph(pairs);
   EXPECT_EQ(graph.node_ids, (std::vector<uint32_t>{2, 5, 9}));  // images of accepted pairs only
   ASSERT_EQ(graph.edges.size(), 2u);
   EXPECT_EQ(graph.edges[0].i, 5u);
@@ -53,7 +53,7 @@ TEST(ViewGraphPairs, AcceptedPairsBecomeEdgesNamingTheirPair) {
   EXPECT_EQ(graph.edges[0].R_ij.coeffs(), pairs[0].estimate.rotation.coeffs());
   EXPECT_EQ(graph.edges[1].pair_index, 2u);
   EXPECT_EQ(graph.edges[1].weight, 1.0);
-  EXPECT_TRUE(AcceptedViewGraph({}).edges.empty());
+  EXPECT_TRUE(AcceptedRotationGraph({}).edges.empty());
 }
 
 TEST(ViewGraphPairs, EveryRejectionHasANameOfItsOwn) {

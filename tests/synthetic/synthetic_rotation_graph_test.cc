@@ -1,6 +1,6 @@
-// MakeSyntheticViewGraph and AlignedRotationErrorsDeg: the graph's edges, weights, noise and
+// MakeSyntheticRotationGraph and AlignedRotationErrorsDeg: the graph's edges, weights, noise and
 // outliers as the options say, and rotation errors measured after the best global gauge.
-#include "ramap/synthetic/synthetic_view_graph.h"
+#include "ramap/synthetic/synthetic_rotation_graph.h"
 
 #include <gtest/gtest.h>
 
@@ -15,8 +15,8 @@ double AngleDeg(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   return a.angularDistance(b) * 180.0 / M_PI;
 }
 
-SyntheticViewGraphOptions Options(double noise_deg, double outlier_fraction) {
-  SyntheticViewGraphOptions options;
+SyntheticRotationGraphOptions Options(double noise_deg, double outlier_fraction) {
+  SyntheticRotationGraphOptions options;
   options.num_nodes = 120;
   options.forward_neighbours = 4;
   options.num_loop_edges = 15;
@@ -27,8 +27,8 @@ SyntheticViewGraphOptions Options(double noise_deg, double outlier_fraction) {
   return options;
 }
 
-TEST(SyntheticViewGraph, SequenceEdgesAndLoopEdgesAsAsked) {
-  const SyntheticViewGraph synthetic = MakeSyntheticViewGraph(Options(1.0, 0.0));
+TEST(SyntheticRotationGraph, SequenceEdgesAndLoopEdgesAsAsked) {
+  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(Options(1.0, 0.0));
   ASSERT_EQ(synthetic.graph.node_ids.size(), 120u);
   for (uint32_t k = 0; k < 120; ++k) EXPECT_EQ(synthetic.graph.node_ids[k], k);
   EXPECT_EQ(synthetic.true_rotations.size(), 120u);
@@ -51,8 +51,8 @@ TEST(SyntheticViewGraph, SequenceEdgesAndLoopEdgesAsAsked) {
   EXPECT_EQ(num_loop_edges, 15);
 }
 
-TEST(SyntheticViewGraph, WithoutNoiseEdgesAreTheTrueRelativeRotations) {
-  const SyntheticViewGraph synthetic = MakeSyntheticViewGraph(Options(0.0, 0.0));
+TEST(SyntheticRotationGraph, WithoutNoiseEdgesAreTheTrueRelativeRotations) {
+  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(Options(0.0, 0.0));
   for (const RelativeRotationEdge& edge : synthetic.graph.edges) {
     const Eigen::Quaterniond exact =
         synthetic.true_rotations[edge.j] * synthetic.true_rotations[edge.i].conjugate();
@@ -60,8 +60,8 @@ TEST(SyntheticViewGraph, WithoutNoiseEdgesAreTheTrueRelativeRotations) {
   }
 }
 
-TEST(SyntheticViewGraph, StepsAndNoiseHaveTheirSizes) {
-  const SyntheticViewGraph synthetic = MakeSyntheticViewGraph(Options(2.0, 0.0));
+TEST(SyntheticRotationGraph, StepsAndNoiseHaveTheirSizes) {
+  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(Options(2.0, 0.0));
   // Steps: rotation vectors of sigma step / sqrt(3) per axis, so an RMS angle of the step (5 deg);
   // over 119 steps the sample RMS has a relative spread of 1 / sqrt(2 * 3 * 119) = 3.7%: 15% is
   // four of them.
@@ -82,9 +82,9 @@ TEST(SyntheticViewGraph, StepsAndNoiseHaveTheirSizes) {
   EXPECT_NEAR(std::sqrt(sum_squared / synthetic.graph.edges.size()), 2.0 * std::sqrt(3.0), 0.35);
 }
 
-TEST(SyntheticViewGraph, OutliersAreRandomRotationsOfTheEdgesTheyReplace) {
-  const SyntheticViewGraph clean = MakeSyntheticViewGraph(Options(1.0, 0.0));
-  const SyntheticViewGraph synthetic = MakeSyntheticViewGraph(Options(1.0, 0.3));
+TEST(SyntheticRotationGraph, OutliersAreRandomRotationsOfTheEdgesTheyReplace) {
+  const SyntheticRotationGraph clean = MakeSyntheticRotationGraph(Options(1.0, 0.0));
+  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(Options(1.0, 0.3));
   ASSERT_EQ(synthetic.graph.edges.size(), clean.graph.edges.size());
   int num_outliers = 0;
   int num_far = 0;
@@ -109,22 +109,22 @@ TEST(SyntheticViewGraph, OutliersAreRandomRotationsOfTheEdgesTheyReplace) {
   EXPECT_GT(num_far, 0.95 * num_outliers);
 }
 
-TEST(SyntheticViewGraph, SameSeedSameGraphAndBadOptionsRefused) {
-  const SyntheticViewGraph a = MakeSyntheticViewGraph(Options(1.0, 0.1));
-  const SyntheticViewGraph b = MakeSyntheticViewGraph(Options(1.0, 0.1));
+TEST(SyntheticRotationGraph, SameSeedSameGraphAndBadOptionsRefused) {
+  const SyntheticRotationGraph a = MakeSyntheticRotationGraph(Options(1.0, 0.1));
+  const SyntheticRotationGraph b = MakeSyntheticRotationGraph(Options(1.0, 0.1));
   ASSERT_EQ(a.graph.edges.size(), b.graph.edges.size());
   for (size_t e = 0; e < a.graph.edges.size(); ++e) {
     EXPECT_EQ(a.graph.edges[e].R_ij.coeffs(), b.graph.edges[e].R_ij.coeffs());
   }
-  SyntheticViewGraphOptions one_node = Options(1.0, 0.0);
+  SyntheticRotationGraphOptions one_node = Options(1.0, 0.0);
   one_node.num_nodes = 1;
-  EXPECT_THROW(MakeSyntheticViewGraph(one_node), std::invalid_argument);
-  SyntheticViewGraphOptions fraction = Options(1.0, 1.5);
-  EXPECT_THROW(MakeSyntheticViewGraph(fraction), std::invalid_argument);
+  EXPECT_THROW(MakeSyntheticRotationGraph(one_node), std::invalid_argument);
+  SyntheticRotationGraphOptions fraction = Options(1.0, 1.5);
+  EXPECT_THROW(MakeSyntheticRotationGraph(fraction), std::invalid_argument);
 }
 
-TEST(SyntheticViewGraph, AlignedErrorsIgnoreTheGlobalGaugeAndDiscountAnOutlyingNode) {
-  const SyntheticViewGraph synthetic = MakeSyntheticViewGraph(Options(1.0, 0.0));
+TEST(SyntheticRotationGraph, AlignedErrorsIgnoreTheGlobalGaugeAndDiscountAnOutlyingNode) {
+  const SyntheticRotationGraph synthetic = MakeSyntheticRotationGraph(Options(1.0, 0.0));
   const Eigen::Quaterniond gauge(Eigen::AngleAxisd(2.0, Eigen::Vector3d(1, 3, -2).normalized()));
   std::vector<Eigen::Quaterniond> estimated;
   for (const Eigen::Quaterniond& rotation : synthetic.true_rotations) {

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "test_support.h"
+#include "texture_image.h"
 
 namespace ramap {
 namespace {
@@ -96,18 +97,8 @@ TEST(FeatureExtraction, DownscaledDetectionGivesFullResolutionCoordinates) {
   EXPECT_NEAR(scale_large / scale_small, 2.0, 0.1);
 }
 
-// Blurred random blobs: texture both detectors find many features in.
-cv::Mat Texture(int width, int height, int seed) {
-  cv::Mat image(height, width, CV_8UC1);
-  cv::RNG rng(seed);
-  rng.fill(image, cv::RNG::UNIFORM, 0, 255);
-  cv::GaussianBlur(image, image, cv::Size(0, 0), 2.0);
-  cv::normalize(image, image, 0, 255, cv::NORM_MINMAX);
-  return image;
-}
-
 TEST(FeatureExtraction, AtMostTheFeaturesAskedForWithTheirTypesDescriptors) {
-  const cv::Mat image = Texture(320, 240, 3);
+  const cv::Mat image = test::BlurredNoise(320, 240, 3);
   for (const FeatureType type : {FeatureType::kSift, FeatureType::kOrb}) {
     SCOPED_TRACE(FeatureTypeName(type));
     FeatureExtractionOptions options;

@@ -15,22 +15,13 @@
 #include "ramap/io/trajectory.h"
 #include "ramap/util/error.h"
 #include "test_support.h"
+#include "texture_image.h"
 
 namespace ramap {
 namespace {
 
-// Blurred random blobs: texture both detectors find corners in.
-cv::Mat Texture(int width, int height, int seed) {
-  cv::Mat image(height, width, CV_8UC1);
-  cv::RNG rng(seed);
-  rng.fill(image, cv::RNG::UNIFORM, 0, 255);
-  cv::GaussianBlur(image, image, cv::Size(0, 0), 2.0);
-  cv::normalize(image, image, 0, 255, cv::NORM_MINMAX);
-  return image;
-}
-
 TEST(ImageFeatures, OrbAndSiftOnATexture) {
-  const cv::Mat image = Texture(640, 480, 1);
+  const cv::Mat image = test::BlurredNoise(640, 480, 1);
   for (const FeatureType type : {FeatureType::kOrb, FeatureType::kSift}) {
     FeatureExtractionOptions options;
     options.type = type;
@@ -49,7 +40,7 @@ TEST(ImageFeatures, OrbAndSiftOnATexture) {
 }
 
 TEST(ImageFeatures, DownscaledDetectionKeepsFullResolutionCoordinates) {
-  const cv::Mat image = Texture(1200, 800, 2);
+  const cv::Mat image = test::BlurredNoise(1200, 800, 2);
   FeatureExtractionOptions options;
   options.max_image_size = 600;
   const ImageFeatures features = ExtractFeatures(image, options);
@@ -61,7 +52,7 @@ TEST(ImageFeatures, DownscaledDetectionKeepsFullResolutionCoordinates) {
 }
 
 TEST(ImageFeatures, ShiftedCopyMatchesAtTheShift) {
-  const cv::Mat image = Texture(640, 480, 3);
+  const cv::Mat image = test::BlurredNoise(640, 480, 3);
   const cv::Mat shifted = image(cv::Rect(20, 10, 600, 460)).clone();
   for (const FeatureType type : {FeatureType::kOrb, FeatureType::kSift}) {
     SCOPED_TRACE(FeatureTypeName(type));
@@ -86,10 +77,11 @@ TEST(ImageFeatures, ShiftedCopyMatchesAtTheShift) {
 // Preemptive matching (exhaustive mode) matches in full only the pairs whose largest-scale
 // features already agree: the image and its shifted copy, not the unrelated texture.
 TEST(ImageFeatures, PreemptiveMatchingSkipsPairsThatShareNothing) {
-  const cv::Mat image = Texture(640, 480, 3);
+  const cv::Mat image = test::BlurredNoise(640, 480, 3);
   FeatureDatabase database;
   database.cameras[1] = test::VgaPinholeCamera();
-  const cv::Mat views[] = {image, image(cv::Rect(20, 10, 600, 460)).clone(), Texture(640, 480, 9)};
+  const cv::Mat views[] = {image, image(cv::Rect(20, 10, 600, 460)).clone(),
+                           test::BlurredNoise(640, 480, 9)};
   for (uint32_t id = 1; id <= 3; ++id) {
     Image entry;
     entry.image_id = id;
@@ -116,9 +108,9 @@ TEST(ImageFeatures, PreemptiveMatchingSkipsPairsThatShareNothing) {
 
 TEST(ImageFeatures, AwkwardFolderIsReportedNotFatal) {
   test::TempDir dir;
-  cv::imwrite(dir / "grey.png", Texture(320, 240, 4));
+  cv::imwrite(dir / "grey.png", test::BlurredNoise(320, 240, 4));
   cv::Mat colour;
-  cv::cvtColor(Texture(400, 300, 5), colour, cv::COLOR_GRAY2BGR);
+  cv::cvtColor(test::BlurredNoise(400, 300, 5), colour, cv::COLOR_GRAY2BGR);
   cv::imwrite(dir / "colour.jpg", colour);
   std::ofstream(dir / "empty.jpg").close();
   std::ofstream(dir / "text.png") << "not an image";

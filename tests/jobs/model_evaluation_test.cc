@@ -100,9 +100,9 @@ TEST(ModelEvaluation, GroundTruthOfAnotherSceneIsRefused) {
   std::ofstream(dir / "list.txt") << "nowhere.png\n";
   input.image_list_path = dir / "list.txt";
   // A list naming no image of the model nor of the ground truth is said as such, naming the list.
-  test::ExpectInputError([&] { EvaluateModel(input, PoseEvaluationOptions()); },
-                         {"--image_list", "none of the 1 images of", "list.txt (nowhere.png)",
-                          "is in the model"});
+  test::ExpectInputError(
+      [&] { EvaluateModel(input, PoseEvaluationOptions()); },
+      {"--image_list", "none of the 1 images of", "list.txt (nowhere.png)", "is in the model"});
 }
 
 TEST(ModelEvaluation, GroundTruthByIndexNeedsTheInputNamedUnlessEveryImageIsRegistered) {

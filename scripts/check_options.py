@@ -10,9 +10,10 @@
   2. an option is outside a table: a command registers an option with CLI11 itself (add_option or
      add_flag anywhere in cli/ but cli/options.h's AddOptionTable);
   3. a message, doc or README names an option nobody declares: every "--Section.option" in src/,
-     cli/, python/, docs/, README.md, BENCHMARKS.md and RELIABILITY.md, and every "--option"
-     (without a section) quoted in a message of src/, cli/ or python/, must be a declared name, a
-     former name or a COLMAP name of some command's option. A line that quotes a command line of
+     cli/, python/, docs/, README.md, BENCHMARKS.md and RELIABILITY.md, every "--option" (without
+     a section) quoted in a message of src/, cli/ or python/, and every name a message builds from
+     a prefix (s = "--Section."; s + "key"), must be a declared name, a former name or a COLMAP
+     name of some command's option. A line that quotes a command line of
      COLMAP itself ("colmap mapper --Mapper.ba_local_max_num_iterations ...") is COLMAP's, not
      ramap's, and is passed over;
   4. docs/options.md is not what `ramap options` prints.
@@ -142,6 +143,13 @@ def main():
             for name in found:
                 if not is_declared(name, names):
                     undeclared.append(f"{path.relative_to(root)}:{number}: --{name}")
+        # Names a message builds from a prefix: `const std::string s = "--Section."; s + "key"`.
+        if code:
+            text = path.read_text()
+            for variable, prefix in re.findall(r'(\w+) = "--([A-Z]\w*\.\w*)";', text):
+                for key in re.findall(rf'\b{variable} \+ "(\w+)"', text):
+                    if not is_declared(prefix + key, names):
+                        undeclared.append(f"{path.relative_to(root)}: --{prefix + key}")
     problems += [f"names an option nobody declares: {u}" for u in undeclared]
 
     if problems:

@@ -2,4 +2,4 @@
 #include "fuzz_input.h"
 #include "ramap/io/g2o_reader.h"
 
-RAMAP_FUZZ_FILE_READER(ramap::ReadG2oViewGraph)
+RAMAP_FUZZ_FILE_READER(ramap::ReadG2oPoseGraph)

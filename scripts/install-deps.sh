@@ -24,6 +24,7 @@ packages=(
   clang libclang-rt-14-dev    # libFuzzer and the sanitizers for the readers' fuzz harnesses
   python3-dev pybind11-dev    # the Python module, `import ramap`
   python3-numpy python3-pytest  # its arrays and its tests
+  exiv2 python3-opencv        # scripts/make_internet_sets.py: the internet-conditions benchmark sets
   chromium                    # the browser test of report.html (tests/browser)
 )
 

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "ramap/eval/pose_metrics.h"
+#include "ramap/geometry/camera_distortion.h"
 #include "ramap/geometry/camera_projection.h"
 #include "ramap/mapper/mapper.h"
 #include "ramap/synthetic/synthetic_scene.h"
@@ -393,15 +394,73 @@ TEST(ViewGraphCalibration, BadFundamentalMatricesFallBackToThePrior) {
   EXPECT_EQ(cameras.at(1).params, database.cameras.at(1).params);
 }
 
-TEST(ViewGraphCalibration, KnownFocalLengthsAreLeftAlone) {
+// A focal length given 10% off is confirmed by the pairs (within given_focal_tolerance): it is
+// kept as given, for the test of given intrinsics after averaging to judge. Untested where the
+// options say so.
+TEST(ViewGraphCalibration, GivenFocalLengthsNearTheEstimateAreKept) {
   const SyntheticScene scene = BuildSyntheticScene(test::NoisyCollection(2));
   FeatureDatabase database = scene.database;
   database.cameras.at(1).has_prior_focal_length = true;
   database.cameras.at(1).params[0] *= 1.1;
+  database.cameras.at(1).params[1] *= 1.1;
   std::map<uint32_t, Camera> cameras = database.cameras;
-  EXPECT_TRUE(
-      CalibrateFocalLengths(database, ViewGraphCalibrationOptions(), &cameras).cameras.empty());
+  const ViewGraphCalibrationSummary calibration =
+      CalibrateFocalLengths(database, ViewGraphCalibrationOptions(), &cameras);
+  ASSERT_EQ(calibration.cameras.size(), 1u);
+  EXPECT_EQ(calibration.cameras[0].outcome, FocalOutcome::kConfirmed);
+  EXPECT_TRUE(calibration.cameras[0].given);
+  EXPECT_FALSE(calibration.cameras[0].estimated);
   EXPECT_EQ(cameras.at(1).params, database.cameras.at(1).params);
+  EXPECT_TRUE(cameras.at(1).has_prior_focal_length);
+
+  ViewGraphCalibrationOptions untested;
+  untested.test_given_focal_lengths = false;
+  EXPECT_TRUE(CalibrateFocalLengths(database, untested, &cameras).cameras.empty());
+}
+
+// An internet collection's camera: two photos whose EXIF focal length is 10x too long (a crop
+// that kept its tags, say), among photos whose EXIF is right. The pairs prove the given value
+// wrong; the view graph's estimate replaces it (from a start far outside the 0.25-4x of a prior
+// that a factor range would search), and bundle adjustment refines it as a guess, not held. The
+// views all look at one object, as a landmark's photos do: the pairs fix the ratios of the focal
+// lengths but hardly their common scale, so the two-image camera would drag the right one along
+// (to 617 px from 500) unless the given values' consensus sets the scale.
+TEST(ViewGraphCalibration, TwoImageCameraGetsItsFocalLengthFromAnExifStartTenTimesOff) {
+  const SyntheticScene scene = BuildSyntheticScene(test::NoisyCollection(17));
+  const double truth = scene.database.cameras.at(1).params[0];
+  FeatureDatabase database = scene.database;
+  database.cameras.at(1).has_prior_focal_length = true;
+  Camera exif = database.cameras.at(1);
+  exif.camera_id = 2;
+  exif.params[0] *= 10;
+  if (!HasSingleFocalLength(exif.model)) exif.params[1] *= 10;
+  database.cameras[2] = exif;
+  for (const uint32_t image_id : {1u, 2u}) database.images.at(image_id).camera_id = 2;
+
+  std::map<uint32_t, Camera> cameras = database.cameras;
+  const ViewGraphCalibrationSummary calibration =
+      CalibrateFocalLengths(database, ViewGraphCalibrationOptions(), &cameras);
+  ASSERT_EQ(calibration.cameras.size(), 2u);
+  EXPECT_EQ(calibration.cameras[0].outcome, FocalOutcome::kConfirmed);
+  EXPECT_EQ(calibration.cameras[1].outcome, FocalOutcome::kDisproved)
+      << calibration.cameras[1].problem;
+  EXPECT_LT(RelativeError(cameras.at(2).params[0], truth), 0.02)
+      << "view graph: " << cameras.at(2).params[0] << " for " << truth;
+  EXPECT_FALSE(cameras.at(2).has_prior_focal_length);
+
+  MapperOptions options;
+  options.refine = true;
+  const MapperResult result = RunMapper(database, options, "synthetic");
+  ASSERT_EQ(result.reconstructions.size(), 1u);
+  const Reconstruction& model = result.reconstructions[0];
+  EXPECT_EQ(model.images.size(), scene.ground_truth.images.size());
+  EXPECT_LT(RelativeError(model.cameras.at(2).params[0], truth), 0.01)
+      << "after BA: " << model.cameras.at(2).params[0] << " for " << truth;
+  std::vector<std::string> names;
+  for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
+  const PoseEvaluation evaluation =
+      EvaluatePoses(PosesByName(model), PosesByName(scene.ground_truth), names);
+  EXPECT_LT(evaluation.rotation_error_median_deg, 0.2);
 }
 
 }  // namespace

@@ -109,9 +109,12 @@ class FocalCost {
 
 // Minimises `cost(log_scale)` over [low, high]: a grid, then golden-section search around its
 // best sample. Returns the minimiser and, in `at_edge`, whether it sits on the range's boundary.
+// The grid's step is 1.2% of the focal length, fine enough that golden-section search starts in
+// the minimum's own valley.
 template <typename Cost>
 double MinimiseOverLogScale(Cost&& cost, double low, double high, bool* at_edge) {
-  constexpr int kSamples = 241;
+  constexpr double kGridStep = 0.01155;  // ln(16) / 240
+  const int kSamples = std::max(3, static_cast<int>(std::ceil((high - low) / kGridStep)) + 1);
   const double step = (high - low) / (kSamples - 1);
   int best = 0;
   double best_cost = cost(low);
@@ -149,10 +152,9 @@ void ViewGraphCalibrationOptions::Check() const {
   CheckOptionValues(ViewGraphCalibrationOptionTable(), *this);
   // The settings no command line option reaches.
   const std::string s = "ViewGraphCalibrationOptions::";
-  CheckOption(min_focal_factor > 0 && min_focal_factor < 1, s + "min_focal_factor", "in (0, 1)",
-              min_focal_factor);
-  CheckOption(max_focal_factor > 1 && std::isfinite(max_focal_factor), s + "max_focal_factor",
-              "finite and > 1", max_focal_factor);
+  CheckOption(min_focal_ratio > 0, s + "min_focal_ratio", "> 0", min_focal_ratio);
+  CheckOption(max_focal_ratio > min_focal_ratio && std::isfinite(max_focal_ratio),
+              s + "max_focal_ratio", "finite and > min_focal_ratio", max_focal_ratio);
   CheckOption(min_num_inliers >= 8, s + "min_num_inliers", ">= 8", min_num_inliers);
   CheckOption(max_pairs_per_camera >= 1, s + "max_pairs_per_camera", ">= 1", max_pairs_per_camera);
   CheckOption(loss_scale > 0, s + "loss_scale", "> 0", loss_scale);
@@ -177,30 +179,33 @@ double EssentialMatrixCost(const Eigen::Matrix3d& F, const Eigen::Matrix3d& K1,
 
 namespace {
 
-// The cameras the database marks unknown (prior_focal_length 0), fisheye models aside.
-std::set<uint32_t> UnknownCameras(const FeatureDatabase& database,
-                                  const std::map<uint32_t, Camera>& cameras) {
-  std::set<uint32_t> unknown;
+// The cameras the view graph estimates: those the database marks unknown (prior_focal_length 0)
+// and, with test_given_focal_lengths, those it gives a focal length; fisheye models aside. Maps
+// each to whether its focal length is given.
+std::map<uint32_t, bool> CamerasToEstimate(const FeatureDatabase& database,
+                                           const std::map<uint32_t, Camera>& cameras,
+                                           const ViewGraphCalibrationOptions& options) {
+  std::map<uint32_t, bool> to_estimate;
   for (const auto& [camera_id, camera] : cameras) {
     const auto stored = database.cameras.find(camera_id);
-    if (stored != database.cameras.end() && !stored->second.has_prior_focal_length &&
-        !IsFisheyeModel(camera.model)) {
-      unknown.insert(camera_id);
-    }
+    if (stored == database.cameras.end() || IsFisheyeModel(camera.model)) continue;
+    const bool given = stored->second.has_prior_focal_length;
+    if (!given || options.test_given_focal_lengths) to_estimate[camera_id] = given;
   }
-  return unknown;
+  return to_estimate;
 }
 
-// The pairs of each unknown camera, at most max_pairs_per_camera (those with the most inliers).
-std::map<uint32_t, CameraTerms> TermsOfUnknownCameras(const std::vector<FundamentalPair>& pairs,
-                                                      const std::set<uint32_t>& unknown,
-                                                      const std::map<uint32_t, Camera>& cameras,
-                                                      const ViewGraphCalibrationOptions& options) {
+// The pairs of each camera to estimate, at most max_pairs_per_camera (those with the most
+// inliers).
+std::map<uint32_t, CameraTerms> TermsOfCameras(const std::vector<FundamentalPair>& pairs,
+                                               const std::map<uint32_t, bool>& to_estimate,
+                                               const std::map<uint32_t, Camera>& cameras,
+                                               const ViewGraphCalibrationOptions& options) {
   std::map<uint32_t, CameraTerms> terms;
   for (const FundamentalPair& pair : pairs) {
     if (!cameras.count(pair.camera1) || !cameras.count(pair.camera2)) continue;
     for (const uint32_t id : {pair.camera1, pair.camera2}) {
-      if (unknown.count(id)) terms[id].pairs.push_back(&pair);
+      if (to_estimate.count(id)) terms[id].pairs.push_back(&pair);
       if (pair.camera1 == pair.camera2) break;
     }
   }
@@ -236,31 +241,53 @@ struct EstimateShape {
   double cost_rise = 0.0;  // CostRise
 };
 
+// A camera's search range in log scales of its prior: the absolute focal-length ratios of the
+// options over its longest side.
+struct LogRange {
+  double low = 0.0;
+  double high = 0.0;
+};
+
+LogRange SearchRange(const Camera& camera, const ViewGraphCalibrationOptions& options) {
+  const double prior = MeanFocalLength(camera);
+  const double longest = static_cast<double>(std::max(camera.width, camera.height));
+  // A camera without a size (never from COLMAP) is searched around its prior as if it were
+  // COLMAP's guess, 1.2 x the longest side.
+  const double side = longest > 0 ? longest : prior / 1.2;
+  return {std::log(options.min_focal_ratio * side / prior),
+          std::log(options.max_focal_ratio * side / prior)};
+}
+
 // Minimises the cost over the log scales of the cameras in `estimable` (each with at least
-// min_num_pairs pairs): first one common factor for all of them, then camera by camera.
+// min_num_pairs pairs): first one common factor for the unknown ones, then camera by camera, each
+// over its own range.
 std::map<uint32_t, EstimateShape> EstimateLogScales(
     const std::map<uint32_t, const CameraTerms*>& estimable,
+    const std::map<uint32_t, bool>& given, const std::map<uint32_t, LogRange>& ranges,
     const ViewGraphCalibrationOptions& options, FocalCost* cost,
     std::map<uint32_t, double>* log_scales) {
-  const double low = std::log(options.min_focal_factor);
-  const double high = std::log(options.max_focal_factor);
   // The guesses follow one rule (1.2 x the longest side), so they tend to be off alike, and
   // camera-by-camera rounds alone, each camera answering the others' wrong values, stay near a
   // jointly wrong start (without the common start, Herz-Jesus-P8 with a camera per image stayed
-  // far from its true focal length).
-  if (estimable.size() > 1) {
-    std::vector<uint32_t> ids;
-    std::set<const FundamentalPair*> linked;
-    for (const auto& [camera_id, terms] : estimable) {
-      ids.push_back(camera_id);
-      linked.insert(terms->pairs.begin(), terms->pairs.end());
-    }
+  // far from its true focal length). Given focal lengths follow no common rule: each starts at
+  // its own.
+  std::vector<uint32_t> guessed;
+  std::set<const FundamentalPair*> linked;
+  LogRange common_range{-1e9, 1e9};
+  for (const auto& [camera_id, terms] : estimable) {
+    if (given.at(camera_id)) continue;
+    guessed.push_back(camera_id);
+    linked.insert(terms->pairs.begin(), terms->pairs.end());
+    common_range.low = std::max(common_range.low, ranges.at(camera_id).low);
+    common_range.high = std::min(common_range.high, ranges.at(camera_id).high);
+  }
+  if (guessed.size() > 1 && common_range.low < common_range.high) {
     const std::vector<const FundamentalPair*> linked_pairs(linked.begin(), linked.end());
     bool edge = false;
     const double common = MinimiseOverLogScale(
-        [&](double log_scale) { return cost->EvaluateCommon(ids, linked_pairs, log_scale); }, low,
-        high, &edge);
-    for (const uint32_t camera_id : ids) (*log_scales)[camera_id] = common;
+        [&](double log_scale) { return cost->EvaluateCommon(guessed, linked_pairs, log_scale); },
+        common_range.low, common_range.high, &edge);
+    for (const uint32_t camera_id : guessed) (*log_scales)[camera_id] = common;
   }
   std::map<uint32_t, EstimateShape> shapes;
   // Rounds let each camera answer the others' new values: one camera alone (every image sharing
@@ -272,12 +299,76 @@ std::map<uint32_t, EstimateShape> EstimateLogScales(
         return cost->Evaluate(id, *t, log_scale);
       };
       EstimateShape& shape = shapes[camera_id];
-      const double best = MinimiseOverLogScale(at, low, high, &shape.at_edge);
+      const LogRange& range = ranges.at(camera_id);
+      const double best = MinimiseOverLogScale(at, range.low, range.high, &shape.at_edge);
       shape.cost_rise = CostRise(cost, camera_id, *terms, best);
       (*log_scales)[camera_id] = best;
     }
   }
   return shapes;
+}
+
+// The robust cost of all of `estimable`'s pairs with every estimable camera's log scale moved by
+// `shift` from `log_scales`.
+double JointCost(const std::map<uint32_t, const CameraTerms*>& estimable, FocalCost* cost,
+                 const std::map<uint32_t, double>& log_scales, double shift,
+                 std::map<uint32_t, double>* current) {
+  std::set<const FundamentalPair*> pairs;
+  for (const auto& [camera_id, terms] : estimable) {
+    (*current)[camera_id] = log_scales.at(camera_id) + shift;
+    pairs.insert(terms->pairs.begin(), terms->pairs.end());
+  }
+  double total = 0.0;
+  for (const FundamentalPair* pair : pairs)
+    total += CauchyLoss(cost->PairCost(*pair), cost->loss_scale());
+  return total;
+}
+
+// Where views all look at one point (a landmark photographed from around it, a turntable), the
+// pairs fix the focal lengths' ratios but hardly their common scale: scaling every estimate
+// together changes the joint cost by less than min_cost_rise (CostRise's test, on all cameras at
+// once), though each camera alone, the others held, is well determined. Coordinate descent then
+// drifts along that valley towards whichever start pulls hardest: a two-image camera whose EXIF is
+// 10x off drags a fourteen-image camera with the right value 20% along. Where some focal lengths
+// are given, their consensus sets the scale the views cannot: every estimate is moved together so
+// that the given cameras' median log ratio of estimate to given value (weighted by their pairs) is
+// zero; the pairs keep the ratios. Returns whether it did.
+bool ScaleFromGivenFocalLengths(const std::map<uint32_t, const CameraTerms*>& estimable,
+                                const std::map<uint32_t, bool>& given,
+                                const ViewGraphCalibrationOptions& options, FocalCost* cost,
+                                std::map<uint32_t, double>* log_scales) {
+  std::vector<std::pair<double, double>> given_ratios;  // log(estimate / given), weight
+  for (const auto& [camera_id, terms] : estimable) {
+    if (given.at(camera_id)) {
+      given_ratios.emplace_back(log_scales->at(camera_id),
+                                static_cast<double>(terms->pairs.size()));
+    }
+  }
+  if (given_ratios.empty()) return false;
+  const std::map<uint32_t, double> estimate = *log_scales;
+  auto joint = [&](double shift) { return JointCost(estimable, cost, estimate, shift, log_scales); };
+  size_t num_pairs = 0;
+  for (const auto& [camera_id, terms] : estimable) num_pairs += terms->pairs.size();
+  const double floor = num_pairs * CauchyLoss(0.002, cost->loss_scale());
+  const double minimum = std::max(joint(0.0), floor);
+  const double rise = std::min(joint(std::log(0.8)), joint(std::log(1.25))) - minimum;
+  if (rise / minimum >= options.min_cost_rise) {
+    joint(0.0);
+    return false;
+  }
+  std::sort(given_ratios.begin(), given_ratios.end());
+  double total_weight = 0.0;
+  for (const auto& [ratio, weight] : given_ratios) total_weight += weight;
+  double median = given_ratios.back().first, accumulated = 0.0;
+  for (const auto& [ratio, weight] : given_ratios) {
+    accumulated += weight;
+    if (accumulated >= 0.5 * total_weight) {
+      median = ratio;
+      break;
+    }
+  }
+  joint(-median);
+  return true;
 }
 
 // Why an estimate is not to be trusted; empty when it is.
@@ -288,8 +379,8 @@ std::string EstimateProblem(const CameraCalibration& result, const EstimateShape
   }
   if (shape.at_edge) {
     return "the estimate sits at the edge of the search range (" +
-           std::to_string(options.min_focal_factor) + " to " +
-           std::to_string(options.max_focal_factor) + " x the prior)";
+           FormatOptionNumber(options.min_focal_ratio) + " to " + FormatOptionNumber(options.max_focal_ratio) +
+           " x the longest image side)";
   }
   if (shape.cost_rise < options.min_cost_rise) {
     const std::string rise =
@@ -310,6 +401,33 @@ std::string EstimateProblem(const CameraCalibration& result, const EstimateShape
 
 }  // namespace
 
+const char* FocalOutcomeName(FocalOutcome outcome) {
+  switch (outcome) {
+    case FocalOutcome::kEstimated: return "estimated";
+    case FocalOutcome::kNotEstimated: return "not estimated";
+    case FocalOutcome::kConfirmed: return "given, confirmed";
+    case FocalOutcome::kDisproved: return "given, disproved";
+    case FocalOutcome::kUntested: return "given, untested";
+  }
+  return "";
+}
+
+namespace {
+
+// The outcome of a camera whose estimate was judged (`result.problem` set when not trusted).
+FocalOutcome OutcomeOf(const CameraCalibration& result,
+                       const ViewGraphCalibrationOptions& options) {
+  if (!result.given) {
+    return result.problem.empty() ? FocalOutcome::kEstimated : FocalOutcome::kNotEstimated;
+  }
+  if (!result.problem.empty()) return FocalOutcome::kUntested;
+  const double distance = std::abs(std::log(result.estimated_focal_px / result.prior_focal_px));
+  return distance <= std::log1p(options.given_focal_tolerance) ? FocalOutcome::kConfirmed
+                                                                : FocalOutcome::kDisproved;
+}
+
+}  // namespace
+
 ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& database,
                                                   const ViewGraphCalibrationOptions& options,
                                                   std::map<uint32_t, Camera>* cameras,
@@ -317,8 +435,8 @@ ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& databas
   options.Check();
   Timer timer;
   ViewGraphCalibrationSummary summary;
-  const std::set<uint32_t> unknown = UnknownCameras(database, *cameras);
-  if (!options.enable || unknown.empty()) return summary;
+  const std::map<uint32_t, bool> to_estimate = CamerasToEstimate(database, *cameras, options);
+  if (!options.enable || to_estimate.empty()) return summary;
   // Identical cameras are estimated as one, through the lowest id among them.
   std::map<uint32_t, uint32_t> estimated_as;
   for (const auto& [camera_id, camera] : *cameras) estimated_as[camera_id] = camera_id;
@@ -331,43 +449,89 @@ ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& databas
     if (estimated_as.count(pair.camera2)) pair.camera2 = estimated_as.at(pair.camera2);
   }
   const std::map<uint32_t, CameraTerms> terms =
-      TermsOfUnknownCameras(pairs, unknown, *cameras, options);
+      TermsOfCameras(pairs, to_estimate, *cameras, options);
   std::map<uint32_t, const CameraTerms*> estimable;
+  std::map<uint32_t, LogRange> ranges;
   for (const auto& [camera_id, camera_terms] : terms) {
     if (static_cast<int>(camera_terms.pairs.size()) >= options.min_num_pairs) {
       estimable[camera_id] = &camera_terms;
+      ranges[camera_id] = SearchRange(cameras->at(camera_id), options);
     }
   }
   std::map<uint32_t, double> log_scales;  // estimable cameras only; absent = prior
   FocalCost cost(*cameras, options, &log_scales);
   const std::map<uint32_t, EstimateShape> shapes =
-      EstimateLogScales(estimable, options, &cost, &log_scales);
+      EstimateLogScales(estimable, to_estimate, ranges, options, &cost, &log_scales);
+  summary.scale_from_given =
+      ScaleFromGivenFocalLengths(estimable, to_estimate, options, &cost, &log_scales);
 
   // Every camera is judged at the joint estimate first; the parameters change only afterwards (the
   // cost reads them).
-  for (const uint32_t member : unknown) {
-    const uint32_t camera_id = estimated_as.at(member);
-    CameraCalibration result;
-    result.camera_id = member;
-    result.prior_focal_px = MeanFocalLength(cameras->at(camera_id));
-    const auto found = terms.find(camera_id);
-    result.num_pairs = found == terms.end() ? 0 : static_cast<int>(found->second.pairs.size());
-    if (!estimable.count(camera_id)) {
-      result.problem = result.num_pairs == 0
-                           ? "no verified pair with a fundamental matrix (only pure rotations or "
-                             "planes?)"
-                           : "only " + std::to_string(result.num_pairs) +
-                                 " pairs with a fundamental matrix (needs " +
-                                 std::to_string(options.min_num_pairs) + ")";
-    } else {
-      std::vector<double> costs;
-      for (const FundamentalPair* pair : found->second.pairs) costs.push_back(cost.PairCost(*pair));
-      result.median_cost = Median(costs);
-      result.estimated_focal_px = result.prior_focal_px * std::exp(log_scales.at(camera_id));
-      result.problem = EstimateProblem(result, shapes.at(camera_id), options);
-      result.estimated = result.problem.empty();
+  auto judge = [&](const std::map<uint32_t, EstimateShape>& shape_of) {
+    std::vector<CameraCalibration> judged;
+    for (const auto& [member, given] : to_estimate) {
+      const uint32_t camera_id = estimated_as.at(member);
+      CameraCalibration result;
+      result.camera_id = member;
+      result.given = given;
+      result.prior_focal_px = MeanFocalLength(cameras->at(camera_id));
+      const auto found = terms.find(camera_id);
+      result.num_pairs = found == terms.end() ? 0 : static_cast<int>(found->second.pairs.size());
+      if (!estimable.count(camera_id)) {
+        result.problem = result.num_pairs == 0
+                             ? "no verified pair with a fundamental matrix (only pure rotations "
+                               "or planes?)"
+                             : "only " + std::to_string(result.num_pairs) +
+                                   " pairs with a fundamental matrix (needs " +
+                                   std::to_string(options.min_num_pairs) + ")";
+      } else {
+        std::vector<double> costs;
+        for (const FundamentalPair* pair : found->second.pairs)
+          costs.push_back(cost.PairCost(*pair));
+        result.median_cost = Median(costs);
+        result.estimated_focal_px = result.prior_focal_px * std::exp(log_scales.at(camera_id));
+        result.problem = EstimateProblem(result, shape_of.at(camera_id), options);
+      }
+      result.outcome = OutcomeOf(result, options);
+      result.estimated = result.outcome == FocalOutcome::kEstimated ||
+                         result.outcome == FocalOutcome::kDisproved;
+      judged.push_back(result);
     }
-    summary.cameras.push_back(result);
+    return judged;
+  };
+  summary.cameras = judge(shapes);
+  // A given focal length the pairs confirm is the best value there is for its camera: the others
+  // are estimated once more against it held, so that a disproved or unknown camera's estimate
+  // does not carry the joint estimate's error along the valley of the ratios.
+  std::map<uint32_t, const CameraTerms*> others;
+  bool any_confirmed = false;
+  for (const CameraCalibration& result : summary.cameras) {
+    const uint32_t camera_id = estimated_as.at(result.camera_id);
+    if (!estimable.count(camera_id)) continue;
+    if (result.outcome == FocalOutcome::kConfirmed) {
+      log_scales[camera_id] = 0.0;
+      any_confirmed = true;
+    } else {
+      others[camera_id] = estimable.at(camera_id);
+    }
+  }
+  if (any_confirmed && !others.empty()) {
+    std::map<uint32_t, EstimateShape> anchored = shapes;
+    for (const auto& [camera_id, camera_terms] : others) {
+      auto at = [&, id = camera_id, t = camera_terms](double log_scale) {
+        return cost.Evaluate(id, *t, log_scale);
+      };
+      EstimateShape& shape = anchored[camera_id];
+      const LogRange& range = ranges.at(camera_id);
+      const double best = MinimiseOverLogScale(at, range.low, range.high, &shape.at_edge);
+      shape.cost_rise = CostRise(&cost, camera_id, *camera_terms, best);
+      log_scales[camera_id] = best;
+    }
+    // The confirmed ones keep their report of the joint estimate.
+    std::vector<CameraCalibration> again = judge(anchored);
+    for (size_t k = 0; k < again.size(); ++k) {
+      if (summary.cameras[k].outcome != FocalOutcome::kConfirmed) summary.cameras[k] = again[k];
+    }
   }
   for (const CameraCalibration& result : summary.cameras) {
     if (!result.estimated) continue;
@@ -375,6 +539,8 @@ ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& databas
     const double factor = std::exp(log_scales.at(estimated_as.at(result.camera_id)));
     camera.params[0] *= factor;
     if (!HasSingleFocalLength(camera.model)) camera.params[1] *= factor;
+    // A disproved focal length is a start from here on, as a guess is: refined, never held.
+    camera.has_prior_focal_length = false;
   }
   summary.seconds = timer.ElapsedSeconds();
   return summary;

@@ -27,9 +27,21 @@ struct ViewGraphCalibrationOptions {
   // Estimate the focal length of every camera whose prior_focal_length flag is 0 (COLMAP's
   // "unknown": no EXIF, no user calibration).
   bool enable = true;
-  // Search range, as factors of the prior focal length (COLMAP's guess is 1.2 x the longest side).
-  double min_focal_factor = 0.25;
-  double max_focal_factor = 4.0;
+  // Test given focal lengths too (prior_focal_length 1: EXIF's, or the user's): a given value is
+  // where the camera starts, kept when the pairs confirm it or cannot tell, and replaced by the
+  // estimate when they prove it wrong (given_focal_tolerance). The mapper tests none when bundle
+  // adjustment may not refine focal lengths (the user holds them).
+  bool test_given_focal_lengths = true;
+  // A trusted estimate more than this fraction away from a given focal length replaces it. Smaller
+  // errors are left to the test of given intrinsics after averaging (refine/given_intrinsics_check.h),
+  // which measures them on the reprojection error; averaging bears them (a focal length 20% off
+  // bends relative rotations by a fraction of a degree at the image centre).
+  double given_focal_tolerance = 0.2;
+  // Search range, absolute: the focal length over the image's longest side, 0.25 to 20 (a
+  // field of view of 127 to 2.9 degrees across it), whatever the prior says, so that an EXIF value
+  // 10x off is still tested back.
+  double min_focal_ratio = 0.25;
+  double max_focal_ratio = 20.0;
   // A camera is estimated from at least this many pairs with a fundamental matrix...
   int min_num_pairs = 3;
   // ...each with at least this many verified matches.
@@ -62,19 +74,34 @@ struct ViewGraphCalibrationOptions {
 // (util/option_table.h): the command line, Check(), summary.json and Python read them.
 const OptionTable<ViewGraphCalibrationOptions>& ViewGraphCalibrationOptionTable();
 
-// One camera whose focal length was unknown.
+// What the view graph made of one camera's focal length.
+enum class FocalOutcome {
+  kEstimated,     // unknown, estimated
+  kNotEstimated,  // unknown, the guess kept (see `problem`)
+  kConfirmed,     // given, and the estimate agrees within given_focal_tolerance: given value kept
+  kDisproved,     // given, and the estimate is trusted and further away: the estimate replaces it
+  kUntested,      // given, and the pairs cannot tell (see `problem`): given value kept
+};
+const char* FocalOutcomeName(FocalOutcome outcome);
+
+// One camera whose focal length was unknown, or given and tested.
 struct CameraCalibration {
   uint32_t camera_id = 0;
+  bool given = false;               // the database marked the focal length known (EXIF, the user)
   double prior_focal_px = 0.0;      // mean focal length given (COLMAP's guess, or EXIF)
   double estimated_focal_px = 0.0;  // the view graph's estimate (0 when none)
   int num_pairs = 0;                // pairs with a fundamental matrix that entered the cost
   double median_cost = 0.0;         // of those pairs at the estimate
-  bool estimated = false;           // false: the prior is kept, for `problem`
-  std::string problem;
+  bool estimated = false;           // the estimate replaced the prior (kEstimated, kDisproved)
+  FocalOutcome outcome = FocalOutcome::kNotEstimated;
+  std::string problem;  // why the estimate is not trusted, when it is not
 };
 
 struct ViewGraphCalibrationSummary {
   std::vector<CameraCalibration> cameras;
+  // The views fixed the focal lengths' ratios only (they all look at one point): the estimates'
+  // common scale is the given focal lengths' consensus.
+  bool scale_from_given = false;
   double seconds = 0.0;
 };
 
@@ -87,8 +114,11 @@ double EssentialMatrixCost(const Eigen::Matrix3d& F, const Eigen::Matrix3d& K1,
 // UNCALIBRATED, whose F is stored), and scales its focal length parameters to the estimate. A
 // camera that cannot be estimated (too few pairs, only pure rotations, estimate at the edge of the
 // range, pairs inconsistent) keeps its prior and is listed with the reason. With
-// `share_identical_cameras`, cameras with the same model, size, parameters and prior flag (COLMAP's
-// one camera per image, all with one guess) are estimated as one.
+// test_given_focal_lengths, a camera whose focal length is given is estimated too and keeps its value unless the estimate
+// disproves it; then it takes the estimate and is marked unknown (has_prior_focal_length false),
+// so that bundle adjustment refines it. With `share_identical_cameras`, cameras with the same
+// model, size, parameters and prior flag (COLMAP's one camera per image, all with one guess) are
+// estimated as one.
 ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& database,
                                                   const ViewGraphCalibrationOptions& options,
                                                   std::map<uint32_t, Camera>* cameras,

@@ -138,7 +138,8 @@ TwoViewGeometry VerifyMatches(uint32_t image_id1, uint32_t image_id2, const Came
   // Without a known focal length (COLMAP's prior_focal_length 0) the essential matrix would hold
   // the guess as truth: estimate F on the pixels instead, as COLMAP does for such pairs, so that
   // the mapper's view-graph calibration can estimate the focal length from it.
-  const bool calibrated = camera1.has_prior_focal_length && camera2.has_prior_focal_length;
+  const bool calibrated = options.essential_matrix_for_given_focal_lengths &&
+                          camera1.has_prior_focal_length && camera2.has_prior_focal_length;
   cv::Mat E, R, t;
   const cv::Mat mask =
       calibrated ? EssentialInlierMask(points1, points2, focal, options, &E, &R, &t)

@@ -63,6 +63,12 @@ struct FeatureMatchingOptions {
   int preemptive_num_features = 100;
   int preemptive_min_matches = 4;
   int num_threads = 2;
+  // Pairs of two cameras with a given focal length are verified with an essential matrix through
+  // it; otherwise with a fundamental matrix on the pixels, as pairs of unknown cameras are. Not an
+  // option: `ramap reconstruct` clears it unless the user gave --ImageReader.camera_params, so that
+  // an EXIF focal length is tested by the mapper against F, never assumed in verification (an E
+  // through a focal length 10x off keeps the wrong inliers, and its F confirms the wrong value).
+  bool essential_matrix_for_given_focal_lengths = true;
 
   DescriptorMatchingOptions descriptor_matching() const { return {max_ratio, cross_check}; }
   void Check() const;  // throws InputError naming the option

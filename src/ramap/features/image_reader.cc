@@ -32,9 +32,10 @@ bool HasImageExtension(const fs::path& path) {
 }
 
 // The camera of an image of width x height under `options`: the given intrinsics, else the EXIF
-// focal length, else COLMAP's guess.
+// focal length, else COLMAP's guess. EXIF of a cropped image is a start, not a prior: its camera is
+// marked unknown, as a guess is.
 Camera MakeCamera(const ImageReaderOptions& options, int width, int height,
-                  std::optional<double> exif_focal_px) {
+                  const std::optional<ExifFocalLength>& exif) {
   Camera camera;
   camera.model = *CameraModelFromName(options.camera_model);
   camera.width = static_cast<uint64_t>(width);
@@ -44,9 +45,9 @@ Camera MakeCamera(const ImageReaderOptions& options, int width, int height,
     camera.has_prior_focal_length = true;
     return camera;
   }
-  camera.has_prior_focal_length = exif_focal_px.has_value();
+  camera.has_prior_focal_length = exif.has_value() && !exif->cropped;
   const double focal =
-      exif_focal_px.value_or(options.default_focal_length_factor * std::max(width, height));
+      exif ? exif->focal_px : options.default_focal_length_factor * std::max(width, height);
   camera.params.assign(NumCameraParams(camera.model), 0.0);
   // f (or fx, fy) first, then the principal point, then distortion at zero.
   const bool one_focal =
@@ -100,7 +101,7 @@ namespace {
 struct ImageResult {
   std::string problem;  // empty when read
   int width = 0, height = 0;
-  std::optional<double> exif_focal_px;
+  std::optional<ExifFocalLength> exif_focal;
   std::optional<GeodeticPoint> exif_gps;
   ImageFeatures features;
 };
@@ -139,10 +140,23 @@ ImageResult ReadImageFeatures(const std::string& path, const ImageReaderOptions&
     return result;
   }
   if (reader.camera_params.empty()) {
-    result.exif_focal_px = ExifFocalLengthPx(path, grey.cols, grey.rows);
+    result.exif_focal = ReadExifFocalLength(path, grey.cols, grey.rows);
   }
   result.exif_gps = ExifGpsPosition(path);
   return result;
+}
+
+// Where the focal length of the camera made for `result` came from, for the user.
+std::string FocalSource(const ImageReaderOptions& reader, const ImageResult& result) {
+  if (!reader.camera_params.empty()) return "--ImageReader.camera_params";
+  if (!result.exif_focal) {
+    return "guess: " + FormatOptionNumber(reader.default_focal_length_factor) +
+           " x the longest side (no EXIF focal length)";
+  }
+  const ExifFocalLength& exif = *result.exif_focal;
+  std::string source = "EXIF (" + exif.source + "): " + FormatOptionNumber(exif.focal_px) + " px";
+  if (!exif.note.empty()) source += "; " + exif.note;
+  return source;
 }
 
 }  // namespace
@@ -178,8 +192,9 @@ FeatureDatabase ExtractImageFeatures(const std::string& image_path,
     if (reader.single_camera && shared_cameras.count(size)) {
       camera_id = shared_cameras.at(size);
     } else {
-      Camera camera = MakeCamera(reader, result.width, result.height, result.exif_focal_px);
+      Camera camera = MakeCamera(reader, result.width, result.height, result.exif_focal);
       camera.camera_id = static_cast<uint32_t>(database.cameras.size()) + 1;
+      summary->focal_sources[camera.camera_id] = FocalSource(reader, result);
       CheckCameraParams(camera, "--ImageReader.camera_params");
       camera_id = camera.camera_id;
       database.cameras[camera_id] = camera;

@@ -3,6 +3,8 @@
 // feature_extractor would write, made with OpenCV's ORB or SIFT).
 #pragma once
 
+#include <cstdint>
+#include <map>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -43,6 +45,8 @@ struct ExtractionSummary {
   std::vector<std::string> skipped_images;  // "NAME: reason" for each image that was not
   int num_keypoints = 0;
   int num_images_with_gps = 0;  // EXIF GPS stored as the image's prior position
+  // Each camera's focal length: the user's, EXIF's (with its resize or crop), or the guess.
+  std::map<uint32_t, std::string> focal_sources;
   double seconds = 0.0;
 };
 

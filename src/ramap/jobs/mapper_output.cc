@@ -31,12 +31,15 @@ nlohmann::json CamerasToJson(const std::vector<CameraIntrinsicsSummary>& summari
                             {"model", camera.model},
                             {"prior_focal_length_known", camera.prior_focal_length_known},
                             {"prior_params", camera.prior_params},
+                            {"focal_source", camera.focal_source},
                             {"final_params", camera.final_params}};
     if (!camera.final_model.empty() && camera.final_model != camera.model)
       entry["final_model"] = camera.final_model;
     const CameraCalibration& estimate = camera.view_graph;
     if (estimate.camera_id != 0) {
       entry["view_graph_calibration"] = {{"estimated", estimate.estimated},
+                                         {"given", estimate.given},
+                                         {"outcome", FocalOutcomeName(estimate.outcome)},
                                          {"prior_focal_px", estimate.prior_focal_px},
                                          {"estimated_focal_px", estimate.estimated_focal_px},
                                          {"num_pairs", estimate.num_pairs},

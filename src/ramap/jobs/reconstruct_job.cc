@@ -20,9 +20,10 @@ namespace ramap {
 
 FeatureDatabase ExtractFeatures(const std::string& image_path, const std::string& image_list,
                                 const FeatureOptions& options, std::ostream* progress,
-                                std::ostream* warnings) {
+                                std::ostream* warnings, ExtractionSummary* extraction) {
   const std::vector<std::string> names = ListImages(image_path, image_list);
-  ExtractionSummary summary;
+  ExtractionSummary local;
+  ExtractionSummary& summary = extraction != nullptr ? *extraction : local;
   FeatureDatabase database = ExtractImageFeatures(image_path, names, options.reader,
                                                   options.extraction, &summary, progress);
   for (const std::string& skipped : summary.skipped_images) {
@@ -126,8 +127,9 @@ ReconstructResult RunReconstructJob(const ReconstructJob& job, std::ostream* pro
   CreatedOutput created_database(database_path);
 
   FeatureOptions& features = options.features;
+  ExtractionSummary extraction;
   FeatureDatabase database =
-      ExtractFeatures(job.image_path, job.image_list, features, progress, warnings);
+      ExtractFeatures(job.image_path, job.image_list, features, progress, warnings, &extraction);
   const DatabaseMatchingSummary matching = MatchFeatures(&database, &features, progress);
   std::filesystem::create_directories(job.output_path);
   WriteColmapDatabase(database, database_path, features.generation);
@@ -141,6 +143,10 @@ ReconstructResult RunReconstructJob(const ReconstructJob& job, std::ostream* pro
   // COLMAP gets the loop pairs too.
   if (closed.database_changed) WriteColmapDatabaseMatches(database, database_path);
   ReconstructResult result{std::move(closed.result), database.images.size()};
+  for (CameraIntrinsicsSummary& camera : result.mapping.summary.cameras) {
+    const auto source = extraction.focal_sources.find(camera.camera_id);
+    if (source != extraction.focal_sources.end()) camera.focal_source = source->second;
+  }
   ColorModelsFromImages(job.image_path, &result.mapping.reconstructions);
   const nlohmann::json run = {
       {"command", "reconstruct"},

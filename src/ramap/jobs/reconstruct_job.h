@@ -15,11 +15,11 @@
 namespace ramap {
 
 // The features of the images in `image_path` (all, or those `image_list` names), with one line
-// to `progress` and a warning per unreadable image to `warnings` (when given). Throws InputError
-// when no image could be read.
+// to `progress` and a warning per unreadable image to `warnings` (when given), and what it found
+// in `extraction` (when given). Throws InputError when no image could be read.
 FeatureDatabase ExtractFeatures(const std::string& image_path, const std::string& image_list,
                                 const FeatureOptions& options, std::ostream* progress,
-                                std::ostream* warnings);
+                                std::ostream* warnings, ExtractionSummary* extraction = nullptr);
 
 // Matches and verifies the pairs the plan chooses; options->matching.mode becomes the mode that
 // ran (auto resolved).

@@ -63,6 +63,10 @@ void ResolveFeatureOptions(FeatureOptions* options) {
 void ResolveReconstructOptions(ReconstructOptions* options) {
   // Each part checked once, by its own resolver; loop closure's ranges are its struct's.
   ResolveFeatureOptions(&options->features);
+  // The cameras' focal lengths are the user's only with --ImageReader.camera_params; EXIF's are
+  // verified with F and tested by the mapper (FeatureMatchingOptions).
+  options->features.matching.essential_matrix_for_given_focal_lengths =
+      !options->features.reader.camera_params.empty();
   options->mapper.Check();
   options->loop_closure.Check();
 }

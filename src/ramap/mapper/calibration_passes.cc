@@ -11,26 +11,48 @@ namespace ramap {
 void LogViewGraphCalibration(const ViewGraphCalibrationSummary& calibration, std::ostream* progress,
                              StageReport* report) {
   if (calibration.cameras.empty()) return;
-  int num_estimated = 0;
+  int num_unknown = 0, num_estimated = 0, num_given = 0, num_disproved = 0;
   std::ostringstream focal_lengths;
+  int num_listed = 0;
   for (const CameraCalibration& camera : calibration.cameras) {
-    num_estimated += camera.estimated;
+    if (camera.given) {
+      ++num_given;
+      num_disproved += camera.outcome == FocalOutcome::kDisproved;
+    } else {
+      ++num_unknown;
+      num_estimated += camera.estimated;
+    }
+    // A collection of many cameras would make this line a page: the first ten, and how many more.
+    if (num_listed++ == 10) focal_lengths << ", ...";
+    if (num_listed > 10) continue;
     if (focal_lengths.tellp() > 0) focal_lengths << ", ";
     focal_lengths << std::fixed << std::setprecision(1) << camera.prior_focal_px << " -> "
                   << (camera.estimated ? camera.estimated_focal_px : camera.prior_focal_px)
                   << " px";
   }
+  std::string counts;
+  if (num_unknown > 0) {
+    counts = std::to_string(num_estimated) + " of " + std::to_string(num_unknown) +
+             " uncalibrated cameras estimated";
+  }
+  if (num_given > 0) {
+    if (!counts.empty()) counts += "; ";
+    counts += std::to_string(num_disproved) + " of " + std::to_string(num_given) +
+              " given focal lengths disproved by the pairs";
+  }
+  if (calibration.scale_from_given) {
+    counts += "; the views fix only the focal lengths' ratios (they look at one point): their "
+              "scale is the given focal lengths' median";
+  }
   RecordStage(stage::kViewGraphCalibration, calibration.seconds,
-              std::to_string(num_estimated) + " of " + std::to_string(calibration.cameras.size()) +
-                  " uncalibrated cameras estimated (" + focal_lengths.str() + ")",
-              progress, report);
+              counts + " (" + focal_lengths.str() + ")", progress, report);
 }
 
 FirstPass FirstPassOptions(const MapperOptions& options,
                            const ViewGraphCalibrationSummary& calibration) {
   const bool unknown_focal =
       std::any_of(calibration.cameras.begin(), calibration.cameras.end(),
-                  [](const CameraCalibration& camera) { return !camera.estimated; });
+                  [](const CameraCalibration& camera) { return !camera.given && !camera.estimated; });
   if (!options.AdjustsAfterAveraging() || !unknown_focal || options.calibration_num_points == 0 ||
       !(options.max_focal_change_in_bundle_adjustment > 0) ||
       !options.bundle_adjustment.refine_focal_length) {

@@ -152,9 +152,11 @@ PassOutcome RunMapperPass(const FeatureDatabase& database, const MapperOptions& 
   // 0. The focal lengths the database does not know, from the view graph's F matrices.
   std::map<uint32_t, Camera> cameras = given_cameras ? *given_cameras : database.cameras;
   if (!given_cameras) {
-    outcome.calibration =
-        CalibrateFocalLengths(database, options.view_graph_calibration, &cameras,
-                              options.bundle_adjustment.share_identical_intrinsics);
+    // Given focal lengths the user holds (bundle adjustment refines none) are not tested.
+    ViewGraphCalibrationOptions calibration = options.view_graph_calibration;
+    calibration.test_given_focal_lengths &= options.bundle_adjustment.refine_focal_length;
+    outcome.calibration = CalibrateFocalLengths(database, calibration, &cameras,
+                                                options.bundle_adjustment.share_identical_intrinsics);
   }
   LogViewGraphCalibration(outcome.calibration, progress, &report);
   const FirstPass first = FirstPassOptions(options, outcome.calibration);

@@ -12,6 +12,9 @@ std::vector<CameraIntrinsicsSummary> SummariseIntrinsics(
     entry.model = CameraModelName(camera.model);
     entry.prior_focal_length_known = camera.has_prior_focal_length;
     entry.prior_params = camera.params;
+    entry.focal_source = camera.has_prior_focal_length
+                             ? "database: given (prior_focal_length 1: EXIF or the user)"
+                             : "database: a guess (prior_focal_length 0)";
     for (const CameraCalibration& estimate : calibration.cameras) {
       if (estimate.camera_id == camera_id) entry.view_graph = estimate;
     }

@@ -782,19 +782,32 @@ function renderSummary(section) {
   }
   const cameras = summary.cameras || [];
   if (cameras.length) {
-    section.append(element('h3', {text: 'Cameras: prior, view-graph estimate, final'}));
+    section.append(element('h3', {text: 'Cameras: focal length given (EXIF, the user) or guessed, view-graph estimate, final'}));
     section.append(table(
-        ['camera', 'model', 'focal length known', 'prior', 'view-graph estimate', 'final'],
+        ['camera', 'model', 'focal length given', 'given or guessed', 'view-graph estimate', 'final'],
         cameras.map((c) => {
           const vg = c.view_graph_calibration;
           let estimate = 'not run';
-          if (vg)
-            estimate = vg.estimated ? fixed(vg.estimated_focal_px, 1) + ' px' :
-                                      'kept the prior: ' + (vg.problem || 'not estimated');
+          if (vg) {
+            const value = vg.estimated_focal_px ? fixed(vg.estimated_focal_px, 1) + ' px' : '';
+            if (vg.outcome === 'given, confirmed')
+              estimate = value + ': confirms the given focal length';
+            else if (vg.outcome === 'given, disproved')
+              estimate = value + ': disproves the given focal length, which it replaces';
+            else if (vg.estimated)
+              estimate = value;
+            else
+              estimate = 'kept the prior: ' + (vg.problem || 'not estimated');
+          }
           const params = (p) =>
               (p || []).map((v) => (v === null ? 'NaN' : Number(v.toPrecision(6)))).join(', ');
           return [
-            String(c.camera_id), c.model, c.prior_focal_length_known ? 'yes' : 'no (guess)',
+            String(c.camera_id), c.model,
+            element('span', {
+              class: 'wrap',
+              text: (c.prior_focal_length_known ? 'yes' : 'no') +
+                  (c.focal_source ? ': ' + c.focal_source : '')
+            }),
             params(c.prior_params), element('span', {class: 'wrap', text: estimate}),
             params(c.final_params)
           ];

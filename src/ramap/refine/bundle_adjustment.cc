@@ -180,6 +180,15 @@ void HoldFixedIntrinsics(const BundleAdjustmentOptions& options, Reconstruction*
           std::make_unique<ceres::SubsetManifold>(static_cast<int>(camera.params.size()), fixed));
       problem->SetManifold(params, manifolds->back().get());
     }
+    // A focal length refined from a wrong start (an EXIF value or a crop's) can cross zero in a
+    // long step and end negative, which no camera has: it is kept above a field of view of 170
+    // degrees across the longest side, far below any start the mapper gives it.
+    if (std::find(fixed.begin(), fixed.end(), 0) != fixed.end()) continue;
+    const double lowest = 0.05 * static_cast<double>(std::max(camera.width, camera.height));
+    if (!(lowest > 0)) continue;
+    const int num_focal = HasSingleFocalLength(camera.model) ? 1 : 2;
+    for (int k = 0; k < num_focal; ++k)
+      problem->SetParameterLowerBound(params, k, std::min(lowest, 0.5 * params[k]));
   }
 }
 

@@ -81,16 +81,22 @@ class FocalCost {
     return total;
   }
 
-  // The same with every camera of `camera_ids` at one common log scale, over `pairs`.
-  double EvaluateCommon(const std::vector<uint32_t>& camera_ids,
-                        const std::vector<const FundamentalPair*>& pairs, double log_scale) {
-    for (const uint32_t camera_id : camera_ids) log_scales_[camera_id] = log_scale;
+  // The same with every camera of `offsets` at log scale offset + `log_ratio` (one common
+  // focal length over the longest side when the offsets are each camera's log(longest side /
+  // prior)), over `pairs`.
+  double EvaluateCommon(const std::map<uint32_t, double>& offsets,
+                        const std::vector<const FundamentalPair*>& pairs, double log_ratio) {
+    double prior_term = 0.0;
+    for (const auto& [camera_id, offset] : offsets) {
+      log_scales_[camera_id] = offset + log_ratio;
+      const double prior = (offset + log_ratio) / std::log(2.0);
+      prior_term += options_.prior_weight * prior * prior;
+    }
     double total = 0.0;
     for (const FundamentalPair* pair : pairs) {
       total += CauchyLoss(PairCost(*pair), options_.loss_scale);
     }
-    const double prior = log_scale / std::log(2.0);
-    return total + options_.prior_weight * camera_ids.size() * prior * prior;
+    return total + prior_term;
   }
 
   double loss_scale() const { return options_.loss_scale; }
@@ -111,9 +117,10 @@ class FocalCost {
 // best sample. Returns the minimiser and, in `at_edge`, whether it sits on the range's boundary.
 // The grid's step is 1.2% of the focal length, fine enough that golden-section search starts in
 // the minimum's own valley.
+constexpr double kGridStep = 0.01155;  // ln(16) / 240
+
 template <typename Cost>
 double MinimiseOverLogScale(Cost&& cost, double low, double high, bool* at_edge) {
-  constexpr double kGridStep = 0.01155;  // ln(16) / 240
   const int kSamples = std::max(3, static_cast<int>(std::ceil((high - low) / kGridStep)) + 1);
   const double step = (high - low) / (kSamples - 1);
   int best = 0;
@@ -160,6 +167,7 @@ void ViewGraphCalibrationOptions::Check() const {
   CheckOption(loss_scale > 0, s + "loss_scale", "> 0", loss_scale);
   CheckOption(prior_weight >= 0, s + "prior_weight", ">= 0", prior_weight);
   CheckOption(num_rounds >= 1, s + "num_rounds", ">= 1", num_rounds);
+  CheckOption(round_search_factor >= 1, s + "round_search_factor", ">= 1", round_search_factor);
   CheckOption(min_cost_rise >= 0, s + "min_cost_rise", ">= 0", min_cost_rise);
 }
 
@@ -258,6 +266,20 @@ LogRange SearchRange(const Camera& camera, const ViewGraphCalibrationOptions& op
           std::log(options.max_focal_ratio * side / prior)};
 }
 
+// Where a camera's rounds search: its whole range when it has no start yet (it is estimated
+// alone), else within a factor of 3 of its start. With a camera per image, each has a few pairs,
+// and over the whole range one camera alone found minima at 3-4 times its focal length (pairs
+// whose F is nearly affine fit a long focal length about as well), which the next cameras then
+// followed; the common start is within that factor of the truth on every set here.
+LogRange RoundRange(const LogRange& range, const std::map<uint32_t, double>& log_scales,
+                    uint32_t camera_id, const ViewGraphCalibrationOptions& options) {
+  const auto start = log_scales.find(camera_id);
+  if (start == log_scales.end() || !(options.round_search_factor > 1)) return range;
+  const double window = std::log(options.round_search_factor);
+  return {std::max(range.low, start->second - window),
+          std::min(range.high, start->second + window)};
+}
+
 // Minimises the cost over the log scales of the cameras in `estimable` (each with at least
 // min_num_pairs pairs): first one common factor for the unknown ones, then camera by camera, each
 // over its own range.
@@ -269,25 +291,40 @@ std::map<uint32_t, EstimateShape> EstimateLogScales(
   // The guesses follow one rule (1.2 x the longest side), so they tend to be off alike, and
   // camera-by-camera rounds alone, each camera answering the others' wrong values, stay near a
   // jointly wrong start (without the common start, Herz-Jesus-P8 with a camera per image stayed
-  // far from its true focal length). Given focal lengths follow no common rule: each starts at
-  // its own.
-  std::vector<uint32_t> guessed;
+  // far from its true focal length). So all start at the one focal length over the longest side
+  // that fits their pairs best. Given focal lengths join that search where there are any: from
+  // internet photos, many are far off (a crop's, a resize's without the original size), and
+  // camera-by-camera rounds from them stayed far off too; each given camera then starts at its
+  // own value or the common one, whichever fits its pairs better.
+  bool any_given = false;
+  for (const auto& [camera_id, terms] : estimable) any_given = any_given || given.at(camera_id);
+  std::map<uint32_t, double> offsets;  // log(longest side / prior): log scale at ratio 1
   std::set<const FundamentalPair*> linked;
-  LogRange common_range{-1e9, 1e9};
   for (const auto& [camera_id, terms] : estimable) {
     if (given.at(camera_id)) continue;
-    guessed.push_back(camera_id);
+    offsets[camera_id] = ranges.at(camera_id).low - std::log(options.min_focal_ratio);
     linked.insert(terms->pairs.begin(), terms->pairs.end());
-    common_range.low = std::max(common_range.low, ranges.at(camera_id).low);
-    common_range.high = std::min(common_range.high, ranges.at(camera_id).high);
   }
-  if (guessed.size() > 1 && common_range.low < common_range.high) {
+  const size_t num_guessed = offsets.size();
+  if (any_given) {
+    for (const auto& [camera_id, terms] : estimable) {
+      offsets[camera_id] = ranges.at(camera_id).low - std::log(options.min_focal_ratio);
+      linked.insert(terms->pairs.begin(), terms->pairs.end());
+    }
+  }
+  if (num_guessed > 1 || (any_given && offsets.size() > 1)) {
     const std::vector<const FundamentalPair*> linked_pairs(linked.begin(), linked.end());
     bool edge = false;
     const double common = MinimiseOverLogScale(
-        [&](double log_scale) { return cost->EvaluateCommon(guessed, linked_pairs, log_scale); },
-        common_range.low, common_range.high, &edge);
-    for (const uint32_t camera_id : guessed) (*log_scales)[camera_id] = common;
+        [&](double log_ratio) { return cost->EvaluateCommon(offsets, linked_pairs, log_ratio); },
+        std::log(options.min_focal_ratio), std::log(options.max_focal_ratio), &edge);
+    cost->EvaluateCommon(offsets, linked_pairs, common);  // every camera at the common start
+    for (const auto& [camera_id, terms] : estimable) {
+      if (!given.at(camera_id)) continue;
+      const double at_common = cost->Evaluate(camera_id, *terms, log_scales->at(camera_id));
+      const double at_given = cost->Evaluate(camera_id, *terms, 0.0);
+      (*log_scales)[camera_id] = at_given <= at_common ? 0.0 : offsets.at(camera_id) + common;
+    }
   }
   std::map<uint32_t, EstimateShape> shapes;
   // Rounds let each camera answer the others' new values: one camera alone (every image sharing
@@ -299,8 +336,10 @@ std::map<uint32_t, EstimateShape> EstimateLogScales(
         return cost->Evaluate(id, *t, log_scale);
       };
       EstimateShape& shape = shapes[camera_id];
-      const LogRange& range = ranges.at(camera_id);
+      const LogRange range = RoundRange(ranges.at(camera_id), *log_scales, camera_id, options);
       const double best = MinimiseOverLogScale(at, range.low, range.high, &shape.at_edge);
+      shape.at_edge = shape.at_edge && (best <= ranges.at(camera_id).low + kGridStep ||
+                                        best >= ranges.at(camera_id).high - kGridStep);
       shape.cost_rise = CostRise(cost, camera_id, *terms, best);
       (*log_scales)[camera_id] = best;
     }
@@ -326,13 +365,13 @@ double JointCost(const std::map<uint32_t, const CameraTerms*>& estimable, FocalC
 
 // Where views all look at one point (a landmark photographed from around it, a turntable), the
 // pairs fix the focal lengths' ratios but hardly their common scale: scaling every estimate
-// together changes the joint cost by less than min_cost_rise (CostRise's test, on all cameras at
-// once), though each camera alone, the others held, is well determined. Coordinate descent then
-// drifts along that valley towards whichever start pulls hardest: a two-image camera whose EXIF is
-// 10x off drags a fourteen-image camera with the right value 20% along. Where some focal lengths
-// are given, their consensus sets the scale the views cannot: every estimate is moved together so
-// that the given cameras' median log ratio of estimate to given value (weighted by their pairs) is
-// zero; the pairs keep the ratios. Returns whether it did.
+// together changes the joint cost little, though each camera alone, the others held, is well
+// determined. Coordinate descent then drifts along that valley towards whichever start pulls
+// hardest: a two-image camera whose EXIF is 10x off drags a fourteen-image camera with the right
+// value 20% along. Where some focal lengths are given, their consensus sets the scale the views
+// cannot: every estimate is moved together so that the given cameras' median log ratio of
+// estimate to given value (weighted by their pairs) is zero, where that raises the joint cost by
+// less than min_cost_rise; the pairs keep the ratios. Returns whether it moved them.
 bool ScaleFromGivenFocalLengths(const std::map<uint32_t, const CameraTerms*>& estimable,
                                 const std::map<uint32_t, bool>& given,
                                 const ViewGraphCalibrationOptions& options, FocalCost* cost,
@@ -351,11 +390,6 @@ bool ScaleFromGivenFocalLengths(const std::map<uint32_t, const CameraTerms*>& es
   for (const auto& [camera_id, terms] : estimable) num_pairs += terms->pairs.size();
   const double floor = num_pairs * CauchyLoss(0.002, cost->loss_scale());
   const double minimum = std::max(joint(0.0), floor);
-  const double rise = std::min(joint(std::log(0.8)), joint(std::log(1.25))) - minimum;
-  if (rise / minimum >= options.min_cost_rise) {
-    joint(0.0);
-    return false;
-  }
   std::sort(given_ratios.begin(), given_ratios.end());
   double total_weight = 0.0;
   for (const auto& [ratio, weight] : given_ratios) total_weight += weight;
@@ -367,7 +401,12 @@ bool ScaleFromGivenFocalLengths(const std::map<uint32_t, const CameraTerms*>& es
       break;
     }
   }
-  joint(-median);
+  // The given values choose the scale only within what the pairs allow: moved there, the joint
+  // cost may rise by less than min_cost_rise (CostRise's test of a determined estimate).
+  if (std::abs(median) < 1e-9 || joint(-median) - minimum >= options.min_cost_rise * minimum) {
+    joint(0.0);
+    return false;
+  }
   return true;
 }
 
@@ -522,7 +561,7 @@ ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& databas
         return cost.Evaluate(id, *t, log_scale);
       };
       EstimateShape& shape = anchored[camera_id];
-      const LogRange& range = ranges.at(camera_id);
+      const LogRange range = RoundRange(ranges.at(camera_id), log_scales, camera_id, options);
       const double best = MinimiseOverLogScale(at, range.low, range.high, &shape.at_edge);
       shape.cost_rise = CostRise(&cost, camera_id, *camera_terms, best);
       log_scales[camera_id] = best;

@@ -54,6 +54,10 @@ struct ViewGraphCalibrationOptions {
   double prior_weight = 0.01;
   // Rounds of camera-by-camera minimisation (one where a single camera is estimated).
   int num_rounds = 3;
+  // With several cameras, each round searches a camera's focal length within this factor of its
+  // start (the common one, or its given value), not its whole range (view_graph_calibration.cc,
+  // RoundRange).
+  double round_search_factor = 3.0;
   // An estimate whose pairs' median cost stays above this is not trusted (F inconsistent with
   // any focal length: a wrong camera model, or matches of a moving scene).
   double max_median_cost = 0.1;

@@ -501,6 +501,7 @@ ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& databas
   FocalCost cost(*cameras, options, &log_scales);
   const std::map<uint32_t, EstimateShape> shapes =
       EstimateLogScales(estimable, to_estimate, ranges, options, &cost, &log_scales);
+  const std::map<uint32_t, double> pairs_only = log_scales;  // before the given values' scale
   summary.scale_from_given =
       ScaleFromGivenFocalLengths(estimable, to_estimate, options, &cost, &log_scales);
 
@@ -571,6 +572,13 @@ ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& databas
     for (size_t k = 0; k < again.size(); ++k) {
       if (summary.cameras[k].outcome != FocalOutcome::kConfirmed) summary.cameras[k] = again[k];
     }
+  }
+  // A confirmed camera reports what its pairs said, before the given values set the scale (one
+  // given camera alone would otherwise always report its given value).
+  for (CameraCalibration& result : summary.cameras) {
+    const auto own = pairs_only.find(estimated_as.at(result.camera_id));
+    if (result.outcome == FocalOutcome::kConfirmed && own != pairs_only.end())
+      result.estimated_focal_px = result.prior_focal_px * std::exp(own->second);
   }
   for (const CameraCalibration& result : summary.cameras) {
     if (!result.estimated) continue;

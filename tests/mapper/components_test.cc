@@ -52,7 +52,8 @@ TEST(Components, SmallComponentsAreSetAsideLargestFirst) {
   StageReport report;
   const RotationGraph graph = RotationGraphOfAcceptedPairs(database, pairs, &report);
   std::map<uint32_t, std::string>& reasons = report.image_reasons;
-  const std::vector<RotationGraph> components = ComponentsToReconstruct(graph, 3, &reasons);
+  const std::vector<RotationGraph> components =
+      ComponentsToReconstruct(graph, 3, database, &report);
   ASSERT_EQ(components.size(), 2u);
   EXPECT_EQ(components[0].node_ids, (std::vector<uint32_t>{6, 7, 8, 9}));
   EXPECT_EQ(components[1].node_ids, (std::vector<uint32_t>{1, 2, 3}));

@@ -21,9 +21,12 @@ RotationGraph RotationGraphOfAcceptedPairs(const FeatureDatabase& database,
                                            const std::vector<ImagePair>& pairs,
                                            StageReport* report);
 
-// The connected components of `graph`, largest first. Those with fewer than `min_size` images are
-// left out and their images get the reason in `image_reasons`.
+// The connected components of `graph`, each cut where two of its parts are joined through one
+// image with no track seen on both sides (graph/rigid_clusters.h: their relative scale is free),
+// largest first. Those with fewer than `min_size` images are left out and their images get the
+// reason in report->image_reasons; the pairs cut go to report->dropped_edges.
 std::vector<RotationGraph> ComponentsToReconstruct(const RotationGraph& graph, int min_size,
-                                                   std::map<uint32_t, std::string>* image_reasons);
+                                                   const FeatureDatabase& database,
+                                                   StageReport* report);
 
 }  // namespace ramap

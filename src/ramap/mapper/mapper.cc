@@ -181,7 +181,7 @@ PassOutcome RunMapperPass(const FeatureDatabase& database, const MapperOptions& 
   const RefinementPlan refinement = PlanRefinement(pass_options, first.calibration_pass);
   std::vector<ComponentState> components;
   for (RotationGraph& component :
-       ComponentsToReconstruct(graph, options.min_component_size, &report.image_reasons)) {
+       ComponentsToReconstruct(graph, options.min_component_size, database, &report)) {
     components.push_back(ReconstructComponent(input, refinement, std::move(component)));
   }
   WritePassResult(database, priors, std::move(components), std::move(report), &outcome);

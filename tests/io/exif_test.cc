@@ -59,8 +59,8 @@ TEST(Exif, FocalLengthFromTheTagsOfAJpegTheTestWrote) {
 // The focal length the image reader gives the camera of the one image `name` in `dir`.
 Camera ReaderCamera(const test::TempDir& dir, const std::string& name) {
   ExtractionSummary summary;
-  const FeatureDatabase database = ExtractImageFeatures(
-      dir.path(), {name}, ImageReaderOptions(), FeatureExtractionOptions(), &summary);
+  const FeatureDatabase database = ExtractImageFeatures(dir.path(), {name}, ImageReaderOptions(),
+                                                        FeatureExtractionOptions(), &summary);
   EXPECT_EQ(database.cameras.size(), 1u);
   return database.cameras.begin()->second;
 }
@@ -96,8 +96,7 @@ TEST(Exif, FocalLengthOfAResizedImageIsInTheFilesPixels) {
 TEST(Exif, ExifOfACroppedImageIsDetectedAsWrong) {
   test::TempDir dir;
   WriteJpegWithExif(dir / "cropped.jpg", "Exif.Photo.FocalLength", 4.5, 4000, 2000);
-  const std::optional<ExifFocalLength> exif =
-      ReadExifFocalLength(dir / "cropped.jpg", 400, 300);
+  const std::optional<ExifFocalLength> exif = ReadExifFocalLength(dir / "cropped.jpg", 400, 300);
   ASSERT_TRUE(exif.has_value());
   EXPECT_TRUE(exif->cropped);
   EXPECT_NE(exif->note.find("cropped"), std::string::npos) << exif->note;

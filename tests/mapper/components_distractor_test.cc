@@ -87,9 +87,10 @@ TEST(ComponentsDistractor, PhotosOfSomethingElseJoinedThroughOnePhotoStayOutOfTh
   ASSERT_EQ(result.reconstructions.size(), 2u);
   for (const auto& [id, image] : result.reconstructions[1].images) EXPECT_GT(id, kOffset);
   EXPECT_GE(result.reconstructions[1].images.size(), 4u);
-  const auto cut = std::find_if(
-      result.summary.dropped_edges.begin(), result.summary.dropped_edges.end(),
-      [](const DroppedItem& item) { return item.reason.find("through one image") != std::string::npos; });
+  const auto cut = std::find_if(result.summary.dropped_edges.begin(),
+                                result.summary.dropped_edges.end(), [](const DroppedItem& item) {
+                                  return item.reason.find("through one image") != std::string::npos;
+                                });
   EXPECT_NE(cut, result.summary.dropped_edges.end());
 }
 

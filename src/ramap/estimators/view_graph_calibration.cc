@@ -284,10 +284,9 @@ LogRange RoundRange(const LogRange& range, const std::map<uint32_t, double>& log
 // min_num_pairs pairs): first one common factor for the unknown ones, then camera by camera, each
 // over its own range.
 std::map<uint32_t, EstimateShape> EstimateLogScales(
-    const std::map<uint32_t, const CameraTerms*>& estimable,
-    const std::map<uint32_t, bool>& given, const std::map<uint32_t, LogRange>& ranges,
-    const ViewGraphCalibrationOptions& options, FocalCost* cost,
-    std::map<uint32_t, double>* log_scales) {
+    const std::map<uint32_t, const CameraTerms*>& estimable, const std::map<uint32_t, bool>& given,
+    const std::map<uint32_t, LogRange>& ranges, const ViewGraphCalibrationOptions& options,
+    FocalCost* cost, std::map<uint32_t, double>* log_scales) {
   // The guesses follow one rule (1.2 x the longest side), so they tend to be off alike, and
   // camera-by-camera rounds alone, each camera answering the others' wrong values, stay near a
   // jointly wrong start (without the common start, Herz-Jesus-P8 with a camera per image stayed
@@ -385,7 +384,9 @@ bool ScaleFromGivenFocalLengths(const std::map<uint32_t, const CameraTerms*>& es
   }
   if (given_ratios.empty()) return false;
   const std::map<uint32_t, double> estimate = *log_scales;
-  auto joint = [&](double shift) { return JointCost(estimable, cost, estimate, shift, log_scales); };
+  auto joint = [&](double shift) {
+    return JointCost(estimable, cost, estimate, shift, log_scales);
+  };
   size_t num_pairs = 0;
   for (const auto& [camera_id, terms] : estimable) num_pairs += terms->pairs.size();
   const double floor = num_pairs * CauchyLoss(0.002, cost->loss_scale());
@@ -418,15 +419,14 @@ std::string EstimateProblem(const CameraCalibration& result, const EstimateShape
   }
   if (shape.at_edge) {
     return "the estimate sits at the edge of the search range (" +
-           FormatOptionNumber(options.min_focal_ratio) + " to " + FormatOptionNumber(options.max_focal_ratio) +
-           " x the longest image side)";
+           FormatOptionNumber(options.min_focal_ratio) + " to " +
+           FormatOptionNumber(options.max_focal_ratio) + " x the longest image side)";
   }
   if (shape.cost_rise < options.min_cost_rise) {
     const std::string rise =
-        shape.cost_rise > 0
-            ? "only " + std::to_string(static_cast<int>(100 * shape.cost_rise)) +
-                  "% above its minimum"
-            : "no higher than at the estimate";
+        shape.cost_rise > 0 ? "only " + std::to_string(static_cast<int>(100 * shape.cost_rise)) +
+                                  "% above its minimum"
+                            : "no higher than at the estimate";
     return "the pairs leave the focal length undetermined (the cost 20% away is " + rise +
            ": every optical axis through one point, as around a turntable, or too little "
            "rotation)";
@@ -442,11 +442,16 @@ std::string EstimateProblem(const CameraCalibration& result, const EstimateShape
 
 const char* FocalOutcomeName(FocalOutcome outcome) {
   switch (outcome) {
-    case FocalOutcome::kEstimated: return "estimated";
-    case FocalOutcome::kNotEstimated: return "not estimated";
-    case FocalOutcome::kConfirmed: return "given, confirmed";
-    case FocalOutcome::kDisproved: return "given, disproved";
-    case FocalOutcome::kUntested: return "given, untested";
+    case FocalOutcome::kEstimated:
+      return "estimated";
+    case FocalOutcome::kNotEstimated:
+      return "not estimated";
+    case FocalOutcome::kConfirmed:
+      return "given, confirmed";
+    case FocalOutcome::kDisproved:
+      return "given, disproved";
+    case FocalOutcome::kUntested:
+      return "given, untested";
   }
   return "";
 }
@@ -462,7 +467,126 @@ FocalOutcome OutcomeOf(const CameraCalibration& result,
   if (!result.problem.empty()) return FocalOutcome::kUntested;
   const double distance = std::abs(std::log(result.estimated_focal_px / result.prior_focal_px));
   return distance <= std::log1p(options.given_focal_tolerance) ? FocalOutcome::kConfirmed
-                                                                : FocalOutcome::kDisproved;
+                                                               : FocalOutcome::kDisproved;
+}
+
+}  // namespace
+
+namespace {
+
+// What the estimation works on: the cameras to estimate (and whether each is given), the camera
+// each is estimated as, and the pairs of each. Filled in place (SetUpCalibration, after
+// to_estimate): `terms` points into `pairs`.
+struct CalibrationSetup {
+  std::map<uint32_t, bool> to_estimate;
+  std::map<uint32_t, uint32_t> estimated_as;  // identical cameras: the lowest id among them
+  std::vector<FundamentalPair> pairs;
+  std::map<uint32_t, CameraTerms> terms;
+  std::map<uint32_t, const CameraTerms*> estimable;  // at least min_num_pairs pairs
+  std::map<uint32_t, LogRange> ranges;
+};
+
+void SetUpCalibration(const FeatureDatabase& database, const ViewGraphCalibrationOptions& options,
+                      const std::map<uint32_t, Camera>& cameras, bool share_identical_cameras,
+                      CalibrationSetup* setup) {
+  for (const auto& [camera_id, camera] : cameras) setup->estimated_as[camera_id] = camera_id;
+  if (share_identical_cameras) setup->estimated_as = IdenticalCameras(cameras);
+  setup->pairs = PairsWithFundamentalMatrix(database, options.min_num_inliers);
+  for (FundamentalPair& pair : setup->pairs) {
+    if (setup->estimated_as.count(pair.camera1))
+      pair.camera1 = setup->estimated_as.at(pair.camera1);
+    if (setup->estimated_as.count(pair.camera2))
+      pair.camera2 = setup->estimated_as.at(pair.camera2);
+  }
+  setup->terms = TermsOfCameras(setup->pairs, setup->to_estimate, cameras, options);
+  for (const auto& [camera_id, camera_terms] : setup->terms) {
+    if (static_cast<int>(camera_terms.pairs.size()) >= options.min_num_pairs) {
+      setup->estimable[camera_id] = &camera_terms;
+      setup->ranges[camera_id] = SearchRange(cameras.at(camera_id), options);
+    }
+  }
+}
+
+// Each camera judged at the current log scales: its estimate, its pairs' median cost, why it is
+// not trusted, its outcome.
+std::vector<CameraCalibration> JudgeCameras(const CalibrationSetup& setup,
+                                            const std::map<uint32_t, EstimateShape>& shapes,
+                                            const std::map<uint32_t, double>& log_scales,
+                                            const std::map<uint32_t, Camera>& cameras,
+                                            const ViewGraphCalibrationOptions& options,
+                                            FocalCost* cost) {
+  std::vector<CameraCalibration> judged;
+  for (const auto& [member, given] : setup.to_estimate) {
+    const uint32_t camera_id = setup.estimated_as.at(member);
+    CameraCalibration result;
+    result.camera_id = member;
+    result.given = given;
+    result.prior_focal_px = MeanFocalLength(cameras.at(camera_id));
+    const auto found = setup.terms.find(camera_id);
+    result.num_pairs =
+        found == setup.terms.end() ? 0 : static_cast<int>(found->second.pairs.size());
+    if (!setup.estimable.count(camera_id)) {
+      result.problem = result.num_pairs == 0
+                           ? "no verified pair with a fundamental matrix (only pure rotations "
+                             "or planes?)"
+                           : "only " + std::to_string(result.num_pairs) +
+                                 " pairs with a fundamental matrix (needs " +
+                                 std::to_string(options.min_num_pairs) + ")";
+    } else {
+      std::vector<double> costs;
+      for (const FundamentalPair* pair : found->second.pairs)
+        costs.push_back(cost->PairCost(*pair));
+      result.median_cost = Median(costs);
+      result.estimated_focal_px = result.prior_focal_px * std::exp(log_scales.at(camera_id));
+      result.problem = EstimateProblem(result, shapes.at(camera_id), options);
+    }
+    result.outcome = OutcomeOf(result, options);
+    result.estimated =
+        result.outcome == FocalOutcome::kEstimated || result.outcome == FocalOutcome::kDisproved;
+    judged.push_back(result);
+  }
+  return judged;
+}
+
+// A given focal length the pairs confirm is the best value there is for its camera: the others
+// are estimated once more against it held, so that a disproved or unknown camera's estimate does
+// not carry the joint estimate's error along the valley of the ratios. The confirmed ones keep
+// their report of the joint estimate.
+void EstimateAgainstConfirmed(const CalibrationSetup& setup,
+                              const std::map<uint32_t, EstimateShape>& shapes,
+                              const std::map<uint32_t, Camera>& cameras,
+                              const ViewGraphCalibrationOptions& options, FocalCost* cost,
+                              std::map<uint32_t, double>* log_scales,
+                              std::vector<CameraCalibration>* judged) {
+  std::map<uint32_t, const CameraTerms*> others;
+  bool any_confirmed = false;
+  for (const CameraCalibration& result : *judged) {
+    const uint32_t camera_id = setup.estimated_as.at(result.camera_id);
+    if (!setup.estimable.count(camera_id)) continue;
+    if (result.outcome == FocalOutcome::kConfirmed) {
+      (*log_scales)[camera_id] = 0.0;
+      any_confirmed = true;
+    } else {
+      others[camera_id] = setup.estimable.at(camera_id);
+    }
+  }
+  if (!any_confirmed || others.empty()) return;
+  std::map<uint32_t, EstimateShape> anchored = shapes;
+  for (const auto& [camera_id, camera_terms] : others) {
+    auto at = [&, id = camera_id, t = camera_terms](double log_scale) {
+      return cost->Evaluate(id, *t, log_scale);
+    };
+    EstimateShape& shape = anchored[camera_id];
+    const LogRange range = RoundRange(setup.ranges.at(camera_id), *log_scales, camera_id, options);
+    const double best = MinimiseOverLogScale(at, range.low, range.high, &shape.at_edge);
+    shape.cost_rise = CostRise(cost, camera_id, *camera_terms, best);
+    (*log_scales)[camera_id] = best;
+  }
+  const std::vector<CameraCalibration> again =
+      JudgeCameras(setup, anchored, *log_scales, cameras, options, cost);
+  for (size_t k = 0; k < again.size(); ++k) {
+    if ((*judged)[k].outcome != FocalOutcome::kConfirmed) (*judged)[k] = again[k];
+  }
 }
 
 }  // namespace
@@ -474,116 +598,33 @@ ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& databas
   options.Check();
   Timer timer;
   ViewGraphCalibrationSummary summary;
-  const std::map<uint32_t, bool> to_estimate = CamerasToEstimate(database, *cameras, options);
-  if (!options.enable || to_estimate.empty()) return summary;
-  // Identical cameras are estimated as one, through the lowest id among them.
-  std::map<uint32_t, uint32_t> estimated_as;
-  for (const auto& [camera_id, camera] : *cameras) estimated_as[camera_id] = camera_id;
-  if (share_identical_cameras) estimated_as = IdenticalCameras(*cameras);
+  CalibrationSetup setup;
+  setup.to_estimate = CamerasToEstimate(database, *cameras, options);
+  if (!options.enable || setup.to_estimate.empty()) return summary;
+  SetUpCalibration(database, options, *cameras, share_identical_cameras, &setup);
 
-  std::vector<FundamentalPair> pairs =
-      PairsWithFundamentalMatrix(database, options.min_num_inliers);
-  for (FundamentalPair& pair : pairs) {
-    if (estimated_as.count(pair.camera1)) pair.camera1 = estimated_as.at(pair.camera1);
-    if (estimated_as.count(pair.camera2)) pair.camera2 = estimated_as.at(pair.camera2);
-  }
-  const std::map<uint32_t, CameraTerms> terms =
-      TermsOfCameras(pairs, to_estimate, *cameras, options);
-  std::map<uint32_t, const CameraTerms*> estimable;
-  std::map<uint32_t, LogRange> ranges;
-  for (const auto& [camera_id, camera_terms] : terms) {
-    if (static_cast<int>(camera_terms.pairs.size()) >= options.min_num_pairs) {
-      estimable[camera_id] = &camera_terms;
-      ranges[camera_id] = SearchRange(cameras->at(camera_id), options);
-    }
-  }
   std::map<uint32_t, double> log_scales;  // estimable cameras only; absent = prior
   FocalCost cost(*cameras, options, &log_scales);
-  const std::map<uint32_t, EstimateShape> shapes =
-      EstimateLogScales(estimable, to_estimate, ranges, options, &cost, &log_scales);
+  const std::map<uint32_t, EstimateShape> shapes = EstimateLogScales(
+      setup.estimable, setup.to_estimate, setup.ranges, options, &cost, &log_scales);
   const std::map<uint32_t, double> pairs_only = log_scales;  // before the given values' scale
   summary.scale_from_given =
-      ScaleFromGivenFocalLengths(estimable, to_estimate, options, &cost, &log_scales);
-
+      ScaleFromGivenFocalLengths(setup.estimable, setup.to_estimate, options, &cost, &log_scales);
   // Every camera is judged at the joint estimate first; the parameters change only afterwards (the
   // cost reads them).
-  auto judge = [&](const std::map<uint32_t, EstimateShape>& shape_of) {
-    std::vector<CameraCalibration> judged;
-    for (const auto& [member, given] : to_estimate) {
-      const uint32_t camera_id = estimated_as.at(member);
-      CameraCalibration result;
-      result.camera_id = member;
-      result.given = given;
-      result.prior_focal_px = MeanFocalLength(cameras->at(camera_id));
-      const auto found = terms.find(camera_id);
-      result.num_pairs = found == terms.end() ? 0 : static_cast<int>(found->second.pairs.size());
-      if (!estimable.count(camera_id)) {
-        result.problem = result.num_pairs == 0
-                             ? "no verified pair with a fundamental matrix (only pure rotations "
-                               "or planes?)"
-                             : "only " + std::to_string(result.num_pairs) +
-                                   " pairs with a fundamental matrix (needs " +
-                                   std::to_string(options.min_num_pairs) + ")";
-      } else {
-        std::vector<double> costs;
-        for (const FundamentalPair* pair : found->second.pairs)
-          costs.push_back(cost.PairCost(*pair));
-        result.median_cost = Median(costs);
-        result.estimated_focal_px = result.prior_focal_px * std::exp(log_scales.at(camera_id));
-        result.problem = EstimateProblem(result, shape_of.at(camera_id), options);
-      }
-      result.outcome = OutcomeOf(result, options);
-      result.estimated = result.outcome == FocalOutcome::kEstimated ||
-                         result.outcome == FocalOutcome::kDisproved;
-      judged.push_back(result);
-    }
-    return judged;
-  };
-  summary.cameras = judge(shapes);
-  // A given focal length the pairs confirm is the best value there is for its camera: the others
-  // are estimated once more against it held, so that a disproved or unknown camera's estimate
-  // does not carry the joint estimate's error along the valley of the ratios.
-  std::map<uint32_t, const CameraTerms*> others;
-  bool any_confirmed = false;
-  for (const CameraCalibration& result : summary.cameras) {
-    const uint32_t camera_id = estimated_as.at(result.camera_id);
-    if (!estimable.count(camera_id)) continue;
-    if (result.outcome == FocalOutcome::kConfirmed) {
-      log_scales[camera_id] = 0.0;
-      any_confirmed = true;
-    } else {
-      others[camera_id] = estimable.at(camera_id);
-    }
-  }
-  if (any_confirmed && !others.empty()) {
-    std::map<uint32_t, EstimateShape> anchored = shapes;
-    for (const auto& [camera_id, camera_terms] : others) {
-      auto at = [&, id = camera_id, t = camera_terms](double log_scale) {
-        return cost.Evaluate(id, *t, log_scale);
-      };
-      EstimateShape& shape = anchored[camera_id];
-      const LogRange range = RoundRange(ranges.at(camera_id), log_scales, camera_id, options);
-      const double best = MinimiseOverLogScale(at, range.low, range.high, &shape.at_edge);
-      shape.cost_rise = CostRise(&cost, camera_id, *camera_terms, best);
-      log_scales[camera_id] = best;
-    }
-    // The confirmed ones keep their report of the joint estimate.
-    std::vector<CameraCalibration> again = judge(anchored);
-    for (size_t k = 0; k < again.size(); ++k) {
-      if (summary.cameras[k].outcome != FocalOutcome::kConfirmed) summary.cameras[k] = again[k];
-    }
-  }
+  summary.cameras = JudgeCameras(setup, shapes, log_scales, *cameras, options, &cost);
+  EstimateAgainstConfirmed(setup, shapes, *cameras, options, &cost, &log_scales, &summary.cameras);
   // A confirmed camera reports what its pairs said, before the given values set the scale (one
   // given camera alone would otherwise always report its given value).
   for (CameraCalibration& result : summary.cameras) {
-    const auto own = pairs_only.find(estimated_as.at(result.camera_id));
+    const auto own = pairs_only.find(setup.estimated_as.at(result.camera_id));
     if (result.outcome == FocalOutcome::kConfirmed && own != pairs_only.end())
       result.estimated_focal_px = result.prior_focal_px * std::exp(own->second);
   }
   for (const CameraCalibration& result : summary.cameras) {
     if (!result.estimated) continue;
     Camera& camera = cameras->at(result.camera_id);
-    const double factor = std::exp(log_scales.at(estimated_as.at(result.camera_id)));
+    const double factor = std::exp(log_scales.at(setup.estimated_as.at(result.camera_id)));
     camera.params[0] *= factor;
     if (!HasSingleFocalLength(camera.model)) camera.params[1] *= factor;
     // A disproved focal length is a start from here on, as a guess is: refined, never held.

@@ -33,9 +33,10 @@ struct ViewGraphCalibrationOptions {
   // adjustment may not refine focal lengths (the user holds them).
   bool test_given_focal_lengths = true;
   // A trusted estimate more than this fraction away from a given focal length replaces it. Smaller
-  // errors are left to the test of given intrinsics after averaging (refine/given_intrinsics_check.h),
-  // which measures them on the reprojection error; averaging bears them (a focal length 20% off
-  // bends relative rotations by a fraction of a degree at the image centre).
+  // errors are left to the test of given intrinsics after averaging
+  // (refine/given_intrinsics_check.h), which measures them on the reprojection error; averaging
+  // bears them (a focal length 20% off bends relative rotations by a fraction of a degree at the
+  // image centre).
   double given_focal_tolerance = 0.2;
   // Search range, absolute: the focal length over the image's longest side, 0.25 to 20 (a
   // field of view of 127 to 2.9 degrees across it), whatever the prior says, so that an EXIF value
@@ -118,11 +119,11 @@ double EssentialMatrixCost(const Eigen::Matrix3d& F, const Eigen::Matrix3d& K1,
 // UNCALIBRATED, whose F is stored), and scales its focal length parameters to the estimate. A
 // camera that cannot be estimated (too few pairs, only pure rotations, estimate at the edge of the
 // range, pairs inconsistent) keeps its prior and is listed with the reason. With
-// test_given_focal_lengths, a camera whose focal length is given is estimated too and keeps its value unless the estimate
-// disproves it; then it takes the estimate and is marked unknown (has_prior_focal_length false),
-// so that bundle adjustment refines it. With `share_identical_cameras`, cameras with the same
-// model, size, parameters and prior flag (COLMAP's one camera per image, all with one guess) are
-// estimated as one.
+// test_given_focal_lengths, a camera whose focal length is given is estimated too and keeps its
+// value unless the estimate disproves it; then it takes the estimate and is marked unknown
+// (has_prior_focal_length false), so that bundle adjustment refines it. With
+// `share_identical_cameras`, cameras with the same model, size, parameters and prior flag (COLMAP's
+// one camera per image, all with one guess) are estimated as one.
 ViewGraphCalibrationSummary CalibrateFocalLengths(const FeatureDatabase& database,
                                                   const ViewGraphCalibrationOptions& options,
                                                   std::map<uint32_t, Camera>* cameras,

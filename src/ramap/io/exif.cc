@@ -85,16 +85,15 @@ void ScaleToFile(const Exiv2::ExifData& exif, int width, int height, ExifFocalLe
          << ", so the focal length is a start only (the crop assumed to cut one side)";
   } else if (std::abs(sx - 1.0) > tolerance) {
     focal->focal_px *= sx;
-    note << "resized from EXIF's " << focal->exif_width << "x" << focal->exif_height
-         << " by " << sx;
+    note << "resized from EXIF's " << focal->exif_width << "x" << focal->exif_height << " by "
+         << sx;
   }
   focal->note = note.str();
 }
 
 }  // namespace
 
-std::optional<ExifFocalLength> ReadExifFocalLength(const std::string& path, int width,
-                                                   int height) {
+std::optional<ExifFocalLength> ReadExifFocalLength(const std::string& path, int width, int height) {
   try {
     auto image = Exiv2::ImageFactory::open(path);
     if (image.get() == nullptr || width <= 0 || height <= 0) return std::nullopt;

@@ -41,8 +41,9 @@ void LogViewGraphCalibration(const ViewGraphCalibrationSummary& calibration, std
               " given focal lengths disproved by the pairs";
   }
   if (calibration.scale_from_given) {
-    counts += "; the views fix only the focal lengths' ratios (they look at one point): their "
-              "scale is the given focal lengths' median";
+    counts +=
+        "; the views fix only the focal lengths' ratios (they look at one point): their "
+        "scale is the given focal lengths' median";
   }
   RecordStage(stage::kViewGraphCalibration, calibration.seconds,
               counts + " (" + focal_lengths.str() + ")", progress, report);
@@ -50,9 +51,9 @@ void LogViewGraphCalibration(const ViewGraphCalibrationSummary& calibration, std
 
 FirstPass FirstPassOptions(const MapperOptions& options,
                            const ViewGraphCalibrationSummary& calibration) {
-  const bool unknown_focal =
-      std::any_of(calibration.cameras.begin(), calibration.cameras.end(),
-                  [](const CameraCalibration& camera) { return !camera.given && !camera.estimated; });
+  const bool unknown_focal = std::any_of(
+      calibration.cameras.begin(), calibration.cameras.end(),
+      [](const CameraCalibration& camera) { return !camera.given && !camera.estimated; });
   if (!options.AdjustsAfterAveraging() || !unknown_focal || options.calibration_num_points == 0 ||
       !(options.max_focal_change_in_bundle_adjustment > 0) ||
       !options.bundle_adjustment.refine_focal_length) {

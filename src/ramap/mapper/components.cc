@@ -57,6 +57,30 @@ int SpanningTracks(const std::vector<Track>& tracks, const std::set<uint32_t>& s
   return count;
 }
 
+// Images in no cluster (group -1) join the group most of their pairs reach, in passes until each
+// that a pair links to a group has one.
+void AssignImagesInNoCluster(const RotationGraph& component,
+                             const std::unordered_map<uint32_t, int>& index,
+                             std::vector<int>* group) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<std::map<int, int>> votes(group->size());
+    for (const RelativeRotationEdge& edge : component.edges) {
+      const int a = index.at(edge.i), b = index.at(edge.j);
+      if ((*group)[a] < 0 && (*group)[b] >= 0) ++votes[a][(*group)[b]];
+      if ((*group)[b] < 0 && (*group)[a] >= 0) ++votes[b][(*group)[a]];
+    }
+    for (size_t k = 0; k < group->size(); ++k) {
+      if ((*group)[k] >= 0 || votes[k].empty()) continue;
+      (*group)[k] =
+          std::max_element(votes[k].begin(), votes[k].end(), [](const auto& x, const auto& y) {
+            return x.second < y.second;
+          })->first;
+      changed = true;
+    }
+  }
+}
+
 // `component` cut where two of its clusters are joined through one image and no track spans the
 // join (graph/rigid_clusters.h): nothing fixes one's scale against the other's, and averaged as
 // one they would force photos of something else into the scene's model. Each group of clusters
@@ -66,7 +90,8 @@ std::vector<RotationGraph> SplitAtScaleFreeJoins(const RotationGraph& component,
                                                  const FeatureDatabase& database,
                                                  StageReport* report) {
   const std::vector<int> clusters = TriangleClusters(component);
-  const int num_clusters = clusters.empty() ? 0 : *std::max_element(clusters.begin(), clusters.end()) + 1;
+  const int num_clusters =
+      clusters.empty() ? 0 : *std::max_element(clusters.begin(), clusters.end()) + 1;
   if (num_clusters <= 1) return {component};
   std::vector<int> parent(num_clusters);
   std::iota(parent.begin(), parent.end(), 0);
@@ -98,24 +123,8 @@ std::vector<RotationGraph> SplitAtScaleFreeJoins(const RotationGraph& component,
   std::set<int> groups(group.begin(), group.end());
   groups.erase(-1);
   if (groups.size() <= 1) return {component};
-  // Images in no cluster: with the group most of their pairs reach, in passes until all have one.
   const std::unordered_map<uint32_t, int> index = NodeIndex(component);
-  for (bool changed = true; changed;) {
-    changed = false;
-    std::vector<std::map<int, int>> votes(group.size());
-    for (const RelativeRotationEdge& edge : component.edges) {
-      const int a = index.at(edge.i), b = index.at(edge.j);
-      if (group[a] < 0 && group[b] >= 0) ++votes[a][group[b]];
-      if (group[b] < 0 && group[a] >= 0) ++votes[b][group[a]];
-    }
-    for (size_t k = 0; k < group.size(); ++k) {
-      if (group[k] >= 0 || votes[k].empty()) continue;
-      group[k] = std::max_element(votes[k].begin(), votes[k].end(), [](const auto& x, const auto& y) {
-                   return x.second < y.second;
-                 })->first;
-      changed = true;
-    }
-  }
+  AssignImagesInNoCluster(component, index, &group);
   for (int& label : group)
     if (label < 0) label = *groups.begin();
   RotationGraph uncut = component;
@@ -128,7 +137,8 @@ std::vector<RotationGraph> SplitAtScaleFreeJoins(const RotationGraph& component,
     report->dropped_edges.push_back(
         {PairName(database, edge.i, edge.j),
          "joins two parts of the view graph through one image, with no track seen on both sides: "
-         "their relative scale is free (photos of something else, joined by one that shows both?)"});
+         "their relative scale is free (photos of something else, joined by one that shows "
+         "both?)"});
   }
   // Labels in decreasing group size, as ComponentSubgraphs expects them.
   std::map<int, int> sizes;

@@ -155,8 +155,8 @@ PassOutcome RunMapperPass(const FeatureDatabase& database, const MapperOptions& 
     // Given focal lengths the user holds (bundle adjustment refines none) are not tested.
     ViewGraphCalibrationOptions calibration = options.view_graph_calibration;
     calibration.test_given_focal_lengths &= options.bundle_adjustment.refine_focal_length;
-    outcome.calibration = CalibrateFocalLengths(database, calibration, &cameras,
-                                                options.bundle_adjustment.share_identical_intrinsics);
+    outcome.calibration = CalibrateFocalLengths(
+        database, calibration, &cameras, options.bundle_adjustment.share_identical_intrinsics);
   }
   LogViewGraphCalibration(outcome.calibration, progress, &report);
   const FirstPass first = FirstPassOptions(options, outcome.calibration);

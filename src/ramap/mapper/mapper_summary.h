@@ -62,9 +62,9 @@ struct CameraIntrinsicsSummary {
   // Where the prior focal length came from: EXIF (with its resize or crop), the user, or a guess;
   // from a database, its prior_focal_length flag.
   std::string focal_source;
-  CameraCalibration view_graph;           // camera_id 0 when not calibrated from the view graph
-  std::vector<double> final_params;       // as written (after BA, when refined)
-  std::string final_model;                // as written: a distortion model may have been added
+  CameraCalibration view_graph;      // camera_id 0 when not calibrated from the view graph
+  std::vector<double> final_params;  // as written (after BA, when refined)
+  std::string final_model;           // as written: a distortion model may have been added
 };
 
 struct MapperSummary {

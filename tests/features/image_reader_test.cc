@@ -8,24 +8,14 @@
 #include <exiv2/exiv2.hpp>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "exif_writer.h"
 #include "ramap/util/error.h"
 #include "test_support.h"
+#include "texture_image.h"
 
 namespace ramap {
 namespace {
-
-// Blurred random blobs, small enough that SIFT takes milliseconds.
-cv::Mat Texture(int width, int height, int seed) {
-  cv::Mat image(height, width, CV_8UC1);
-  cv::RNG rng(seed);
-  rng.fill(image, cv::RNG::UNIFORM, 0, 255);
-  cv::GaussianBlur(image, image, cv::Size(0, 0), 2.0);
-  cv::normalize(image, image, 0, 255, cv::NORM_MINMAX);
-  return image;
-}
 
 FeatureExtractionOptions FewFeatures() {
   FeatureExtractionOptions options;
@@ -35,9 +25,9 @@ FeatureExtractionOptions FewFeatures() {
 
 TEST(ImageReader, ListedImagesAreNumberedInTheListsOrder) {
   test::TempDir dir;
-  cv::imwrite(dir / "b.png", Texture(160, 120, 1));
-  cv::imwrite(dir / "a.png", Texture(160, 120, 2));
-  cv::imwrite(dir / "c.png", Texture(160, 120, 3));
+  cv::imwrite(dir / "b.png", test::BlurredNoise(160, 120, 1));
+  cv::imwrite(dir / "a.png", test::BlurredNoise(160, 120, 2));
+  cv::imwrite(dir / "c.png", test::BlurredNoise(160, 120, 3));
   std::ofstream(dir / "list.txt") << "# two of the three, in this order\nc.png\n  a.png \n";
   const std::vector<std::string> names = ListImages(dir.path(), dir / "list.txt");
   EXPECT_EQ(names, (std::vector<std::string>{"c.png", "a.png"}));
@@ -59,8 +49,8 @@ TEST(ImageReader, ListedImagesAreNumberedInTheListsOrder) {
 
 TEST(ImageReader, AFolderIsListedSortedWithItsImageFilesOnly) {
   test::TempDir dir;
-  cv::imwrite(dir / "z.PNG", Texture(40, 30, 1));  // extensions in any case
-  cv::imwrite(dir / "m.jpg", Texture(40, 30, 2));
+  cv::imwrite(dir / "z.PNG", test::BlurredNoise(40, 30, 1));  // extensions in any case
+  cv::imwrite(dir / "m.jpg", test::BlurredNoise(40, 30, 2));
   std::ofstream(dir / "notes.txt") << "not an image";
   EXPECT_EQ(ListImages(dir.path(), ""), (std::vector<std::string>{"m.jpg", "z.PNG"}));
   test::TempDir empty;
@@ -74,7 +64,7 @@ TEST(ImageReader, GivenIntrinsicsForEveryImageSharedOnlyWhenAsked) {
   test::TempDir dir;
   const std::vector<std::string> names = {"1.png", "2.png", "3.png"};
   for (size_t k = 0; k < names.size(); ++k) {
-    cv::imwrite(dir / names[k], Texture(160, 120, static_cast<int>(k) + 4));
+    cv::imwrite(dir / names[k], test::BlurredNoise(160, 120, static_cast<int>(k) + 4));
   }
   ImageReaderOptions reader;
   reader.camera_model = "PINHOLE";
@@ -101,7 +91,7 @@ TEST(ImageReader, GivenIntrinsicsForEveryImageSharedOnlyWhenAsked) {
 TEST(ImageReader, ExifFocalLengthAndGpsAreUsed) {
   test::TempDir dir;
   cv::Mat colour;
-  cv::cvtColor(Texture(200, 150, 7), colour, cv::COLOR_GRAY2BGR);
+  cv::cvtColor(test::BlurredNoise(200, 150, 7), colour, cv::COLOR_GRAY2BGR);
   test::WriteJpegWithGps(dir / "gps.jpg", colour, 48.137154, -11.575382, 519.5);
   {
     // 36 mm in 35 mm film terms: the focal length is the image's longest side (a 36 mm wide
@@ -113,7 +103,7 @@ TEST(ImageReader, ExifFocalLengthAndGpsAreUsed) {
     image->setExifData(exif);
     image->writeMetadata();
   }
-  cv::imwrite(dir / "plain.png", Texture(200, 150, 8));
+  cv::imwrite(dir / "plain.png", test::BlurredNoise(200, 150, 8));
   ExtractionSummary summary;
   const FeatureDatabase database = ExtractImageFeatures(
       dir.path(), {"gps.jpg", "plain.png"}, ImageReaderOptions(), FewFeatures(), &summary);
@@ -138,7 +128,7 @@ TEST(ImageReader, ExifFocalLengthAndGpsAreUsed) {
 
 TEST(ImageReader, BadIntrinsicsAndNothingReadableAreErrors) {
   test::TempDir dir;
-  cv::imwrite(dir / "a.png", Texture(160, 120, 1));
+  cv::imwrite(dir / "a.png", test::BlurredNoise(160, 120, 1));
   ImageReaderOptions reader;
   reader.camera_model = "SIMPLE_RADIAL";
   reader.camera_params = "150,80,60";

@@ -346,16 +346,14 @@ std::map<uint32_t, EstimateShape> EstimateLogScales(
   return shapes;
 }
 
-// The robust cost of all of `estimable`'s pairs with every estimable camera's log scale moved by
-// `shift` from `log_scales`.
-double JointCost(const std::map<uint32_t, const CameraTerms*>& estimable, FocalCost* cost,
+// The robust cost of `pairs` (all of `estimable`'s) with every estimable camera's log scale moved
+// by `shift` from `log_scales`.
+double JointCost(const std::map<uint32_t, const CameraTerms*>& estimable,
+                 const std::vector<const FundamentalPair*>& pairs, FocalCost* cost,
                  const std::map<uint32_t, double>& log_scales, double shift,
                  std::map<uint32_t, double>* current) {
-  std::set<const FundamentalPair*> pairs;
-  for (const auto& [camera_id, terms] : estimable) {
+  for (const auto& [camera_id, terms] : estimable)
     (*current)[camera_id] = log_scales.at(camera_id) + shift;
-    pairs.insert(terms->pairs.begin(), terms->pairs.end());
-  }
   double total = 0.0;
   for (const FundamentalPair* pair : pairs)
     total += CauchyLoss(cost->PairCost(*pair), cost->loss_scale());
@@ -384,8 +382,12 @@ bool ScaleFromGivenFocalLengths(const std::map<uint32_t, const CameraTerms*>& es
   }
   if (given_ratios.empty()) return false;
   const std::map<uint32_t, double> estimate = *log_scales;
+  std::set<const FundamentalPair*> linked;
+  for (const auto& [camera_id, terms] : estimable)
+    linked.insert(terms->pairs.begin(), terms->pairs.end());
+  const std::vector<const FundamentalPair*> pairs(linked.begin(), linked.end());
   auto joint = [&](double shift) {
-    return JointCost(estimable, cost, estimate, shift, log_scales);
+    return JointCost(estimable, pairs, cost, estimate, shift, log_scales);
   };
   size_t num_pairs = 0;
   for (const auto& [camera_id, terms] : estimable) num_pairs += terms->pairs.size();

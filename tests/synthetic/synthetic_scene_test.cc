@@ -348,6 +348,37 @@ TEST(Synthetic, AliasedPairsNearbyShiftedAndOnTracks) {
   }
 }
 
+// A landmark whose back looks like its front: each symmetric pair joins views from about opposite
+// sides of the orbit, and its matches obey the second camera turned 180 degrees about the vertical
+// axis, so its rotation is about 180 degrees off the true one and about that of a near neighbour.
+TEST(Synthetic, SymmetricPairsObeyTheViewTurnedAroundTheObject) {
+  SyntheticSceneOptions options = Layout(SyntheticLayout::kSequential, SyntheticPath::kCircle);
+  options.num_images = 36;
+  options.num_aliased_pairs = 6;
+  options.aliased_matches_on_tracks = true;
+  options.aliased_symmetric = true;
+  const SyntheticScene scene = BuildSyntheticScene(options);
+  ASSERT_EQ(scene.aliased_pair_ids.size(), 6u);
+  const Rigid3d turn(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY())),
+                     Eigen::Vector3d::Zero());
+  for (const uint64_t pair_id : scene.aliased_pair_ids) {
+    const TwoViewGeometry& geometry = scene.database.two_view_geometries.at(pair_id);
+    const Rigid3d& pose1 = scene.ground_truth.images.at(geometry.image_id1).cam_from_world;
+    const Rigid3d& pose2 = scene.ground_truth.images.at(geometry.image_id2).cam_from_world;
+    const Rigid3d truth = pose2 * pose1.Inverse();
+    EXPECT_GT(geometry.cam2_from_cam1.rotation.angularDistance(truth.rotation), 120.0 * M_PI / 180);
+    const Rigid3d turned = pose2 * turn * pose1.Inverse();
+    EXPECT_LT(geometry.cam2_from_cam1.rotation.angularDistance(turned.rotation), 1e-9);
+    EXPECT_LT(geometry.cam2_from_cam1.rotation.angularDistance(Eigen::Quaterniond::Identity()),
+              40.0 * M_PI / 180);
+    EXPECT_GE(geometry.inlier_matches.size(), 15u);
+  }
+  options.layout = SyntheticLayout::kSequential;
+  options.path = SyntheticPath::kLine;
+  test::ExpectInputError([&] { BuildSyntheticScene(options); },
+                         {"--Synthetic.aliased_symmetric", "unordered"});
+}
+
 TEST(Synthetic, ViewDistanceLimitsTracksAndFrameGapLimitsLoops) {
   SyntheticSceneOptions options = Layout(SyntheticLayout::kSequential, SyntheticPath::kLoop);
   options.num_images = 60;

@@ -329,6 +329,10 @@ void SyntheticSceneOptions::Check() const {
   CheckOption(max_depth > min_depth, "--Synthetic.max_depth", "> --Synthetic.min_depth", max_depth);
   CheckOption(aliased_min_angle_deg <= aliased_max_angle_deg, "--Synthetic.aliased_min_angle_deg",
               "<= --Synthetic.aliased_max_angle_deg", aliased_min_angle_deg);
+  CheckOption(
+      !aliased_symmetric || UsesObjectPoints(*this), "--Synthetic.aliased_symmetric",
+      "0 unless --Synthetic.layout is unordered or --Synthetic.path circle (it turns the object)",
+      aliased_symmetric);
   CheckOption(!photo_names || num_images <= 26 * 26 * 26 * 26, "--Synthetic.num_images",
               "at most 456976 with --Synthetic.photo_names (four letters)", num_images);
   // The settings no command line option reaches.
@@ -589,10 +593,41 @@ void AddOutlierPairs(const SyntheticSceneOptions& options, size_t num_images, Rn
   }
 }
 
+// The 180 degree turn about the object's vertical axis (y, through the origin) that maps the
+// object onto itself when its back looks like its front.
+Rigid3d SymmetryTurn() {
+  return Rigid3d(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY())),
+                 Eigen::Vector3d::Zero());
+}
+
+// A symmetric pair's two images: a random one, and one whose view turned by the symmetry looks
+// from within kSymmetricMaxAngleDeg of it (it sees the twin of what the first sees); none when no
+// image does.
+std::optional<std::pair<size_t, size_t>> RandomSymmetricPair(const std::vector<Rigid3d>& poses,
+                                                             Rng& rng) {
+  constexpr double kSymmetricMaxAngleDeg = 25.0;
+  std::uniform_int_distribution<size_t> random_image(0, poses.size() - 1);
+  const size_t i = random_image(rng);
+  const Eigen::Vector3d direction = CameraCenter(poses[i]).normalized();
+  std::vector<size_t> twins;
+  for (size_t k = 0; k < poses.size(); ++k) {
+    const Eigen::Vector3d turned = (SymmetryTurn() * CameraCenter(poses[k])).normalized();
+    if (k != i && turned.dot(direction) > std::cos(kSymmetricMaxAngleDeg * kDegToRad)) {
+      twins.push_back(k);
+    }
+  }
+  if (twins.empty()) return std::nullopt;
+  const size_t k = twins[std::uniform_int_distribution<size_t>(0, twins.size() - 1)(rng)];
+  return std::make_pair(std::min(i, k), std::max(i, k));
+}
+
 // An aliased pair's two images: any two, or on a sequence two at most aliased_max_frame_gap apart
-// (repeated facades is seen again from nearby places).
+// (repeated facades is seen again from nearby places), or a symmetric pair.
 std::optional<std::pair<size_t, size_t>> RandomAliasedPair(const SyntheticSceneOptions& options,
-                                                           size_t num_images, Rng& rng) {
+                                                           const std::vector<Rigid3d>& poses,
+                                                           Rng& rng) {
+  const size_t num_images = poses.size();
+  if (options.aliased_symmetric) return RandomSymmetricPair(poses, rng);
   if (options.aliased_max_frame_gap <= 0) return RandomImagePair(num_images, rng);
   std::uniform_int_distribution<size_t> random_image(0, num_images - 1);
   std::uniform_int_distribution<size_t> random_gap(1, options.aliased_max_frame_gap);
@@ -604,8 +639,15 @@ std::optional<std::pair<size_t, size_t>> RandomAliasedPair(const SyntheticSceneO
 
 // The pose an aliased pair's matches obey: the true relative pose turned by a rotation of
 // aliased_min_angle_deg to aliased_max_angle_deg about a random axis, and its second camera
-// displaced by aliased_shift_m in a random direction (a facade's repeat seen from elsewhere).
-Rigid3d AliasedRelativePose(const SyntheticSceneOptions& options, const Rigid3d& truth, Rng& rng) {
+// displaced by aliased_shift_m in a random direction (a facade's repeat seen from elsewhere). A
+// symmetric pair's second camera is the true one turned by the symmetry: it takes the twins of
+// the points it sees for those the first one sees.
+Rigid3d AliasedRelativePose(const SyntheticSceneOptions& options, const Rigid3d& cam1_from_world,
+                            const Rigid3d& cam2_from_world, Rng& rng) {
+  if (options.aliased_symmetric) {
+    return cam2_from_world * SymmetryTurn() * cam1_from_world.Inverse();
+  }
+  const Rigid3d truth = cam2_from_world * cam1_from_world.Inverse();
   const double angle =
       Uniform(rng, options.aliased_min_angle_deg, options.aliased_max_angle_deg) * kDegToRad;
   const Eigen::Quaterniond turn(Eigen::AngleAxisd(angle, RandomUnitVector(rng)));
@@ -657,11 +699,10 @@ void AddAliasedPairs(const SyntheticSceneOptions& options, const std::vector<Rig
        attempt < 100 * wanted + 100 && scene->aliased_pair_ids.size() < wanted &&
        matched_pairs->size() < max_pairs;
        ++attempt) {
-    const std::optional<std::pair<size_t, size_t>> drawn =
-        RandomAliasedPair(options, num_images, rng);
+    const std::optional<std::pair<size_t, size_t>> drawn = RandomAliasedPair(options, poses, rng);
     if (!drawn || matched_pairs->count(*drawn)) continue;
     const auto [i, k] = *drawn;
-    const Rigid3d aliased = AliasedRelativePose(options, poses[k] * poses[i].Inverse(), rng);
+    const Rigid3d aliased = AliasedRelativePose(options, poses[i], poses[k], rng);
     const Camera& camera1 = CameraOf(options, i);
     const Camera& camera2 = CameraOf(options, k);
     std::vector<FeatureMatch> matches;

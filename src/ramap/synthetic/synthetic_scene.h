@@ -127,6 +127,11 @@ struct SyntheticSceneOptions {
   // so the wrong match joins that point's track, as real repeated features do (false: new
   // keypoints at random pixels and depths, on no track).
   bool aliased_matches_on_tracks = false;
+  // Symmetric aliasing, as a landmark whose back looks like its front gives (orbit and unordered
+  // layouts): an aliased pair is a view and one from about the other side of the object, whose
+  // matches obey the second camera turned 180 degrees about the object's vertical axis (y through
+  // the origin). The angle and shift settings above are then unused.
+  bool aliased_symmetric = false;
   // Unordered: pairs sharing at least this many points are matched.
   int min_shared_points = 30;
   // A matched pair gets a two-view geometry when it has at least this many true matches (COLMAP's

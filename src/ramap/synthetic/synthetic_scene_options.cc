@@ -199,6 +199,11 @@ void DeclareAliasing(Table& t) {
       [](auto& o) -> auto& { return o.aliased_matches_on_tracks; },
       "1: aliased matches start from the first image's own observations, so they "
       "join its points' tracks (0: new keypoints on no track)"));
+  t.push_back(Bool(
+      "Synthetic.aliased_symmetric", [](auto& o) -> auto& { return o.aliased_symmetric; },
+      "1: aliased pairs join views from opposite sides of the object, matched as if the second "
+      "were turned 180 degrees about the vertical axis (a landmark whose back looks like its "
+      "front; orbit and unordered layouts)"));
 }
 
 }  // namespace

@@ -1,7 +1,11 @@
 #include "ramap/mapper/component_rotations.h"
 
+#include <iomanip>
+#include <sstream>
 #include <string>
+#include <utility>
 
+#include "ramap/estimators/rotation_folds.h"
 #include "ramap/estimators/rotations.h"
 #include "ramap/util/timer.h"
 
@@ -39,6 +43,27 @@ void ReportRotations(const PassInput& input, const RotationAveragingResult& rota
   summary.rotation_seconds = rotations.timings;
 }
 
+// Where `averaged` is unweighted and the fold check is on: averaging again with inlier-count
+// weights, and that solution in its place where it unfolds the first (rotation_folds.h). Returns
+// what the stage line adds ("" when nothing changed).
+std::string UnfoldRotations(const PassInput& input, const RotationGraph& graph,
+                            RotationAveragingOptions options, RotationStageResult* averaged) {
+  if (!input.options.rotation_fold_check || options.use_edge_weights) return "";
+  options.use_edge_weights = true;
+  RotationStageResult weighted = AverageGraphRotations(graph, input.order, input.sequential,
+                                                       input.options.view_graph, options);
+  const RotationSolutionComparison comparison =
+      CompareRotationSolutions(graph, averaged->rotations, weighted.rotations);
+  if (!SecondSolutionUnfolds(comparison, input.options.rotation_fold_min_difference_deg)) return "";
+  *averaged = std::move(weighted);
+  std::ostringstream note;
+  note << std::fixed << std::setprecision(0) << "; the inlier-weighted solution kept: the "
+       << "unweighted one folded the scene (up to " << comparison.largest_difference_deg
+       << " deg apart; it left out pairs of " << comparison.left_out_weight_first
+       << " inliers, the weighted one " << comparison.left_out_weight_second << ")";
+  return note.str();
+}
+
 }  // namespace
 
 ComponentState AverageComponentRotations(const PassInput& input, ComponentState state) {
@@ -47,8 +72,9 @@ ComponentState AverageComponentRotations(const PassInput& input, ComponentState 
   RotationAveragingOptions rotation_averaging = options.rotation_averaging;
   rotation_averaging.use_edge_weights =
       UseRotationEdgeWeights(options.rotation_edge_weights, input.database);
-  const RotationStageResult averaged = AverageGraphRotations(
-      state.graph, input.order, input.sequential, options.view_graph, rotation_averaging);
+  RotationStageResult averaged = AverageGraphRotations(state.graph, input.order, input.sequential,
+                                                       options.view_graph, rotation_averaging);
+  const std::string unfolded = UnfoldRotations(input, state.graph, rotation_averaging, &averaged);
   const RotationAveragingResult& rotations = averaged.rotations;
   state.report.num_keyframes += averaged.num_keyframes;
   state.report.num_loop_edges += averaged.num_loop_edges;
@@ -61,7 +87,8 @@ ComponentState AverageComponentRotations(const PassInput& input, ComponentState 
       input, stage::kRotationAveraging, timer.ElapsedSeconds(),
       std::to_string(state.rotations.size()) + " rotations, " +
           std::to_string(rotations.pruned_edges.size()) + " edges pruned, " +
-          (rotations.certificate.certified ? "certified globally optimal" : "not certified"),
+          (rotations.certificate.certified ? "certified globally optimal" : "not certified") +
+          unfolded,
       &state);
   return state;
 }

@@ -51,6 +51,14 @@ void DeclareOrderAndWeights(Table& t) {
       AutoOnOff(EdgeWeighting::kAuto, EdgeWeighting::kOn, EdgeWeighting::kOff),
       "weight edges by their inlier counts (auto: when every camera's focal "
       "length is known)"));
+  t.push_back(Bool(
+      "RotationAveraging.fold_check", [](auto& o) -> auto& { return o.rotation_fold_check; },
+      "1: unweighted, average again with inlier-count weights and keep that solution where the "
+      "two differ grossly and it leaves out fewer inliers (a fold along symmetric structure)"));
+  t.push_back(Number(
+      "RotationAveraging.fold_min_difference_deg",
+      [](auto& o) -> auto& { return o.rotation_fold_min_difference_deg; }, AtLeast(0, 180),
+      "the difference at some image, degrees, that makes the two solutions disagree"));
   t.push_back(Number(
       "Mapper.min_component_size", [](auto& o) -> auto& { return o.min_component_size; },
       AtLeast(2), "connected components with fewer images are not written"));

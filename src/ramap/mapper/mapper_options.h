@@ -33,6 +33,12 @@ struct MapperOptions {
   RotationAveragingOptions rotation_averaging;
   // Resolved into rotation_averaging.use_edge_weights per run (UseRotationEdgeWeights).
   EdgeWeighting rotation_edge_weights = EdgeWeighting::kAuto;
+  // Where the edges are not weighted, rotation averaging runs again with them weighted, and that
+  // solution is kept where the two differ by more than rotation_fold_min_difference_deg at some
+  // image and it leaves out fewer inliers: the unweighted one folded the scene along symmetric
+  // or repeated structure (estimators/rotation_folds.h).
+  bool rotation_fold_check = true;
+  double rotation_fold_min_difference_deg = 20.0;
   PairDirectionOptions pair_direction;
   // Which pair directions translation averaging may use: those their triangles support.
   DirectionConsistencyOptions direction_consistency;

@@ -232,18 +232,21 @@ TEST(BundleAdjustment, GuessedPrincipalPointRefinedWithTheFocalLength) {
   EXPECT_EQ(calibrated.reconstruction.cameras.at(1).params[1], 320);
 }
 
-// A refined principal point that moves beyond max_principal_point_shift is put back and held, and
-// BA solves again from the start: the result is the one with the principal point held.
+// A refined principal point that moves beyond max_principal_point_shift is tested: BA solves again
+// from the start with it held. Unless the move lowers the camera's median reprojection error by
+// min_principal_point_error_decrease (1: never), the held solve is the result.
 TEST(BundleAdjustment, DriftingPrincipalPointHeldAndSolvedAgain) {
   std::mt19937 rng(17);
   const Scene start = UncalibratedScene(rng);
   BundleAdjustmentOptions options;
   options.refine_extra_params = false;
   options.max_principal_point_shift = 0.01;  // 6.4 px across, 4.8 px down: 12 px is beyond
+  options.min_principal_point_error_decrease = 1.0;
   Scene drifting = start;
   const BundleAdjustmentSummary summary =
       BundleAdjust(drifting.bearings, {{1, 500.0}}, &drifting.reconstruction, options);
   EXPECT_EQ(summary.principal_points_drifted, std::vector<uint32_t>{1});
+  EXPECT_TRUE(summary.principal_points_confirmed.empty());
   Scene held = start;
   options.refine_guessed_principal_point = false;
   const BundleAdjustmentSummary held_summary =
@@ -251,6 +254,25 @@ TEST(BundleAdjustment, DriftingPrincipalPointHeldAndSolvedAgain) {
   EXPECT_TRUE(held_summary.principal_points_drifted.empty());
   EXPECT_EQ(drifting.reconstruction.cameras.at(1).params, held.reconstruction.cameras.at(1).params);
   EXPECT_GT(summary.num_iterations, held_summary.num_iterations);
+}
+
+// A cropped photo's principal point lies far off the image's centre (here 12 px, beyond a
+// max_principal_point_shift of 6.4 px): the move lowers the errors from about 12 px to the noise's,
+// so it is kept, and so are the rotations it sets right.
+TEST(BundleAdjustment, PrincipalPointFarOffTheCentreKeptWhereTheErrorsProveIt) {
+  std::mt19937 rng(17);
+  Scene scene = UncalibratedScene(rng);
+  BundleAdjustmentOptions options;
+  options.refine_extra_params = false;
+  options.max_principal_point_shift = 0.01;
+  const BundleAdjustmentSummary summary =
+      BundleAdjust(scene.bearings, {{1, 500.0}}, &scene.reconstruction, options);
+  EXPECT_EQ(summary.principal_points_confirmed, std::vector<uint32_t>{1});
+  EXPECT_TRUE(summary.principal_points_drifted.empty());
+  const std::vector<double>& params = scene.reconstruction.cameras.at(1).params;
+  EXPECT_NEAR(params[1], 332, 0.05);
+  EXPECT_NEAR(params[2], 233, 0.05);
+  EXPECT_LT(LargestRotationErrorDeg(scene), 0.01);
 }
 
 // Detaches every observation of point `id` in image `image_id` for which `keep` is false.

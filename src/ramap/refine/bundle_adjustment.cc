@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <utility>
 
@@ -44,8 +45,10 @@ class BetweenIterations : public ceres::IterationCallback {
   ProgressLine* line_;
 };
 
-// The parameters of `camera` that `options` keeps fixed, by index into COLMAP's order.
-std::vector<int> FixedIntrinsics(const BundleAdjustmentOptions& options, const Camera& camera) {
+// The parameters of `camera` that `options` keeps fixed, by index into COLMAP's order; a guessed
+// principal point also where `held_principal_points` names the camera.
+std::vector<int> FixedIntrinsics(const BundleAdjustmentOptions& options, const Camera& camera,
+                                 const std::set<uint32_t>& held_principal_points = {}) {
   const bool single = HasSingleFocalLength(camera.model);
   const int first_extra = single ? 3 : 4;
   const int num_params = NumCameraParams(camera.model);
@@ -54,9 +57,9 @@ std::vector<int> FixedIntrinsics(const BundleAdjustmentOptions& options, const C
   for (int k = 0; k < num_params; ++k) {
     const bool focal = k < (single ? 1 : 2);
     const bool principal_point = !focal && k < first_extra;
-    const bool guessed_principal_point = options.refine_guessed_principal_point &&
-                                         options.refine_focal_length &&
-                                         !camera.has_prior_focal_length;
+    const bool guessed_principal_point =
+        options.refine_guessed_principal_point && options.refine_focal_length &&
+        !camera.has_prior_focal_length && held_principal_points.count(camera.camera_id) == 0;
     const bool refined = focal ? options.refine_focal_length && !held
                          : principal_point
                              ? (options.refine_principal_point || guessed_principal_point) && !held
@@ -166,13 +169,14 @@ double RmsePx(const std::vector<Observation>& observations, const Reconstruction
 
 // Each camera in `problem`: the parameters the options keep fixed stay constant (the manifolds
 // are kept in `manifolds`, which must outlive the problem).
-void HoldFixedIntrinsics(const BundleAdjustmentOptions& options, Reconstruction* reconstruction,
-                         ceres::Problem* problem,
+void HoldFixedIntrinsics(const BundleAdjustmentOptions& options,
+                         const std::set<uint32_t>& held_principal_points,
+                         Reconstruction* reconstruction, ceres::Problem* problem,
                          std::vector<std::unique_ptr<ceres::SubsetManifold>>* manifolds) {
   for (auto& [camera_id, camera] : reconstruction->cameras) {
     double* params = camera.params.data();
     if (!problem->HasParameterBlock(params)) continue;
-    const std::vector<int> fixed = FixedIntrinsics(options, camera);
+    const std::vector<int> fixed = FixedIntrinsics(options, camera, held_principal_points);
     if (fixed.size() == camera.params.size()) {
       problem->SetParameterBlockConstant(params);
     } else if (!fixed.empty()) {
@@ -324,6 +328,7 @@ void AddPriorsAndGauge(const std::map<uint32_t, PosePrior>& priors, ceres::LossF
 ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
                              const std::map<uint32_t, PosePrior>& priors,
                              const BundleAdjustmentOptions& options,
+                             const std::set<uint32_t>& held_principal_points,
                              const std::map<uint32_t, uint32_t>& shared,
                              Reconstruction* reconstruction, std::ostream* progress,
                              const std::string& what) {
@@ -356,7 +361,8 @@ ceres::Solver::Summary Solve(const std::vector<Observation>& observations,
     }
     problem.AddResidualBlock(NewNormalizedPlaneCost(*o.bearing, o.focal_px), &loss, pose, point);
   }
-  HoldFixedIntrinsics(options, reconstruction, &problem, &intrinsics_manifolds);
+  HoldFixedIntrinsics(options, held_principal_points, reconstruction, &problem,
+                      &intrinsics_manifolds);
   ceres::HuberLoss prior_loss(1.0);
   AddPriorsAndGauge(origin.Moved(priors), &prior_loss, &pose_manifold, &poses, &problem);
   // The slow valley is the focal length's: distortion alone converges at the ordinary tolerance.
@@ -597,11 +603,13 @@ Reconstruction PointsForBundleAdjustment(const Reconstruction& reconstruction,
 
 namespace {
 
-// BundleAdjust without the check of the principal points.
+// BundleAdjust without the check of the principal points, those of `held_principal_points`'s
+// cameras held.
 BundleAdjustmentSummary Adjust(const KeypointBearings& bearings,
                                const std::map<uint32_t, double>& focal_lengths_px,
                                Reconstruction* reconstruction,
                                const BundleAdjustmentOptions& options,
+                               const std::set<uint32_t>& held_principal_points,
                                const std::map<uint32_t, PosePrior>& priors,
                                std::ostream* progress) {
   Timer timer;
@@ -624,7 +632,8 @@ BundleAdjustmentSummary Adjust(const KeypointBearings& bearings,
     BundleAdjustmentOptions solve_options = options;
     if (wide) solve_options.loss_scale_px = summary.wide_start_loss_px;
     const ceres::Solver::Summary solve =
-        Solve(observations, priors, solve_options, shared, reconstruction, progress,
+        Solve(observations, priors, solve_options, held_principal_points, shared, reconstruction,
+              progress,
               wide         ? "bundle adjustment under a wide loss"
               : round == 0 ? "bundle adjustment"
                            : "bundle adjustment without the outliers");
@@ -681,6 +690,55 @@ std::vector<uint32_t> DriftedPrincipalPoints(const std::map<uint32_t, Camera>& s
   return drifted;
 }
 
+// The median reprojection error of each camera's observations in `reconstruction`, pixels.
+std::map<uint32_t, double> MedianErrorPerCameraPx(
+    const KeypointBearings& bearings, const std::map<uint32_t, double>& focal_lengths_px,
+    const Reconstruction& reconstruction, const BundleAdjustmentOptions& options) {
+  const std::vector<Observation> observations =
+      UsableObservations(bearings, focal_lengths_px, reconstruction, options);
+  const std::vector<double> errors =
+      SquaredErrorsPx(observations, reconstruction, options.num_threads);
+  std::map<uint32_t, std::vector<double>> per_camera;
+  for (size_t k = 0; k < observations.size(); ++k) {
+    per_camera[reconstruction.images.at(observations[k].image_id).camera_id].push_back(errors[k]);
+  }
+  std::map<uint32_t, double> medians;
+  for (auto& [camera_id, camera_errors] : per_camera)
+    medians[camera_id] = std::sqrt(Median(std::move(camera_errors)));
+  return medians;
+}
+
+// Of the cameras in `moved`, those whose principal point in `free_model` lies inside the image and
+// whose median reprojection error there is min_principal_point_error_decrease below that in
+// `held_model`, where it was held.
+std::vector<uint32_t> ConfirmedPrincipalPoints(const std::vector<uint32_t>& moved,
+                                               const Reconstruction& free_model,
+                                               const Reconstruction& held_model,
+                                               const KeypointBearings& bearings,
+                                               const std::map<uint32_t, double>& focal_lengths_px,
+                                               const BundleAdjustmentOptions& options) {
+  const std::map<uint32_t, double> free_errors =
+      MedianErrorPerCameraPx(bearings, focal_lengths_px, free_model, options);
+  const std::map<uint32_t, double> held_errors =
+      MedianErrorPerCameraPx(bearings, focal_lengths_px, held_model, options);
+  std::vector<uint32_t> confirmed;
+  for (const uint32_t camera_id : moved) {
+    const Camera& camera = free_model.cameras.at(camera_id);
+    const int first = HasSingleFocalLength(camera.model) ? 1 : 2;
+    const double x = camera.params[first];
+    const double y = camera.params[first + 1];
+    const bool inside = x >= 0 && x <= camera.width && y >= 0 && y <= camera.height;
+    const auto free_error = free_errors.find(camera_id);
+    const auto held_error = held_errors.find(camera_id);
+    if (inside && free_error != free_errors.end() && held_error != held_errors.end() &&
+        free_error->second <
+            (1.0 - options.min_principal_point_error_decrease) * held_error->second) {
+      confirmed.push_back(camera_id);
+    }
+  }
+  return confirmed;
+}
+
 }  // namespace
 
 BundleAdjustmentSummary BundleAdjust(const KeypointBearings& bearings,
@@ -691,24 +749,41 @@ BundleAdjustmentSummary BundleAdjust(const KeypointBearings& bearings,
                                      std::ostream* progress) {
   options.Check();
   if (!RefinesGuessedPrincipalPoint(options, *reconstruction))
-    return Adjust(bearings, focal_lengths_px, reconstruction, options, priors, progress);
+    return Adjust(bearings, focal_lengths_px, reconstruction, options, {}, priors, progress);
   const Reconstruction start = *reconstruction;
   BundleAdjustmentSummary summary =
-      Adjust(bearings, focal_lengths_px, reconstruction, options, priors, progress);
-  summary.principal_points_drifted =
+      Adjust(bearings, focal_lengths_px, reconstruction, options, {}, priors, progress);
+  const std::vector<uint32_t> moved =
       DriftedPrincipalPoints(start.cameras, *reconstruction, options);
-  if (summary.principal_points_drifted.empty()) return summary;
-  // Solved again from the start with every guessed principal point held: where one drifted, the
-  // poses followed it.
+  if (moved.empty()) return summary;
+  // Solved again from the start with the far-moved ones held: where one drifted, the poses
+  // followed it, so the held solve is not the free one with the principal point put back.
+  Reconstruction free_model = std::move(*reconstruction);
   *reconstruction = start;
-  BundleAdjustmentOptions held = options;
-  held.refine_guessed_principal_point = false;
-  BundleAdjustmentSummary again =
-      Adjust(bearings, focal_lengths_px, reconstruction, held, priors, progress);
-  again.seconds += summary.seconds;
-  again.num_iterations += summary.num_iterations;
-  again.principal_points_drifted = std::move(summary.principal_points_drifted);
-  return again;
+  const BundleAdjustmentSummary held = Adjust(bearings, focal_lengths_px, reconstruction, options,
+                                              {moved.begin(), moved.end()}, priors, progress);
+  const std::vector<uint32_t> confirmed = ConfirmedPrincipalPoints(
+      moved, free_model, *reconstruction, bearings, focal_lengths_px, options);
+  double seconds = summary.seconds + held.seconds;
+  int num_iterations = summary.num_iterations + held.num_iterations;
+  std::set<uint32_t> unconfirmed(moved.begin(), moved.end());
+  for (const uint32_t camera_id : confirmed) unconfirmed.erase(camera_id);
+  BundleAdjustmentSummary result = held;
+  if (unconfirmed.empty()) {
+    *reconstruction = std::move(free_model);
+    result = summary;
+  } else if (!confirmed.empty()) {
+    *reconstruction = start;
+    result =
+        Adjust(bearings, focal_lengths_px, reconstruction, options, unconfirmed, priors, progress);
+    seconds += result.seconds;
+    num_iterations += result.num_iterations;
+  }
+  result.seconds = seconds;
+  result.num_iterations = num_iterations;
+  result.principal_points_confirmed = confirmed;
+  result.principal_points_drifted.assign(unconfirmed.begin(), unconfirmed.end());
+  return result;
 }
 
 }  // namespace ramap

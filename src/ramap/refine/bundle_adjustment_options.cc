@@ -85,8 +85,13 @@ void DeclarePart2(Table& t) {
   t.push_back(NumberOption<BundleAdjustmentOptions>(
       "BundleAdjustment.max_principal_point_shift",
       [](auto& o) -> auto& { return o.max_principal_point_shift; }, AtLeast(0),
-      "a refined principal point that moves farther (fraction of the image's width or "
-      "height) is put back and held, and BA solves again"));
+      "a refined guessed principal point that moves farther (fraction of the image's width "
+      "or height) is tested: BA solves again with it held where it started"));
+  t.push_back(NumberOption<BundleAdjustmentOptions>(
+      "BundleAdjustment.min_principal_point_error_decrease",
+      [](auto& o) -> auto& { return o.min_principal_point_error_decrease; }, AtLeast(0, 1),
+      "...and keeps the move only where it lowers its camera's median reprojection error by "
+      "this fraction (1: never; a cropped photo's principal point lies far off the centre)"));
   t.push_back(ColmapNamed(BoolOption<BundleAdjustmentOptions>(
                               "BundleAdjustment.refine_extra_params",
                               [](auto& o) -> auto& { return o.refine_extra_params; },

@@ -47,17 +47,22 @@ scores() {  # set_dir sparse_dir: the scores' JSON, or {} when the mapper wrote 
 
 # COLMAP's pipeline from images: its defaults (one SIMPLE_RADIAL camera per image, EXIF focal
 # length or its guess), exhaustive matching (every set is small enough), then `mapper` or
-# `global_mapper`. $1 binary, $2 mapper command, $3 output folder, $4 images.
+# `global_mapper`. $1 binary, $2 mapper command, $3 output folder, $4 images. COLMAP 4 renamed the
+# GPU switches (--FeatureExtraction.use_gpu, --FeatureMatching.use_gpu).
 colmap_pipeline() {
   local binary=$1 mapper=$2 out=$3 images=$4 log
   mkdir -p "$out/sparse"
+  local extraction=SiftExtraction matching_section=SiftMatching
+  if "$binary" feature_extractor -h 2>&1 | grep -q -- --FeatureExtraction.use_gpu; then
+    extraction=FeatureExtraction matching_section=FeatureMatching
+  fi
   log=$out/features.log
   local features matching mapping
   features=$(seconds_of "$binary" feature_extractor --database_path "$out/database.db" \
-    --image_path "$images" --SiftExtraction.use_gpu 0)
+    --image_path "$images" "--$extraction.use_gpu" 0)
   log=$out/matching.log
   matching=$(seconds_of "$binary" exhaustive_matcher --database_path "$out/database.db" \
-    --SiftMatching.use_gpu 0)
+    "--$matching_section.use_gpu" 0)
   log=$out/mapper.log
   mapping=$(seconds_of "$binary" "$mapper" --database_path "$out/database.db" --image_path "$images" \
     --output_path "$out/sparse")

@@ -262,6 +262,12 @@ SyntheticSceneOptions NoisyCollection(uint64_t seed) {
   return options;
 }
 
+PoseEvaluation EvaluateAgainstTruth(const Reconstruction& model, const SyntheticScene& scene) {
+  std::vector<std::string> names;
+  for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
+  return EvaluatePoses(PosesByName(model), PosesByName(scene.ground_truth), names);
+}
+
 SyntheticScene StandstillLineScene() {
   SyntheticSceneOptions options = NoiseFree(SyntheticLayout::kSequential, SyntheticPath::kLine, 30);
   const SyntheticScene line = BuildSyntheticScene(options);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "ramap/eval/pose_metrics.h"
 #include "ramap/mapper/mapper.h"
 #include "ramap/scene/camera.h"
 #include "ramap/synthetic/synthetic_scene.h"
@@ -90,6 +91,10 @@ SyntheticSceneOptions WithFacadeRepeats(SyntheticSceneOptions options, int num_p
 // one centre and turn a little, and image 11's only verified pairs are its pure rotations to 10
 // and 12, so that it has no direction to any camera.
 SyntheticScene StandstillLineScene();
+
+// `model`'s poses scored against `scene`'s truth, every image of the truth an input (unregistered
+// ones count as failures).
+PoseEvaluation EvaluateAgainstTruth(const Reconstruction& model, const SyntheticScene& scene);
 
 // The data a report.html was drawn from (its <script id="ramap-data">); a test failure and null
 // when the page has none.

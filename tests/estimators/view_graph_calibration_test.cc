@@ -69,10 +69,7 @@ MapperResult ExpectRecoveredByBundleAdjustment(const FeatureDatabase& database,
   EXPECT_EQ(model.images.size(), scene.ground_truth.images.size());
   EXPECT_LT(RelativeError(model.cameras.at(camera_id).params[0], truth), 0.01)
       << "after BA: " << model.cameras.at(camera_id).params[0] << " for " << truth;
-  std::vector<std::string> names;
-  for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
-  const PoseEvaluation evaluation =
-      EvaluatePoses(PosesByName(model), PosesByName(scene.ground_truth), names);
+  const PoseEvaluation evaluation = test::EvaluateAgainstTruth(model, scene);
   EXPECT_LT(evaluation.rotation_error_median_deg, 0.2);
   EXPECT_LT(evaluation.ate_rmse_over_extent, 0.01);
   return result;

@@ -15,11 +15,9 @@ namespace {
 PoseEvaluation MapAndEvaluate(const SyntheticScene& scene, MapperResult* result_out = nullptr,
                               const MapperOptions& options = test::AveragingOnly()) {
   const MapperResult result = RunMapper(scene.database, options, "synthetic");
-  std::vector<std::string> names;
-  for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
   EXPECT_FALSE(result.reconstructions.empty());
-  const PoseEvaluation evaluation = EvaluatePoses(PosesByName(result.reconstructions.front()),
-                                                  PosesByName(scene.ground_truth), names);
+  const PoseEvaluation evaluation =
+      test::EvaluateAgainstTruth(result.reconstructions.front(), scene);
   if (result_out != nullptr) *result_out = result;
   return evaluation;
 }

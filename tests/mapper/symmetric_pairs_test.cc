@@ -44,11 +44,8 @@ Folding MapAndEvaluate(const SyntheticScene& scene, const MapperOptions& options
   const MapperResult result = RunMapper(scene.database, options, "synthetic");
   Folding folding;
   folding.num_models = result.reconstructions.size();
-  if (result.reconstructions.empty()) return folding;
-  std::vector<std::string> names;
-  for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
-  folding.evaluation = EvaluatePoses(PosesByName(result.reconstructions.front()),
-                                     PosesByName(scene.ground_truth), names);
+  if (!result.reconstructions.empty())
+    folding.evaluation = test::EvaluateAgainstTruth(result.reconstructions.front(), scene);
   return folding;
 }
 

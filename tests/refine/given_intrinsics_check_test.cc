@@ -39,12 +39,6 @@ FeatureDatabase OneGivenCameraPerImage(FeatureDatabase database, const Camera& g
   return database;
 }
 
-PoseEvaluation Evaluate(const Reconstruction& model, const SyntheticScene& scene) {
-  std::vector<std::string> names;
-  for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
-  return EvaluatePoses(PosesByName(model), PosesByName(scene.ground_truth), names);
-}
-
 const GivenIntrinsicsTest& OnlyTest(const MapperResult& result) {
   const std::vector<GivenIntrinsicsTest>& groups =
       result.summary.components.at(0).given_intrinsics_test.groups;
@@ -71,7 +65,7 @@ TEST(GivenIntrinsics, TrueCalibrationOneCameraPerImageIsKept) {
   EXPECT_LT(std::abs(test.freed_focal_px / 500.0 - 1.0), 0.01);
   EXPECT_TRUE(result.summary.components.at(0).given_intrinsics_test.poses_adjusted)
       << "the test runs before BA, which starts from the poses of its subset";
-  EXPECT_LT(Evaluate(model, scene).rotation_error_median_deg, 0.1);
+  EXPECT_LT(test::EvaluateAgainstTruth(model, scene).rotation_error_median_deg, 0.1);
 }
 
 TEST(GivenIntrinsics, FocalLengthTenPercentOffIsProvenWrong) {
@@ -84,7 +78,7 @@ TEST(GivenIntrinsics, FocalLengthTenPercentOffIsProvenWrong) {
     EXPECT_EQ(camera.model, CameraModel::kPinhole) << "no distortion where none is needed";
     EXPECT_NEAR(camera.params[0], 500.0, 5.0) << "camera " << camera_id;
   }
-  EXPECT_LT(Evaluate(model, scene).rotation_error_median_deg, 0.1);
+  EXPECT_LT(test::EvaluateAgainstTruth(model, scene).rotation_error_median_deg, 0.1);
 }
 
 // The test decides on a subset of the points; the full BA then refines the focal length it proved
@@ -105,7 +99,7 @@ TEST(GivenIntrinsics, FocalLengthProvenWrongIsRefinedByTheFullAdjustmentInOnePas
     EXPECT_NE(camera.params[0], test.freed_focal_px) << "camera " << camera_id << ": not refined";
     EXPECT_NEAR(camera.params[0], 500.0, 2.5) << "camera " << camera_id;
   }
-  EXPECT_LT(Evaluate(model, scene).rotation_error_median_deg, 0.1);
+  EXPECT_LT(test::EvaluateAgainstTruth(model, scene).rotation_error_median_deg, 0.1);
 }
 
 // A lens with k1 = -0.15, and the database that gives it as a plain PINHOLE camera.
@@ -138,7 +132,7 @@ TEST(GivenIntrinsics, PinholeCameraWithRadialDistortionGetsItsK1) {
   EXPECT_TRUE(test.distortion_accepted);
   EXPECT_FALSE(test.focal_accepted);
   EXPECT_EQ(test.final_model, "SIMPLE_RADIAL");
-  EXPECT_LT(Evaluate(model, scene).rotation_error_median_deg, 0.1);
+  EXPECT_LT(test::EvaluateAgainstTruth(model, scene).rotation_error_median_deg, 0.1);
 }
 
 TEST(GivenIntrinsics, SecondRefinementRoundThroughTheFoundDistortion) {
@@ -152,7 +146,7 @@ TEST(GivenIntrinsics, SecondRefinementRoundThroughTheFoundDistortion) {
   ASSERT_EQ(model.images.size(), scene.ground_truth.images.size());
   EXPECT_NE(progress.str().find("round 2: "), std::string::npos) << progress.str();
   EXPECT_NEAR(model.cameras.at(1).params[3], -0.15, 0.01);
-  EXPECT_LT(Evaluate(model, scene).rotation_error_median_deg, 0.1);
+  EXPECT_LT(test::EvaluateAgainstTruth(model, scene).rotation_error_median_deg, 0.1);
 }
 
 TEST(GivenIntrinsics, TestOffLeavesTheGivenPinholeCamera) {

@@ -14,18 +14,19 @@ namespace {
 
 void LogBundleAdjustment(const PassInput& input, const BundleAdjustmentSummary& ba,
                          const std::string& what, ComponentState* state) {
-  const auto cameras = [](const std::vector<uint32_t>& ids, const std::string& what) {
+  const auto listed_cameras = [](const std::vector<uint32_t>& ids, const std::string& verdict) {
     std::string listed;
     for (const uint32_t camera_id : ids)
       listed +=
           (listed.empty() ? "; the principal point of camera " : ", ") + std::to_string(camera_id);
-    return listed.empty() ? listed : listed + what;
+    return listed.empty() ? listed : listed + verdict;
   };
   const std::string held =
-      cameras(ba.principal_points_drifted,
-              " moved far without lowering its errors: held where it started, solved again") +
-      cameras(ba.principal_points_confirmed,
-              " moved far and lowered its errors clearly: kept (a cropped photo's)");
+      listed_cameras(
+          ba.principal_points_drifted,
+          " moved far without lowering its errors: held where it started, solved again") +
+      listed_cameras(ba.principal_points_confirmed,
+                     " moved far and lowered its errors clearly: kept (a cropped photo's)");
   const std::string wide = ba.wide_start_loss_px > 0
                                ? ", first under a " + std::to_string(ba.wide_start_loss_px) +
                                      " px loss (median start error above the loss scale)"

@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
 """How many of the pairs that exhaustive matching verifies ramap's own matching plan found.
 
-    matching_recall.py RAMAP_BINARY DATABASE [SCENE_IMAGES_TXT]
+    matching_recall.py DATABASE RAMAP_BINARY [SCENE_IMAGES_TXT]
 
-DATABASE is a COLMAP database that `ramap reconstruct` (or `ramap matcher` in its default mode)
-matched: its verified pairs are the plan's. A copy of it, its matches removed, is matched again
-with every pair tried (`--Matching.mode exhaustive --Matching.preemptive_num_features 0`), the
-same features and verification. Prints one JSON object:
+DATABASE is a COLMAP database that `ramap reconstruct` matched without --ImageReader.camera_params:
+its verified pairs are the plan's. A copy of it, its matches removed, is matched again with every
+pair tried (`--Matching.mode exhaustive --Matching.preemptive_num_features 0`), on the same
+features and verified as reconstruct verified them: with F wherever a focal length came from EXIF
+(the copy's cameras lose their prior_focal_length flag, which would make `ramap matcher` verify
+with E through it). Prints one JSON object:
   images, pairs_tried_exhaustive: images, and the pairs exhaustive matching tries
   verified_exhaustive / verified_plan: pairs verified by each
   recall: verified_plan & verified_exhaustive over verified_exhaustive
@@ -43,14 +45,8 @@ def recall(found, wanted):
     return None if not wanted else len(found & wanted) / len(wanted)
 
 
-def main():
-    if len(sys.argv) not in (3, 4):
-        sys.exit(__doc__)
-    ramap, database = sys.argv[1], pathlib.Path(sys.argv[2])
-    if not database.is_file():
-        sys.exit(f"matching_recall: no database at {database}")
-    plan = verified_pairs(database)
-    names = image_names(database)
+def exhaustive_pairs(ramap, database):
+    """The verified pairs of a copy of `database` matched with every pair tried."""
     with tempfile.TemporaryDirectory() as work:
         exhaustive_db = pathlib.Path(work) / "exhaustive.db"
         shutil.copyfile(database, exhaustive_db)
@@ -61,10 +57,32 @@ def main():
             tables = {row[0] for row in db.execute("SELECT name FROM sqlite_master")}
             if "ramap_match_confidence" in tables:
                 db.execute("DELETE FROM ramap_match_confidence")
-        subprocess.run([ramap, "matcher", "--database_path", str(exhaustive_db), "--log_level", "0",
-                        "--Matching.mode", "exhaustive", "--Matching.preemptive_num_features", "0"],
-                       check=True, stdout=subprocess.DEVNULL)
-        exhaustive = verified_pairs(exhaustive_db)
+            db.execute("UPDATE cameras SET prior_focal_length = 0")
+        command = [ramap, "matcher", "--database_path", str(exhaustive_db), "--log_level", "0",
+                   "--Matching.mode", "exhaustive", "--Matching.preemptive_num_features", "0"]
+        run = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        if run.returncode != 0:
+            sys.exit(f"matching_recall: {ramap} matcher failed on a copy of {database}: "
+                     f"{run.stderr.strip()}")
+        return verified_pairs(exhaustive_db)
+
+
+def main():
+    if len(sys.argv) not in (3, 4):
+        sys.exit(__doc__)
+    database, ramap = pathlib.Path(sys.argv[1]), sys.argv[2]
+    if not database.is_file():
+        sys.exit(f"matching_recall: no database at {database}")
+    if shutil.which(ramap) is None:
+        sys.exit(f"matching_recall: no ramap binary at {ramap}")
+    try:
+        plan = verified_pairs(database)
+        names = image_names(database)
+    except sqlite3.DatabaseError as error:
+        sys.exit(f"matching_recall: {database} is not a COLMAP database ({error})")
+    if not plan:
+        sys.exit(f"matching_recall: {database} holds no verified pair: match it first")
+    exhaustive = exhaustive_pairs(ramap, database)
     found = set(plan)
     scores = {
         "images": len(names),
@@ -75,7 +93,12 @@ def main():
         "recall_strong": recall(found, {p for p, n in exhaustive.items() if n >= STRONG_INLIERS}),
     }
     if len(sys.argv) == 4:
-        scene = set(pathlib.Path(sys.argv[3]).read_text().split())
+        scene_file = pathlib.Path(sys.argv[3])
+        if not scene_file.is_file():
+            sys.exit(f"matching_recall: no scene image list at {scene_file}")
+        scene = set(scene_file.read_text().split())
+        if not scene & set(names.values()):
+            sys.exit(f"matching_recall: no image of {scene_file} is in {database}")
         in_scene = {p for p in exhaustive if names[p[0]] in scene and names[p[1]] in scene}
         scores["recall_scene"] = recall(found, in_scene)
     print(json.dumps(scores))

@@ -288,11 +288,12 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
   // (wide_start_loss_factor) left sceaux_castle's verdict and its errors (within 0.003 px) as they
   // were, and took 0.47 s more.
   held.wide_start_loss_factor = 0;
-  // The principal points guessed at the image centre stay there: each side of the test would
-  // otherwise solve up to three times to test them (BundleAdjust), and could keep different ones,
-  // so that the two sides' errors would differ by more than the given cameras' intrinsics. The
-  // final BA tests them.
+  // Every principal point stays where the model has it, on both sides (step 2 holds them too): a
+  // guessed one would otherwise be tested on each side with up to three solves (BundleAdjust), and
+  // the sides could keep different ones, so that their errors would differ by more than the given
+  // cameras' intrinsics. The BA after the test refines and tests them.
   held.refine_guessed_principal_point = false;
+  held.refine_principal_point = false;
   Trials trials{
       bearings,
       focal_lengths_px,

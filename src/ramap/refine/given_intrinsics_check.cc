@@ -248,6 +248,25 @@ bool TakeSubsetPoses(const Reconstruction& subset, Reconstruction* reconstructio
   return true;
 }
 
+// The adjustment of step 1, the control, whose options every step starts from: on the subset's
+// points, with nothing filtered, so that every step is measured on the same observations.
+BundleAdjustmentOptions ControlOptions(const BundleAdjustmentOptions& ba,
+                                       const GivenIntrinsicsTestOptions& options) {
+  BundleAdjustmentOptions held = PointSubsetOptions(ba, options.num_points);
+  held.max_reprojection_error_px = 1e9;
+  // One solve, the loss as the test's thresholds were measured with: a wide first loss
+  // (wide_start_loss_factor) left sceaux_castle's verdict and its errors (within 0.003 px) as they
+  // were, and took 0.47 s more.
+  held.wide_start_loss_factor = 0;
+  // Every principal point stays where the model has it, on every side: a guessed one would
+  // otherwise be tested on each side with up to three solves (BundleAdjust), and the sides could
+  // keep different ones, so that their errors would differ by more than the given cameras'
+  // intrinsics. The BA after the test refines and tests them.
+  held.refine_guessed_principal_point = false;
+  held.refine_principal_point = false;
+  return held;
+}
+
 }  // namespace
 
 void GivenIntrinsicsTestOptions::Check() const {
@@ -280,20 +299,8 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
   GivenIntrinsicsTestSummary summary;
   const std::map<uint32_t, std::vector<uint32_t>> groups = HeldGroups(ba, *reconstruction);
   if (!options.enable || groups.empty()) return summary;
-  // 1. The control, with nothing filtered, so that every step is measured on the same
-  // observations.
-  BundleAdjustmentOptions held = PointSubsetOptions(ba, options.num_points);
-  held.max_reprojection_error_px = 1e9;
-  // One solve, the loss as the test's thresholds were measured with: a wide first loss
-  // (wide_start_loss_factor) left sceaux_castle's verdict and its errors (within 0.003 px) as they
-  // were, and took 0.47 s more.
-  held.wide_start_loss_factor = 0;
-  // Every principal point stays where the model has it, on both sides (step 2 holds them too): a
-  // guessed one would otherwise be tested on each side with up to three solves (BundleAdjust), and
-  // the sides could keep different ones, so that their errors would differ by more than the given
-  // cameras' intrinsics. The BA after the test refines and tests them.
-  held.refine_guessed_principal_point = false;
-  held.refine_principal_point = false;
+  // 1. The control.
+  const BundleAdjustmentOptions held = ControlOptions(ba, options);
   Trials trials{
       bearings,
       focal_lengths_px,
@@ -310,7 +317,6 @@ GivenIntrinsicsTestSummary TestGivenIntrinsics(const KeypointBearings& bearings,
   // 2. Distortion added and the focal length freed.
   Trial freed{held, given, {}, {}};
   freed.options.keep_prior_intrinsics = false;
-  freed.options.refine_principal_point = false;
   for (auto& [group, camera] : freed.cameras) {
     if (ba.refine_extra_params && HasNoDistortion(camera.model))
       camera = WithRadialDistortion(camera);

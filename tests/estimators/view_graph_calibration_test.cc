@@ -193,9 +193,6 @@ TEST(ViewGraphCalibration, RadialDistortionRecoveredByBundleAdjustment) {
 TEST(ViewGraphCalibration, IntrinsicsTheSubsetFoundAreHeldByTheFullAdjustment) {
   const SyntheticScene scene = RadialCameraScene(6000);  // over twice the subset, so that it runs
   const FeatureDatabase database = WithColmapsGuess(scene);
-  std::vector<std::string> names;
-  for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
-
   for (const bool held : {true, false}) {
     SCOPED_TRACE(held ? "held" : "refined again");
     MapperOptions mapper;
@@ -213,9 +210,8 @@ TEST(ViewGraphCalibration, IntrinsicsTheSubsetFoundAreHeldByTheFullAdjustment) {
     const std::vector<double>& refined = model.cameras.at(1).params;
     EXPECT_LT(RelativeError(refined[0], 500.0), 0.01) << refined[0];
     EXPECT_NEAR(refined[3], -0.1, 0.005);
-    const PoseEvaluation evaluation =
-        EvaluatePoses(PosesByName(model), PosesByName(scene.ground_truth), names);
-    EXPECT_EQ(evaluation.num_registered, static_cast<int>(names.size()));
+    const PoseEvaluation evaluation = test::EvaluateAgainstTruth(model, scene);
+    EXPECT_EQ(evaluation.num_registered, static_cast<int>(scene.ground_truth.images.size()));
     EXPECT_LT(evaluation.rotation_error_median_deg, 0.05);
     EXPECT_LT(evaluation.ate_rmse_over_extent, 1e-3);
   }
@@ -227,9 +223,6 @@ TEST(ViewGraphCalibration, IntrinsicsTheSubsetFoundAreHeldByTheFullAdjustment) {
 TEST(ViewGraphCalibration, SubsetAdjustmentCalibratesWithoutTheFinalBundleAdjustment) {
   const SyntheticScene scene = RadialCameraScene(6000);
   const FeatureDatabase database = WithColmapsGuess(scene);
-  std::vector<std::string> names;
-  for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
-
   std::map<bool, PoseEvaluation> evaluations;
   for (const bool subset : {false, true}) {
     SCOPED_TRACE(subset ? "subset adjustment" : "averaging alone");
@@ -240,8 +233,9 @@ TEST(ViewGraphCalibration, SubsetAdjustmentCalibratesWithoutTheFinalBundleAdjust
     const MapperResult result = RunMapper(database, mapper, "synthetic");
     ASSERT_EQ(result.reconstructions.size(), 1u);
     const Reconstruction& model = result.reconstructions[0];
-    evaluations[subset] = EvaluatePoses(PosesByName(model), PosesByName(scene.ground_truth), names);
-    EXPECT_EQ(evaluations[subset].num_registered, static_cast<int>(names.size()));
+    evaluations[subset] = test::EvaluateAgainstTruth(model, scene);
+    EXPECT_EQ(evaluations[subset].num_registered,
+              static_cast<int>(scene.ground_truth.images.size()));
     const BundleAdjustmentSummary& ba = result.summary.components[0].bundle_adjustment;
     if (!subset) {
       EXPECT_EQ(ba.num_points, 0);

@@ -95,11 +95,8 @@ TEST(LoopCandidates, RevisitsAreFoundAndNeighboursAreNot) {
 
 TEST(LoopClosure, VerifiedLoopsEnterTheSecondSolve) {
   SyntheticScene scene = SequentialLoop();
-  std::vector<std::string> names;
-  for (const auto& [id, image] : scene.ground_truth.images) names.push_back(image.name);
   auto evaluate = [&](const MapperResult& result) {
-    return EvaluatePoses(PosesByName(result.reconstructions.front()),
-                         PosesByName(scene.ground_truth), names);
+    return test::EvaluateAgainstTruth(result.reconstructions.front(), scene);
   };
   const MapperResult first = RunMapper(scene.database, test::AveragingOnly(), "synthetic");
   ASSERT_EQ(first.summary.num_registered_images, 80);

@@ -146,3 +146,15 @@ def test_ramap_maps_the_drive_and_evaluates_it_against_its_truth(tmp_path):
     summary = json.loads((drive / "drive.json").read_text())
     assert evaluation["num_evaluated"] >= 0.9 * summary["num_frames"]
     assert evaluation["ate"]["rmse_over_path_length"] < 0.01
+
+
+def test_a_sparse_drive_that_falls_into_pieces_still_gives_a_model(tmp_path):
+    """A quarter of the landmarks: the graph falls into pieces, one of four images placed mostly by
+    pure rotations, whose rays met only at infinity. Its points had a NaN error and the mapper
+    stopped writing the models ("3D point 4: error is NaN"); such points are now dropped."""
+    drive = generate(tmp_path, "sparse", "--seed", 1, "--density", 0.25)
+    result = run_cli("mapper", "--database_path", drive / "database.db", "--output_path", drive / "sparse",
+                     "--Mapper.refine", 0, "--Mapper.subset_adjustment", 0, check=False)
+    assert result.returncode == 0, result.stderr[-2000:]
+    models = sorted(p.name for p in (drive / "sparse").iterdir() if p.is_dir())
+    assert len(models) > 1

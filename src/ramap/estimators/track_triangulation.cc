@@ -92,6 +92,13 @@ TriangulatedTrack TriangulateTrack(const Track& track, const FeatureDatabase& da
     point.track.push_back(element);
   }
   point.error = result.error_sum_px / point.track.size();
+  // Rays that agree only at infinity (cameras that share a centre, a pose placed by rotation
+  // alone) can give a point or an error that is not finite: no point, rather than one no
+  // reader accepts.
+  if (!point.xyz.allFinite() || !std::isfinite(point.error)) {
+    result.error_sum_px = 0.0;
+    return result;
+  }
   result.point = std::move(point);
   return result;
 }

@@ -85,7 +85,9 @@ def generate(poses, output_dir, settings):
     views = observe(poses, scene, camera, rng, noise_px=settings.noise_px)
     candidates, num_loop_candidates = pair_geometry.candidate_pairs(
         poses, overlap=settings.overlap, loop_radius_m=settings.loop_radius_m,
-        max_axis_deg=60.0 if settings.layout == "room" else None, rng=rng)
+        max_axis_deg=60.0 if settings.layout == "room" else None,
+        # A hand-held camera revisits its room after a few steps; a car after a block or more.
+        loop_min_path_m=1.0 if settings.layout == "room" else 30.0, rng=rng)
     aliased = pair_geometry.choose_aliased(candidates, len(poses), settings.aliased_ratio, rng)
 
     database = Database(os.path.join(output_dir, "database.db"))

@@ -611,6 +611,19 @@ void ComputeCertificate(const RotationGraph& graph, const IndexedEdges& indexed,
                           certificate.max_residual_deg <= certificate.bound_deg;
 }
 
+// The edges' inlier counts, each saturated as RotationAveragingOptions::edge_weight_saturation
+// says.
+std::vector<double> SaturatedEdgeWeights(const RotationGraph& graph,
+                                         const RotationAveragingOptions& options) {
+  std::vector<double> weights(graph.edges.size());
+  for (size_t e = 0; e < graph.edges.size(); ++e) weights[e] = graph.edges[e].weight;
+  if (options.edge_weight_saturation <= 0 || weights.empty()) return weights;
+  const double saturation = options.edge_weight_saturation * Median(weights);
+  if (!(saturation > 0)) return weights;
+  for (double& w : weights) w /= 1.0 + w / saturation;
+  return weights;
+}
+
 }  // namespace
 
 RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
@@ -640,9 +653,7 @@ RotationAveragingResult AverageRotationsFrom(const RotationGraph& graph,
   result.timings.init = timer.ElapsedSeconds();
 
   std::vector<double> base_weights(graph.edges.size(), 1.0);
-  if (options.use_edge_weights) {
-    for (size_t e = 0; e < graph.edges.size(); ++e) base_weights[e] = graph.edges[e].weight;
-  }
+  if (options.use_edge_weights) base_weights = SaturatedEdgeWeights(graph, options);
 
   // L1RA, then the first robust IRLS run.
   timer.Restart();

@@ -51,6 +51,11 @@ void Declare(Table& t) {
       "RotationAveraging.adaptive_min_deg", [](auto& o) -> auto& { return o.adaptive_min_deg; },
       AtLeast(0), "adaptive pruning: the threshold's floor"));
   t.push_back(NumberOption<RotationAveragingOptions>(
+      "RotationAveraging.edge_weight_saturation",
+      [](auto& o) -> auto& { return o.edge_weight_saturation; }, AtLeast(0),
+      "weighted edges: an edge of n inliers weighs n / (1 + n / (this x the median count)), its "
+      "error having a floor more inliers do not lower (0: n)"));
+  t.push_back(NumberOption<RotationAveragingOptions>(
       "RotationAveraging.max_pruning_rounds", [](auto& o) -> auto& { return o.max_pruning_rounds; },
       AtLeast(0), "rounds of pruning and solving again"));
   t.push_back(BoolOption<RotationAveragingOptions>(

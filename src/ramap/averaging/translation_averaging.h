@@ -82,7 +82,8 @@ struct TranslationAveragingOptions {
   // directions on a straight stretch leave it free, and their bounds s_ij >= 1 pull a stretch
   // that only a few tracks tie to the rest to its own scale. A heavier weight let a long drive
   // come out too large past where it leaves its looped part, and cost the real sequence much of
-  // its accuracy without bundle adjustment (BENCHMARKS.md, "Robustness").
+  // its accuracy without bundle adjustment (docs/benchmark-history.md, "2026-12-07, commit
+  // ed68479: robustness").
   double pair_constraint_weight = 1.0;
   // Prior rows' weight: 1 makes a one-sigma GPS error cost as much as a baseline in a pair row.
   // Lighter priors no longer bound the drift along a sequence; heavier ones pull the model toward

@@ -31,6 +31,7 @@ if ((${#runs[@]} == 0)); then
   done
 fi
 mkdir -p "$drives_dir"
+source "$root/scripts/datasets/kitti_drive.sh"
 
 # motion -> trajectory file, drive_generator's stride, synthesize's camera
 motion_file() {
@@ -53,15 +54,7 @@ make_drive() {  # generator motion seed aliased dir
   elif [[ $motion =~ ^[0-9][0-9]$ ]]; then
     local frames
     frames=$(wc -l < "$file")
-    "$ramap" synthesize --output_path "$dir" \
-      --Synthetic.trajectory_path "$file" --Synthetic.num_images 0 \
-      --Synthetic.camera_model PINHOLE --Synthetic.camera_params 718.856,718.856,607.19,185.2 \
-      --Synthetic.width 1241 --Synthetic.height 376 --Synthetic.prior_focal_length 1 \
-      --Synthetic.num_points $((20 * frames)) --Synthetic.max_view_distance 40 \
-      --Synthetic.overlap 10 --Synthetic.loop_radius_m 8 --Synthetic.loop_min_frame_gap 100 \
-      --Synthetic.loop_max_angle_deg 180 --Synthetic.aliased_pair_ratio "$aliased" \
-      --Synthetic.outlier_ratio 0.02 --Synthetic.facade_distance_m 8 \
-      --Synthetic.keypoint_columns 4 --Synthetic.seed "$seed" >&2
+    synthesize_kitti_drive "$ramap" "$dir" "$file" 0 $((20 * frames)) "$seed" 8 "$aliased" >&2
   else
     echo "bench_drives: ramap synthesize drives follow KITTI motions only ($motion)" >&2
     return 1

@@ -24,6 +24,7 @@
 # build/bench-robustness (RAMAP_ROBUST_DIR); RAMAP_DATA_DIR as elsewhere.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+source "$root/scripts/datasets/kitti_drive.sh"
 data_dir=${RAMAP_DATA_DIR:-$root/../shared/data}
 cache_dir=${RAMAP_ROBUST_DIR:-$root/build/bench-robustness}
 ramap=${RAMAP_BINARY:-$root/build/ramap}
@@ -59,17 +60,9 @@ for run in "${runs[@]}"; do
   scene=$cache_dir/kitti${sequence}_${frames}_s${seed}_a${share}_${min_deg}-${max_deg}_$tag
   if [[ ! -f $scene/scene.done ]]; then
     rm -rf "$scene"
-    "$ramap" synthesize --output_path "$scene" \
-      --Synthetic.trajectory_path "$poses" --Synthetic.num_images "$frames" \
-      --Synthetic.camera_model PINHOLE --Synthetic.camera_params 718.856,718.856,607.19,185.2 \
-      --Synthetic.width 1241 --Synthetic.height 376 --Synthetic.prior_focal_length 1 \
-      --Synthetic.num_points $((20 * frames)) --Synthetic.max_view_distance 40 \
-      --Synthetic.overlap 10 --Synthetic.loop_radius_m 8 --Synthetic.loop_min_frame_gap 100 \
-      --Synthetic.loop_max_angle_deg 180 --Synthetic.outlier_ratio 0.02 \
-      --Synthetic.facade_distance_m 8 --Synthetic.keypoint_columns 4 --Synthetic.pixel_noise 0.7 \
-      --Synthetic.aliased_pair_ratio "$share" --Synthetic.aliased_min_angle_deg "$min_deg" \
-      --Synthetic.aliased_max_angle_deg "$max_deg" --Synthetic.seed "$seed" \
-      "${alias_options[@]}" > /dev/null
+    synthesize_kitti_drive "$ramap" "$scene" "$poses" "$frames" $((20 * frames)) "$seed" 8 "$share" \
+      --Synthetic.pixel_noise 0.7 --Synthetic.aliased_min_angle_deg "$min_deg" \
+      --Synthetic.aliased_max_angle_deg "$max_deg" "${alias_options[@]}" > /dev/null
     touch "$scene/scene.done"
   fi
   row="| $(python3 -c "print(f'{100 * float(\"$share\"):g}%')") | $min_deg-$max_deg |"

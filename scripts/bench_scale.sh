@@ -34,6 +34,7 @@ poses_dir=$data_dir/gt_trajectories/kitti_odometry_poses
 runs=("$@")
 ((${#runs[@]})) || runs=(00:500 00:1000 00:2000 00:4541 06:1101)
 mkdir -p "$scale_dir"
+source "$root/scripts/datasets/kitti_drive.sh"
 
 rows=()
 for run in "${runs[@]}"; do
@@ -47,17 +48,10 @@ for run in "${runs[@]}"; do
   scene=$scale_dir/kitti${sequence}_${frames}_${layout}_s${seed}_a0-40
   if [[ ! -f $scene/scene.done ]]; then
     rm -rf "$scene"
-    # 20 landmarks per frame; KITTI's camera (image 0 of the odometry calibration).
+    # 20 landmarks per frame.
     num_points=$((frames > 0 ? 20 * frames : 20 * $(wc -l < "$poses_dir/$sequence.txt")))
-    "$ramap" synthesize --output_path "$scene" \
-      --Synthetic.trajectory_path "$poses_dir/$sequence.txt" --Synthetic.num_images "$frames" \
-      --Synthetic.camera_model PINHOLE --Synthetic.camera_params 718.856,718.856,607.19,185.2 \
-      --Synthetic.width 1241 --Synthetic.height 376 --Synthetic.prior_focal_length 1 \
-      --Synthetic.num_points "$num_points" --Synthetic.max_view_distance 40 \
-      --Synthetic.overlap 10 --Synthetic.loop_radius_m 8 --Synthetic.loop_min_frame_gap 100 \
-      --Synthetic.loop_max_angle_deg 180 --Synthetic.aliased_pair_ratio 0.03 \
-      --Synthetic.outlier_ratio 0.02 --Synthetic.facade_distance_m "$facade_distance" \
-      --Synthetic.keypoint_columns 4 --Synthetic.seed "$seed" >&2
+    synthesize_kitti_drive "$ramap" "$scene" "$poses_dir/$sequence.txt" "$frames" "$num_points" \
+      "$seed" "$facade_distance" 0.03 >&2
     touch "$scene/scene.done"
   fi
   rm -rf "$scene/sparse" "$scene/eval.json"

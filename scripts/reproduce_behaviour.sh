@@ -41,6 +41,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$out"
 source "$root/scripts/datasets/list.sh"
+source "$root/scripts/datasets/kitti_drive.sh"
 
 skip() { echo "reproduce_behaviour: $*, skipped" | tee -a "$out/skipped.txt" >&2; }
 
@@ -103,14 +104,7 @@ part_drive() {
   map drive_default "$work/default_scene/database.db" "$work/default_scene/ground_truth" colmap --
   local poses=$data_dir/gt_trajectories/kitti_odometry_poses/06.txt
   [[ -f $poses ]] || { skip "drive: no $poses"; return; }
-  "$ramap" synthesize --output_path "$work/kitti06" --Synthetic.trajectory_path "$poses" \
-    --Synthetic.num_images 1101 --Synthetic.camera_model PINHOLE \
-    --Synthetic.camera_params 718.856,718.856,607.19,185.2 --Synthetic.width 1241 \
-    --Synthetic.height 376 --Synthetic.prior_focal_length 1 --Synthetic.num_points 22020 \
-    --Synthetic.max_view_distance 40 --Synthetic.overlap 10 --Synthetic.loop_radius_m 8 \
-    --Synthetic.loop_min_frame_gap 100 --Synthetic.loop_max_angle_deg 180 \
-    --Synthetic.aliased_pair_ratio 0.03 --Synthetic.outlier_ratio 0.02 \
-    --Synthetic.facade_distance_m 8 --Synthetic.keypoint_columns 4 --Synthetic.seed 1 > /dev/null
+  synthesize_kitti_drive "$ramap" "$work/kitti06" "$poses" 1101 22020 1 8 0.03 > /dev/null
   md5sum < "$work/kitti06/database.db" | sed 's/^/database.db /' > "$out/synthesize_kitti06.txt"
   local gt=$work/kitti06/ground_truth
   map drive_kitti06_averaging "$work/kitti06/database.db" "$gt" colmap -- \

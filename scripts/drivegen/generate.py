@@ -64,8 +64,24 @@ def _write_ground_truth(path, poses):
             out.write(f"{index} {t[0]:.9f} {t[1]:.9f} {t[2]:.9f} {qx:.12f} {qy:.12f} {qz:.12f} {qw:.12f}\n")
 
 
-def _pair_record(pose_i, pose_j, camera):
-    return pair_geometry.relative_pose(pose_i, pose_j)
+def _alias(view_i, view_j, pose_i, rotation, translation, scene, camera, rng, settings,
+           num_true_matches):
+    """An aliased pair's wrong pose and its matches: (rotation, translation, matches,
+    translation_only)."""
+    translation_only = rng.random() < settings.translation_alias_share
+    count = max(num_true_matches, int(rng.integers(30, 121)))
+    # A wrong pose that turns the view out of the image aliases nothing: draw again.
+    for _ in range(20):
+        wrong_rotation, wrong_translation = pair_geometry.aliased_pose(
+            rotation, translation, rng, settings.max_alias_deg, translation_only)
+        num_inside = pair_geometry.aliased_matches(view_i, view_j, pose_i, wrong_rotation,
+                                                   wrong_translation, scene, camera, rng, count,
+                                                   settings.noise_px, dry_run=True)
+        if num_inside >= settings.min_inliers:
+            break
+    matches = pair_geometry.aliased_matches(view_i, view_j, pose_i, wrong_rotation, wrong_translation,
+                                            scene, camera, rng, count, settings.noise_px)
+    return wrong_rotation, wrong_translation, matches, translation_only
 
 
 def generate(poses, output_dir, settings):
@@ -100,22 +116,11 @@ def generate(poses, output_dir, settings):
         rotation, translation = pair_geometry.relative_pose(poses[i], poses[j])
         matches = pair_geometry.true_matches(views[i], views[j], poses[i], poses[j], scene, rng)
         if index in aliased:
-            translation_only = rng.random() < settings.translation_alias_share
-            count = max(len(matches), int(rng.integers(30, 121)))
-            # A wrong pose that turns the view out of the image aliases nothing: draw again.
-            for _ in range(20):
-                wrong_rotation, wrong_translation = pair_geometry.aliased_pose(
-                    rotation, translation, rng, settings.max_alias_deg, translation_only)
-                matches = pair_geometry.aliased_matches(views[i], views[j], poses[i], wrong_rotation,
-                                                        wrong_translation, scene, camera, rng, count,
-                                                        settings.noise_px, dry_run=True)
-                if matches >= settings.min_inliers:
-                    break
-            rotation, translation = wrong_rotation, wrong_translation
-            matches = pair_geometry.aliased_matches(views[i], views[j], poses[i], rotation, translation,
-                                                    scene, camera, rng, count, settings.noise_px)
+            true_rotation = rotation
+            rotation, translation, matches, translation_only = _alias(
+                views[i], views[j], poses[i], rotation, translation, scene, camera, rng, settings,
+                len(matches))
             if len(matches) >= settings.min_inliers:
-                true_rotation, _ = pair_geometry.relative_pose(poses[i], poses[j])
                 off = np.degrees(np.arccos(np.clip((np.trace(rotation @ true_rotation.T) - 1) / 2, -1, 1)))
                 alias_lines.append(f"{image_ids[i]} {image_ids[j]} {off:.2f} "
                                    f"{'translation' if translation_only else 'rotation'}")

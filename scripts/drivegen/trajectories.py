@@ -104,7 +104,7 @@ def guess_kind(path):
     return "kitti"
 
 
-def _slerp(r0, r1, w):
+def _interpolate_rotation(r0, r1, w):
     q0, q1 = matrix_to_quaternion(r0), matrix_to_quaternion(r1)
     if np.dot(q0, q1) < 0:
         q1 = -q1
@@ -140,5 +140,5 @@ def insert_stops(poses, rng, stops_per_1000=2.0, min_frames=8, max_frames=30):
         k = min(int(np.floor(u)), n - 2)
         w = u - k
         position = (1 - w) * poses[k][:3, 3] + w * poses[k + 1][:3, 3]
-        out.append(_pose(_slerp(poses[k][:3, :3], poses[k + 1][:3, :3], w), position))
+        out.append(_pose(_interpolate_rotation(poses[k][:3, :3], poses[k + 1][:3, :3], w), position))
     return out, sorted(stops)

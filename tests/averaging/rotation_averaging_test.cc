@@ -325,8 +325,6 @@ TEST(RotationAveraging, SaturatedEdgeWeightsLimitTheDriftOfABiasedSequence) {
       AlignedRotationErrorsDeg(by_count.rotations, synthetic.true_rotations, by_count.estimated));
   const double saturated_median = Median(AlignedRotationErrorsDeg(
       by_saturated.rotations, synthetic.true_rotations, by_saturated.estimated));
-  std::cout << "median rotation error: inlier counts " << linear_median << " deg, saturated "
-            << saturated_median << " deg\n";
   EXPECT_LT(saturated_median, 0.8 * linear_median)
       << "inlier counts " << linear_median << " deg, saturated " << saturated_median << " deg";
 }
